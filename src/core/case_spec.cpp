@@ -1,0 +1,51 @@
+#include "core/case_spec.hpp"
+
+namespace fluidem {
+
+SourceLocation CaseSpec::where(const std::string& key) const {
+  std::string k = key;
+  while (!k.empty()) {
+    auto it = locations.find(k);
+    if (it != locations.end()) return it->second;
+    const auto dot = k.find_last_of('.');
+    if (dot == std::string::npos) break;
+    k.resize(dot);
+  }
+  return SourceLocation{source_file, 0, 0};
+}
+
+int CaseSpec::species_index(const std::string& name) const {
+  for (std::size_t i = 0; i < species.size(); ++i)
+    if (species[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+const char* to_string(NormalModel m) {
+  switch (m) {
+  case NormalModel::Linear: return "linear";
+  case NormalModel::Hertz: return "hertz";
+  case NormalModel::WaltonBraun: return "walton_braun";
+  }
+  return "?";
+}
+const char* to_string(TangentialModel m) {
+  return m == TangentialModel::History ? "history" : "none";
+}
+const char* to_string(RollingModel m) {
+  switch (m) {
+  case RollingModel::None: return "none";
+  case RollingModel::ConstantTorque: return "constant_torque";
+  case RollingModel::SpringDashpot: return "spring_dashpot";
+  }
+  return "?";
+}
+const char* to_string(Placement p) {
+  switch (p) {
+  case Placement::Random: return "random";
+  case Placement::Lattice: return "lattice";
+  case Placement::File: return "file";
+  }
+  return "?";
+}
+
+} // namespace fluidem
