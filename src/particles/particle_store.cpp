@@ -1,0 +1,65 @@
+#include "particles/particle_store.hpp"
+
+#include <numbers>
+
+namespace fluidem {
+
+namespace {
+template <class F>
+void for_each_array(ParticleStore& p, F&& f) {
+  f(p.x), f(p.y), f(p.z), f(p.vx), f(p.vy), f(p.vz), f(p.wx), f(p.wy), f(p.wz);
+  f(p.fx), f(p.fy), f(p.fz), f(p.tx), f(p.ty), f(p.tz);
+  f(p.radius), f(p.mass), f(p.inv_mass), f(p.inv_inertia), f(p.species), f(p.id);
+}
+} // namespace
+
+double sphere_mass(double r, double rho) { return rho * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
+
+void ParticleStore::reserve(std::size_t n) {
+  for_each_array(*this, [n](auto& a) { a.reserve(n); });
+}
+
+void ParticleStore::resize(std::size_t n) {
+  for_each_array(*this, [n](auto& a) { a.resize(n); });
+}
+
+void ParticleStore::add(const Vec3& p, const Vec3& v, double r, double rho, std::int32_t s,
+                        std::int64_t pid) {
+  const double m = sphere_mass(r, rho);
+  x.push_back(p.x), y.push_back(p.y), z.push_back(p.z);
+  vx.push_back(v.x), vy.push_back(v.y), vz.push_back(v.z);
+  wx.push_back(0), wy.push_back(0), wz.push_back(0);
+  fx.push_back(0), fy.push_back(0), fz.push_back(0);
+  tx.push_back(0), ty.push_back(0), tz.push_back(0);
+  radius.push_back(r);
+  mass.push_back(m);
+  inv_mass.push_back(1.0 / m);
+  inv_inertia.push_back(1.0 / (0.4 * m * r * r));  // solid sphere I = 2/5 m r^2
+  species.push_back(s);
+  id.push_back(pid);
+}
+
+void ParticleStore::zero_forces() {
+  const std::size_t n = size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    fx[i] = fy[i] = fz[i] = 0.0;
+    tx[i] = ty[i] = tz[i] = 0.0;
+  }
+}
+
+void ParticleStore::permute(const std::vector<std::uint32_t>& new_to_old) {
+  for_each_array(*this, [&](auto& a) {
+    auto copy = a;
+    for (std::size_t k = 0; k < new_to_old.size(); ++k) a[k] = copy[new_to_old[k]];
+  });
+}
+
+std::size_t ParticleStore::bytes() const {
+  std::size_t b = 0;
+  for_each_array(const_cast<ParticleStore&>(*this),
+                 [&b](auto& a) { b += a.capacity() * sizeof(a[0]); });
+  return b;
+}
+
+} // namespace fluidem

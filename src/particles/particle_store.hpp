@@ -1,0 +1,54 @@
+// The particle store: one contiguous array per quantity (structure of arrays), so that hot loops
+// stream through exactly the data they use. Spheres (3-D) or discs moving in the x-z plane (2-D,
+// y components stay zero). Mass and moment of inertia are those of a solid sphere in both cases
+// (the 2-D beds of [Hoomans96] are spheres confined to a plane).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.hpp"
+
+namespace fluidem {
+
+class ParticleStore {
+public:
+  // Positions, m
+  std::vector<double> x, y, z;
+  // Velocities, m/s
+  std::vector<double> vx, vy, vz;
+  // Angular velocities, rad/s
+  std::vector<double> wx, wy, wz;
+  // Forces, N, and torques, N m (accumulated each step)
+  std::vector<double> fx, fy, fz;
+  std::vector<double> tx, ty, tz;
+  // Radius (m), mass (kg), inverse mass (1/kg), inverse moment of inertia (1/(kg m^2))
+  std::vector<double> radius, mass, inv_mass, inv_inertia;
+  // Species index into the species table; unique id (stable across sorting)
+  std::vector<std::int32_t> species;
+  std::vector<std::int64_t> id;
+
+  std::size_t size() const { return x.size(); }
+  void reserve(std::size_t n);
+  void resize(std::size_t n);
+
+  /// Append one particle at rest (forces zero). Mass and inertia from radius and density.
+  void add(const Vec3& position, const Vec3& velocity, double particle_radius, double density,
+           std::int32_t species_index, std::int64_t particle_id);
+
+  Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
+  Vec3 velocity(std::size_t i) const { return {vx[i], vy[i], vz[i]}; }
+  Vec3 angular_velocity(std::size_t i) const { return {wx[i], wy[i], wz[i]}; }
+  Vec3 force(std::size_t i) const { return {fx[i], fy[i], fz[i]}; }
+  Vec3 torque(std::size_t i) const { return {tx[i], ty[i], tz[i]}; }
+
+  void zero_forces();
+  /// Reorder every array by new_to_old (new index k takes old particle new_to_old[k]).
+  void permute(const std::vector<std::uint32_t>& new_to_old);
+  /// Bytes held by the arrays (capacity), for memory reports.
+  std::size_t bytes() const;
+};
+
+/// Mass of a solid sphere of radius r and density rho, kg.
+double sphere_mass(double r, double rho);
+
+} // namespace fluidem
