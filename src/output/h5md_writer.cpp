@@ -1,0 +1,485 @@
+#include "output/h5md_writer.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+// H5Pset_file_locking exists from 1.10.7 on the 1.10 branch and from 1.12.1 on.
+#if H5_VERS_MAJOR > 1 || (H5_VERS_MAJOR == 1 && H5_VERS_MINOR >= 13) ||                            \
+    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 12 && H5_VERS_RELEASE >= 1) ||                         \
+    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7)
+#define FLUIDEM_HAVE_H5P_FILE_LOCKING 1
+#endif
+
+namespace fluidem {
+
+namespace {
+
+constexpr std::size_t kChunkCapBytes = std::size_t{1} << 20; // 1 MiB per value chunk
+constexpr hsize_t kStepChunk = 512;                          // step/time: 4 KiB chunks
+
+// The innermost message of the HDF5 error stack (e.g. "unable to open file: ... errno = 2 ...").
+std::string hdf5_error_detail() {
+  std::string detail;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned, const H5E_error2_t* e, void* data) -> herr_t {
+        auto* s = static_cast<std::string*>(data);
+        if (s->empty() && e != nullptr && e->desc != nullptr && e->desc[0] != '\0') *s = e->desc;
+        return 0;
+      },
+      &detail);
+  H5Eclear2(H5E_DEFAULT);
+  return detail;
+}
+
+[[noreturn]] void fail(const std::string& path, const char* op, const char* object) {
+  std::string msg = "HDF5 error in '" + path + "': cannot " + op;
+  if (object != nullptr && object[0] != '\0') msg += std::string(" '") + object + "'";
+  const std::string detail = hdf5_error_detail();
+  if (!detail.empty()) msg += " (" + detail + ")";
+  throw std::runtime_error(msg);
+}
+
+hid_t check_id(hid_t id, const std::string& path, const char* op, const char* object = nullptr) {
+  if (id < 0) fail(path, op, object);
+  return id;
+}
+
+void check(herr_t status, const std::string& path, const char* op, const char* object = nullptr) {
+  if (status < 0) fail(path, op, object);
+}
+
+// Owns one HDF5 identifier and closes it with the matching H5?close.
+class Handle {
+public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), closer_(o.closer_) {}
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = std::exchange(o.id_, H5I_INVALID_HID);
+      closer_ = o.closer_;
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { reset(); }
+
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  /// Close now; returns the HDF5 status (0 when nothing was open).
+  herr_t reset() {
+    herr_t status = 0;
+    if (id_ >= 0 && closer_ != nullptr) status = closer_(id_);
+    id_ = H5I_INVALID_HID;
+    return status;
+  }
+
+private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer closer_ = nullptr;
+};
+
+// Small helpers that create one object and throw on failure.
+struct Builder {
+  const std::string& path;
+
+  Handle group(hid_t parent, const char* name) const {
+    return {check_id(H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), path,
+                     "create group", name),
+            H5Gclose};
+  }
+
+  Handle simple_space(int rank, const hsize_t* dims, const hsize_t* maxdims = nullptr) const {
+    return {check_id(H5Screate_simple(rank, dims, maxdims), path, "create dataspace"), H5Sclose};
+  }
+
+  Handle string_type(std::size_t length) const {
+    Handle t{check_id(H5Tcopy(H5T_C_S1), path, "copy string type"), H5Tclose};
+    check(H5Tset_size(t.get(), std::max<std::size_t>(length, 1)), path, "set string size");
+    check(H5Tset_strpad(t.get(), H5T_STR_NULLTERM), path, "set string padding");
+    return t;
+  }
+
+  void string_attr(hid_t obj, const char* name, const std::string& value) const {
+    Handle type = string_type(value.size() + 1);
+    Handle space{check_id(H5Screate(H5S_SCALAR), path, "create dataspace"), H5Sclose};
+    Handle attr{check_id(H5Acreate2(obj, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                         path, "create attribute", name),
+                H5Aclose};
+    check(H5Awrite(attr.get(), type.get(), value.c_str()), path, "write attribute", name);
+  }
+
+  void string_array_attr(hid_t obj, const char* name,
+                         const std::vector<std::string>& values) const {
+    std::size_t width = 1;
+    for (const auto& v : values) width = std::max(width, v.size() + 1);
+    std::vector<char> buffer(width * values.size(), '\0');
+    for (std::size_t i = 0; i < values.size(); ++i)
+      std::copy(values[i].begin(), values[i].end(), buffer.begin() + static_cast<long>(i * width));
+    Handle type = string_type(width);
+    const hsize_t dims[1] = {values.size()};
+    Handle space = simple_space(1, dims);
+    Handle attr{check_id(H5Acreate2(obj, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                         path, "create attribute", name),
+                H5Aclose};
+    check(H5Awrite(attr.get(), type.get(), buffer.data()), path, "write attribute", name);
+  }
+
+  void int_array_attr(hid_t obj, const char* name, const std::vector<int>& values) const {
+    const hsize_t dims[1] = {values.size()};
+    Handle space = simple_space(1, dims);
+    Handle attr{
+        check_id(H5Acreate2(obj, name, H5T_STD_I32LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), path,
+                 "create attribute", name),
+        H5Aclose};
+    check(H5Awrite(attr.get(), H5T_NATIVE_INT, values.data()), path, "write attribute", name);
+  }
+
+  Handle scalar_attr(hid_t obj, const char* name, hid_t file_type, hid_t mem_type,
+                     const void* value) const {
+    Handle space{check_id(H5Screate(H5S_SCALAR), path, "create dataspace"), H5Sclose};
+    Handle attr{check_id(H5Acreate2(obj, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                         path, "create attribute", name),
+                H5Aclose};
+    check(H5Awrite(attr.get(), mem_type, value), path, "write attribute", name);
+    return attr;
+  }
+
+  void fixed_dataset(hid_t parent, const char* name, hid_t file_type, hid_t mem_type, hsize_t n,
+                     const void* data) const {
+    const hsize_t dims[1] = {n};
+    Handle space = simple_space(1, dims);
+    Handle dset{check_id(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                                    H5P_DEFAULT),
+                         path, "create dataset", name),
+                H5Dclose};
+    if (n > 0)
+      check(H5Dwrite(dset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), path,
+            "write dataset", name);
+  }
+
+  // A chunked dataset of shape [0, inner...] with an unlimited first dimension.
+  Handle extendible(hid_t parent, const char* name, hid_t file_type, int rank, const hsize_t* inner,
+                    const hsize_t* chunk) const {
+    hsize_t dims[3] = {0, 0, 0};
+    hsize_t maxdims[3] = {H5S_UNLIMITED, 0, 0};
+    for (int d = 1; d < rank; ++d) {
+      dims[d] = inner[d - 1];
+      // A fixed dimension of size 0 cannot hold a chunk of size >= 1: make it unlimited.
+      maxdims[d] = inner[d - 1] > 0 ? inner[d - 1] : H5S_UNLIMITED;
+    }
+    Handle space = simple_space(rank, dims, maxdims);
+    Handle dcpl{check_id(H5Pcreate(H5P_DATASET_CREATE), path, "create property list"), H5Pclose};
+    check(H5Pset_chunk(dcpl.get(), rank, chunk), path, "set chunking of", name);
+    return {check_id(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, dcpl.get(),
+                                H5P_DEFAULT),
+                     path, "create dataset", name),
+            H5Dclose};
+  }
+};
+
+enum Element : std::size_t {
+  kPosition,
+  kVelocity,
+  kAngularVelocity,
+  kRadius,
+  kSpecies,
+  kId,
+  kCount
+};
+
+struct ElementSpec {
+  const char* name;
+  const char* value_path; // for error messages
+  int components;         // 3 for vectors, 1 for scalars
+  hid_t (*file_type)();
+  hid_t (*mem_type)();
+  std::size_t bytes;
+  const char* unit; // nullptr: dimensionless
+};
+
+hid_t f64le() {
+  return H5T_IEEE_F64LE;
+}
+hid_t i32le() {
+  return H5T_STD_I32LE;
+}
+hid_t i64le() {
+  return H5T_STD_I64LE;
+}
+hid_t native_double() {
+  return H5T_NATIVE_DOUBLE;
+}
+hid_t native_i32() {
+  return H5T_NATIVE_INT32;
+}
+hid_t native_i64() {
+  return H5T_NATIVE_INT64;
+}
+
+const ElementSpec kElements[kCount] = {
+    {"position", "/particles/all/position/value", 3, f64le, native_double, 8, "m"},
+    {"velocity", "/particles/all/velocity/value", 3, f64le, native_double, 8, "m s-1"},
+    {"angular_velocity", "/particles/all/angular_velocity/value", 3, f64le, native_double, 8,
+     "s-1"},
+    {"radius", "/particles/all/radius/value", 1, f64le, native_double, 8, "m"},
+    {"species", "/particles/all/species/value", 1, i32le, native_i32, 4, nullptr},
+    {"id", "/particles/all/id/value", 1, i64le, native_i64, 8, nullptr},
+};
+
+} // namespace
+
+struct H5mdWriter::Impl {
+  std::string path;
+  std::size_t n = 0;
+  std::size_t frames = 0;
+  bool closed = false;
+  // Declaration order = reverse close order: the file is closed last.
+  Handle file;
+  Handle frames_attr;
+  Handle step; // shared (hard-linked) by every time-dependent element
+  Handle time;
+  Handle value[kCount];
+  Handle mem_vector;          // [N][3]
+  Handle mem_scalar;          // [N]
+  Handle mem_one;             // [1]
+  std::vector<double> buffer; // interleaved xyz, reused every frame
+
+  void append_value(Element e, const void* data, hid_t mem_space);
+  herr_t close_all() {
+    herr_t status = 0;
+    for (Handle* h : {&mem_one, &mem_scalar, &mem_vector}) status = std::min(status, h->reset());
+    for (auto& v : value) status = std::min(status, v.reset());
+    status = std::min(status, time.reset());
+    status = std::min(status, step.reset());
+    status = std::min(status, frames_attr.reset());
+    status = std::min(status, file.reset());
+    closed = true;
+    return status;
+  }
+  ~Impl() { close_all(); }
+};
+
+void H5mdWriter::Impl::append_value(Element e, const void* data, hid_t mem_space) {
+  const ElementSpec& spec = kElements[e];
+  const hsize_t dims[3] = {frames + 1, n, 3};
+  check(H5Dset_extent(value[e].get(), dims), path, "extend dataset", spec.value_path);
+  if (n == 0) return;
+  Handle space{check_id(H5Dget_space(value[e].get()), path, "get dataspace of", spec.value_path),
+               H5Sclose};
+  const hsize_t start[3] = {frames, 0, 0};
+  const hsize_t count[3] = {1, n, 3};
+  check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr), path,
+        "select frame in", spec.value_path);
+  check(H5Dwrite(value[e].get(), spec.mem_type(), mem_space, space.get(), H5P_DEFAULT, data), path,
+        "write frame to", spec.value_path);
+}
+
+H5mdWriter::H5mdWriter(const std::string& path, std::size_t n_particles, int dimension,
+                       const std::string& creator_version, const H5mdBox& box,
+                       const std::string& author)
+    : impl_(std::make_unique<Impl>()) {
+  if (dimension != 2 && dimension != 3)
+    throw std::invalid_argument("H5mdWriter('" + path + "'): dimension must be 2 or 3, not " +
+                                std::to_string(dimension));
+  // Errors are reported by exceptions; keep HDF5 from dumping its stack on stderr.
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+
+  Impl& m = *impl_;
+  m.path = path;
+  m.n = n_particles;
+  const Builder b{m.path};
+
+  Handle fapl{check_id(H5Pcreate(H5P_FILE_ACCESS), path, "create property list"), H5Pclose};
+#ifdef FLUIDEM_HAVE_H5P_FILE_LOCKING
+  // No lock: a viewer (ParaView, h5py) may open the file while the run appends frames; every frame
+  // is flushed, so what it sees is consistent.
+  check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
+#endif
+  m.file = Handle{check_id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), path,
+                           "create file"),
+                  H5Fclose};
+  const hid_t f = m.file.get();
+
+  { // /h5md
+    Handle h5md = b.group(f, "h5md");
+    b.int_array_attr(h5md.get(), "version", {1, 1});
+    Handle author_group = b.group(h5md.get(), "author");
+    std::string who = author;
+    if (who.empty()) {
+      const char* user = std::getenv("USER");
+      who = (user != nullptr && user[0] != '\0') ? user : "unknown";
+    }
+    b.string_attr(author_group.get(), "name", who);
+    Handle creator = b.group(h5md.get(), "creator");
+    b.string_attr(creator.get(), "name", "fluidem");
+    b.string_attr(creator.get(), "version", creator_version);
+    Handle modules = b.group(h5md.get(), "modules");
+    Handle units = b.group(modules.get(), "units");
+    b.int_array_attr(units.get(), "version", {1, 0});
+    b.string_attr(units.get(), "system", "SI");
+  }
+  { // /parameters
+    Handle parameters = b.group(f, "parameters");
+    const std::int32_t dim = dimension;
+    b.scalar_attr(parameters.get(), "dimension", H5T_STD_I32LE, H5T_NATIVE_INT32, &dim);
+  }
+
+  Handle particles = b.group(f, "particles");
+  Handle all = b.group(particles.get(), "all");
+  const std::int64_t zero = 0;
+  m.frames_attr = b.scalar_attr(all.get(), "frames", H5T_STD_I64LE, H5T_NATIVE_INT64, &zero);
+  { // box
+    Handle box_group = b.group(all.get(), "box");
+    const std::int32_t three = 3;
+    b.scalar_attr(box_group.get(), "dimension", H5T_STD_I32LE, H5T_NATIVE_INT32, &three);
+    std::vector<std::string> boundary;
+    for (bool p : box.periodic) boundary.emplace_back(p ? "periodic" : "none");
+    b.string_array_attr(box_group.get(), "boundary", boundary);
+    const double edges[3] = {box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]};
+    b.fixed_dataset(box_group.get(), "edges", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, edges);
+    b.fixed_dataset(box_group.get(), "offset", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, box.lo.data());
+  }
+  { // Polyvertex connectivity for XDMF
+    std::vector<std::int64_t> index(n_particles);
+    for (std::size_t i = 0; i < n_particles; ++i) index[i] = static_cast<std::int64_t>(i);
+    b.fixed_dataset(all.get(), "vertex_index", H5T_STD_I64LE, H5T_NATIVE_INT64, n_particles,
+                    index.data());
+  }
+
+  for (std::size_t e = 0; e < kCount; ++e) {
+    const ElementSpec& spec = kElements[e];
+    Handle group = b.group(all.get(), spec.name);
+    if (e == 0) {
+      const hsize_t chunk[1] = {kStepChunk};
+      m.step = b.extendible(group.get(), "step", H5T_STD_I64LE, 1, nullptr, chunk);
+      m.time = b.extendible(group.get(), "time", H5T_IEEE_F64LE, 1, nullptr, chunk);
+      b.string_attr(m.time.get(), "unit", "s");
+    } else { // H5MD allows elements to share step and time through hard links
+      check(
+          H5Lcreate_hard(all.get(), "position/step", group.get(), "step", H5P_DEFAULT, H5P_DEFAULT),
+          path, "link", "step");
+      check(
+          H5Lcreate_hard(all.get(), "position/time", group.get(), "time", H5P_DEFAULT, H5P_DEFAULT),
+          path, "link", "time");
+    }
+    const std::size_t per_particle = static_cast<std::size_t>(spec.components) * spec.bytes;
+    const hsize_t chunk_n =
+        std::clamp<hsize_t>(kChunkCapBytes / per_particle, 1, std::max<hsize_t>(n_particles, 1));
+    if (spec.components == 3) {
+      const hsize_t inner[2] = {n_particles, 3};
+      const hsize_t chunk[3] = {1, chunk_n, 3};
+      m.value[e] = b.extendible(group.get(), "value", spec.file_type(), 3, inner, chunk);
+    } else {
+      const hsize_t inner[1] = {n_particles};
+      const hsize_t chunk[2] = {1, chunk_n};
+      m.value[e] = b.extendible(group.get(), "value", spec.file_type(), 2, inner, chunk);
+    }
+    if (spec.unit != nullptr) b.string_attr(m.value[e].get(), "unit", spec.unit);
+  }
+
+  const hsize_t vec_dims[2] = {std::max<hsize_t>(n_particles, 1), 3};
+  const hsize_t scalar_dims[1] = {std::max<hsize_t>(n_particles, 1)};
+  const hsize_t one_dims[1] = {1};
+  m.mem_vector = b.simple_space(2, vec_dims);
+  m.mem_scalar = b.simple_space(1, scalar_dims);
+  m.mem_one = b.simple_space(1, one_dims);
+  m.buffer.resize(3 * n_particles);
+  flush();
+}
+
+H5mdWriter::~H5mdWriter() = default;
+H5mdWriter::H5mdWriter(H5mdWriter&&) noexcept = default;
+H5mdWriter& H5mdWriter::operator=(H5mdWriter&&) noexcept = default;
+
+void H5mdWriter::write_frame(long step, double time, const ParticleStore& p) {
+  if (!impl_ || impl_->closed) throw std::logic_error("H5mdWriter: write_frame after close");
+  Impl& m = *impl_;
+  const std::size_t n = m.n;
+  for (const std::size_t size :
+       {p.x.size(), p.y.size(), p.z.size(), p.vx.size(), p.vy.size(), p.vz.size(), p.wx.size(),
+        p.wy.size(), p.wz.size(), p.radius.size(), p.species.size(), p.id.size()}) {
+    if (size != n)
+      throw std::invalid_argument("H5mdWriter('" + m.path + "'): frame has " +
+                                  std::to_string(size) + " particles, the file holds " +
+                                  std::to_string(n));
+  }
+
+  { // step and time
+    const hsize_t dims[1] = {m.frames + 1};
+    const hsize_t start[1] = {m.frames};
+    const hsize_t count[1] = {1};
+    const std::int64_t step64 = step;
+    struct {
+      hid_t dset;
+      hid_t mem_type;
+      const void* data;
+      const char* name;
+    } const items[2] = {{m.step.get(), H5T_NATIVE_INT64, &step64, "/particles/all/position/step"},
+                        {m.time.get(), H5T_NATIVE_DOUBLE, &time, "/particles/all/position/time"}};
+    for (const auto& it : items) {
+      check(H5Dset_extent(it.dset, dims), m.path, "extend dataset", it.name);
+      Handle space{check_id(H5Dget_space(it.dset), m.path, "get dataspace of", it.name), H5Sclose};
+      check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
+            m.path, "select frame in", it.name);
+      check(H5Dwrite(it.dset, it.mem_type, m.mem_one.get(), space.get(), H5P_DEFAULT, it.data),
+            m.path, "write frame to", it.name);
+    }
+  }
+
+  const auto interleave = [&](const std::vector<double>& a, const std::vector<double>& b,
+                              const std::vector<double>& c) {
+    double* out = m.buffer.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      out[3 * i] = a[i];
+      out[3 * i + 1] = b[i];
+      out[3 * i + 2] = c[i];
+    }
+    return static_cast<const void*>(out);
+  };
+  m.append_value(kPosition, interleave(p.x, p.y, p.z), m.mem_vector.get());
+  m.append_value(kVelocity, interleave(p.vx, p.vy, p.vz), m.mem_vector.get());
+  m.append_value(kAngularVelocity, interleave(p.wx, p.wy, p.wz), m.mem_vector.get());
+  m.append_value(kRadius, p.radius.data(), m.mem_scalar.get());
+  m.append_value(kSpecies, p.species.data(), m.mem_scalar.get());
+  m.append_value(kId, p.id.data(), m.mem_scalar.get());
+
+  ++m.frames;
+  const std::int64_t frames64 = static_cast<std::int64_t>(m.frames);
+  check(H5Awrite(m.frames_attr.get(), H5T_NATIVE_INT64, &frames64), m.path, "write attribute",
+        "/particles/all frames");
+  flush();
+}
+
+void H5mdWriter::flush() {
+  if (!impl_ || impl_->closed) return;
+  check(H5Fflush(impl_->file.get(), H5F_SCOPE_GLOBAL), impl_->path, "flush file");
+}
+
+void H5mdWriter::close() {
+  if (!impl_ || impl_->closed) return;
+  if (impl_->close_all() < 0) fail(impl_->path, "close file", nullptr);
+}
+
+std::size_t H5mdWriter::frames() const {
+  return impl_ ? impl_->frames : 0;
+}
+std::size_t H5mdWriter::n_particles() const {
+  return impl_ ? impl_->n : 0;
+}
+const std::string& H5mdWriter::path() const {
+  static const std::string empty;
+  return impl_ ? impl_->path : empty;
+}
+
+} // namespace fluidem

@@ -1,0 +1,161 @@
+#include "output/xdmf_writer.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+#include "output/h5md_writer.hpp"
+
+namespace fluidem {
+
+namespace {
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (const char c : s) {
+    switch (c) {
+    case '&':
+      out += "&amp;";
+      break;
+    case '<':
+      out += "&lt;";
+      break;
+    case '>':
+      out += "&gt;";
+      break;
+    case '"':
+      out += "&quot;";
+      break;
+    case '\'':
+      out += "&apos;";
+      break;
+    default:
+      out += c;
+    }
+  }
+  return out;
+}
+
+// Shortest text that reads back as the same double.
+std::string shortest(double v) {
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  if (ec != std::errc{}) return "0";
+  return std::string(buf, end);
+}
+
+struct Field {
+  const char* name;      // XDMF attribute name ("" for the geometry)
+  const char* dataset;   // H5MD path of the value dataset
+  const char* type;      // NumberType
+  const char* precision; // bytes
+  bool vector;
+};
+
+constexpr Field kGeometry{"", "/particles/all/position/value", "Float", "8", true};
+constexpr Field kAttributes[] = {
+    {"velocity", "/particles/all/velocity/value", "Float", "8", true},
+    {"angular_velocity", "/particles/all/angular_velocity/value", "Float", "8", true},
+    {"radius", "/particles/all/radius/value", "Float", "8", false},
+    {"species", "/particles/all/species/value", "Int", "4", false},
+    {"id", "/particles/all/id/value", "Int", "8", false},
+};
+
+// A HyperSlab DataItem selecting frame k of a [F][N](3) dataset.
+void hyperslab(std::string& out, const Field& f, const std::string& h5, std::size_t k,
+               const std::string& n, const std::string& frames, const char* indent) {
+  const std::string ks = std::to_string(k);
+  out += indent;
+  if (f.vector) {
+    out += "<DataItem ItemType=\"HyperSlab\" Type=\"HyperSlab\" Dimensions=\"1 " + n + " 3\">\n";
+    out += indent;
+    out += "  <DataItem Dimensions=\"3 3\" Format=\"XML\">" + ks + " 0 0 1 1 1 1 " + n +
+           " 3</DataItem>\n";
+    out += indent;
+    out += "  <DataItem Dimensions=\"" + frames + " " + n + " 3\" NumberType=\"" + f.type +
+           "\" Precision=\"" + f.precision + "\" Format=\"HDF\">" + h5 + ":" + f.dataset +
+           "</DataItem>\n";
+  } else {
+    out += "<DataItem ItemType=\"HyperSlab\" Type=\"HyperSlab\" Dimensions=\"1 " + n + "\">\n";
+    out += indent;
+    out +=
+        "  <DataItem Dimensions=\"3 2\" Format=\"XML\">" + ks + " 0 1 1 1 " + n + "</DataItem>\n";
+    out += indent;
+    out += "  <DataItem Dimensions=\"" + frames + " " + n + "\" NumberType=\"" + f.type +
+           "\" Precision=\"" + f.precision + "\" Format=\"HDF\">" + h5 + ":" + f.dataset +
+           "</DataItem>\n";
+  }
+  out += indent;
+  out += "</DataItem>\n";
+}
+
+} // namespace
+
+std::string particles_xdmf(const std::string& h5_filename_relative, std::size_t n_particles,
+                           const std::vector<double>& frame_times) {
+  const std::string h5 = xml_escape(h5_filename_relative);
+  const std::string n = std::to_string(n_particles);
+  const std::string frames = std::to_string(frame_times.size());
+  std::string out;
+  out.reserve(512 + frame_times.size() * (2200 + h5.size() * 7));
+  out += "<?xml version=\"1.0\" ?>\n";
+  out += "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n";
+  out += "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n";
+  out += "  <Domain>\n";
+  out += "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (std::size_t k = 0; k < frame_times.size(); ++k) {
+    out += "      <Grid Name=\"frame_" + std::to_string(k) + "\" GridType=\"Uniform\">\n";
+    out += "        <Time Value=\"" + shortest(frame_times[k]) + "\"/>\n";
+    out += "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + n +
+           "\" NodesPerElement=\"1\">\n";
+    out += "          <DataItem Dimensions=\"" + n +
+           "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" + h5 + ":" +
+           kH5mdVertexIndexPath + "</DataItem>\n";
+    out += "        </Topology>\n";
+    out += "        <Geometry GeometryType=\"XYZ\">\n";
+    hyperslab(out, kGeometry, h5, k, n, frames, "          ");
+    out += "        </Geometry>\n";
+    for (const Field& f : kAttributes) {
+      out += std::string("        <Attribute Name=\"") + f.name + "\" AttributeType=\"" +
+             (f.vector ? "Vector" : "Scalar") + "\" Center=\"Node\">\n";
+      hyperslab(out, f, h5, k, n, frames, "          ");
+      out += "        </Attribute>\n";
+    }
+    out += "      </Grid>\n";
+  }
+  out += "    </Grid>\n";
+  out += "  </Domain>\n";
+  out += "</Xdmf>\n";
+  return out;
+}
+
+void write_particles_xdmf(const std::string& xmf_path, const std::string& h5_filename_relative,
+                          std::size_t n_particles, const std::vector<double>& frame_times) {
+  const std::string text = particles_xdmf(h5_filename_relative, n_particles, frame_times);
+  const std::string tmp = xmf_path + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (f == nullptr) throw std::runtime_error("cannot write '" + tmp + "': " + std::strerror(errno));
+  const std::size_t written = std::fwrite(text.data(), 1, text.size(), f);
+  const bool write_failed = written != text.size();
+  const int write_errno = errno;
+  if (std::fclose(f) != 0 || write_failed) {
+    const int err = write_failed ? write_errno : errno;
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw std::runtime_error("cannot write '" + tmp + "': " + std::strerror(err));
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, xmf_path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw std::runtime_error("cannot rename '" + tmp + "' to '" + xmf_path + "': " + ec.message());
+  }
+}
+
+} // namespace fluidem
