@@ -1,0 +1,956 @@
+#include "io/case_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+#include <utility>
+
+#include "io/case_writer.hpp"
+#include "io/key_suggest.hpp"
+
+namespace fluidem {
+namespace {
+
+namespace fs = std::filesystem;
+using Keys = std::vector<std::string>;
+
+constexpr const char* kSetFile = "--set";
+
+// ---------------------------------------------------------------------------------------------
+// The schema: valid keys of every table.
+
+const Keys& root_keys() {
+  static const Keys k = {"simulation", "output", "domain",  "walls",
+                         "species",    "insert", "contact", "neighbour"};
+  return k;
+}
+const Keys& simulation_keys() {
+  static const Keys k = {"dimension",
+                         "end_time",
+                         "time_step",
+                         "time_step_fraction",
+                         "force_time_step",
+                         "gravity",
+                         "insertion_overlap_tolerance"};
+  return k;
+}
+const Keys& output_keys() {
+  static const Keys k = {"frame_interval", "series_interval"};
+  return k;
+}
+const Keys& domain_keys() {
+  static const Keys k = {"lo", "hi", "periodic"};
+  return k;
+}
+const Keys& material_keys() {
+  static const Keys k = {"youngs_modulus", "poisson_ratio",          "restitution",
+                         "friction",       "tangential_restitution", "rolling_friction"};
+  return k;
+}
+const Keys& face_keys() {
+  static const Keys k(kFaceNames.begin(), kFaceNames.end());
+  return k;
+}
+const Keys& walls_keys() {
+  static const Keys k = [] {
+    Keys all = material_keys();
+    all.insert(all.end(), face_keys().begin(), face_keys().end());
+    return all;
+  }();
+  return k;
+}
+const Keys& species_keys() {
+  static const Keys k = [] {
+    Keys all = {"name", "diameter", "density"};
+    all.insert(all.end(), material_keys().begin(), material_keys().end());
+    return all;
+  }();
+  return k;
+}
+const Keys& insert_keys() {
+  static const Keys k = {"species", "count",    "placement",       "file",
+                         "region",  "velocity", "velocity_spread", "seed"};
+  return k;
+}
+const Keys& region_keys() {
+  static const Keys k = {"lo", "hi"};
+  return k;
+}
+const Keys& contact_keys() {
+  static const Keys k = {"normal",          "stiffness", "tangential",
+                         "stiffness_ratio", "rolling",   "characteristic_velocity",
+                         "max_overlap"};
+  return k;
+}
+const Keys& neighbour_keys() {
+  static const Keys k = {"skin"};
+  return k;
+}
+/// Keys of a top-level table section (species and insert are arrays of tables).
+const Keys& section_keys(const std::string& section) {
+  if (section == "simulation") return simulation_keys();
+  if (section == "output") return output_keys();
+  if (section == "domain") return domain_keys();
+  if (section == "walls") return walls_keys();
+  if (section == "species") return species_keys();
+  if (section == "insert") return insert_keys();
+  if (section == "contact") return contact_keys();
+  return neighbour_keys();
+}
+
+bool contains(const Keys& keys, const std::string& k) {
+  return std::find(keys.begin(), keys.end(), k) != keys.end();
+}
+
+std::string in_quotes(const std::string& s) {
+  return "\"" + s + "\"";
+}
+
+std::string join_quoted(const Keys& names) {
+  std::string s;
+  for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + in_quotes(names[i]);
+  return s;
+}
+
+std::string suggestion(const std::string& prefix, const std::string& key, const Keys& valid) {
+  return "unknown key (did you mean " + in_quotes(prefix + nearest_key(key, valid)) + "?)";
+}
+
+/// "a string "abc"", "the integer 3", ... for wrong-type messages.
+std::string describe(const toml::node& n) {
+  switch (n.type()) {
+  case toml::node_type::string: {
+    std::string s = *n.value<std::string>();
+    if (s.size() > 40) s = s.substr(0, 37) + "...";
+    return "the string " + in_quotes(s);
+  }
+  case toml::node_type::integer:
+    return "the integer " + std::to_string(*n.value<std::int64_t>());
+  case toml::node_type::floating_point:
+    return "the number " + format_double(*n.value<double>());
+  case toml::node_type::boolean:
+    return *n.value<bool>() ? "true" : "false";
+  case toml::node_type::array:
+    return "an array of " + std::to_string(n.as_array()->size()) + " element" +
+           (n.as_array()->size() == 1 ? "" : "s");
+  case toml::node_type::table:
+    return "a table";
+  case toml::node_type::date:
+    return "a date";
+  case toml::node_type::time:
+    return "a time";
+  case toml::node_type::date_time:
+    return "a date-time";
+  default:
+    return "nothing";
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Number rules: the allowed range of a real-valued key, and its unit.
+
+enum class Bound { Any, Positive, NonNegative, Unit, Poisson, OpenUnit, HalfOpenUnit };
+
+struct NumRule {
+  Bound bound;
+  const char* unit; ///< "" when dimensionless
+};
+
+bool in_bound(double x, Bound b) {
+  switch (b) {
+  case Bound::Any:
+    return true;
+  case Bound::Positive:
+    return x > 0;
+  case Bound::NonNegative:
+    return x >= 0;
+  case Bound::Unit:
+    return x >= 0 && x <= 1;
+  case Bound::Poisson:
+    return x >= 0 && x < 0.5;
+  case Bound::OpenUnit:
+    return x > 0 && x < 1;
+  case Bound::HalfOpenUnit:
+    return x > 0 && x <= 1;
+  }
+  return false;
+}
+
+std::string allowed(NumRule r) {
+  std::string s;
+  switch (r.bound) {
+  case Bound::Any:
+    s = "a finite number";
+    break;
+  case Bound::Positive:
+    s = "a number > 0";
+    break;
+  case Bound::NonNegative:
+    s = "a number >= 0";
+    break;
+  case Bound::Unit:
+    s = "a number in [0, 1]";
+    break;
+  case Bound::Poisson:
+    s = "a number in [0, 0.5)";
+    break;
+  case Bound::OpenUnit:
+    s = "a number in (0, 1)";
+    break;
+  case Bound::HalfOpenUnit:
+    s = "a number in (0, 1]";
+    break;
+  }
+  if (*r.unit) s += std::string(", in ") + r.unit;
+  return s;
+}
+
+const NumRule kLength{Bound::Positive, "m"};
+const NumRule kTime{Bound::Positive, "s"};
+
+// ---------------------------------------------------------------------------------------------
+// Command-line overrides: "path=value" applied to the parsed table before validation.
+
+struct Seg {
+  std::string name;
+  std::optional<std::size_t> index;
+  std::string text; ///< as typed
+};
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<Seg> parse_key_path(const std::string& key) {
+  const SourceLocation set{kSetFile, 0, 0};
+  const std::string malformed =
+      "malformed key (allowed: section.key, species[0].key, species.NAME.key, insert[0].key, "
+      "walls.FACE.key)";
+  std::vector<Seg> segs;
+  std::size_t start = 0;
+  while (true) {
+    const auto dot = key.find('.', start);
+    const std::string part =
+        key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    Seg seg{part, std::nullopt, part};
+    const auto bracket = part.find('[');
+    if (bracket != std::string::npos) {
+      const std::string digits = part.substr(bracket + 1, part.size() - bracket - 2);
+      if (part.back() != ']' || digits.empty() || digits.size() > 9 ||
+          !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        throw InputError(set, key, malformed);
+      seg.name = part.substr(0, bracket);
+      seg.index = static_cast<std::size_t>(std::stoul(digits));
+    }
+    if (seg.name.empty()) throw InputError(set, key, malformed);
+    segs.push_back(seg);
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return segs;
+}
+
+/// Child table `name` of `parent`, created when missing.
+toml::table& child_table(toml::table& parent, const std::string& name, const std::string& key,
+                         const std::string& shown) {
+  if (!parent.contains(name)) parent.insert(name, toml::table{});
+  toml::table* t = parent.get_as<toml::table>(name);
+  if (t == nullptr)
+    throw InputError(SourceLocation{kSetFile, 0, 0}, key,
+                     "cannot set a key inside " + shown +
+                         ", which is not a table in the case file");
+  return *t;
+}
+
+/// Applies one override to `root`; returns the canonical key path it set ("species[0].friction").
+std::string apply_override(toml::table& root, const std::string& text) {
+  const SourceLocation set{kSetFile, 0, 0};
+  const auto eq = text.find('=');
+  if (eq == std::string::npos)
+    throw InputError(set, trim(text), "expected key=value (e.g. simulation.end_time=0.5)");
+  const std::string key = trim(text.substr(0, eq));
+  const std::string raw = trim(text.substr(eq + 1));
+  const std::vector<Seg> segs = parse_key_path(key);
+
+  // Prefix of the key as typed, up to (not including) segment `level`.
+  auto typed = [&](std::size_t level) {
+    std::string s;
+    for (std::size_t i = 0; i < level; ++i) s += segs[i].text + ".";
+    return s;
+  };
+  auto check = [&](std::size_t level, const Keys& valid) {
+    if (segs[level].index)
+      throw InputError(set, key, typed(level) + segs[level].text + ": not an array");
+    if (!contains(valid, segs[level].name))
+      throw InputError(set, key, suggestion(typed(level), segs[level].name, valid));
+  };
+
+  const std::string& section = segs[0].name;
+  if (!contains(root_keys(), section))
+    throw InputError(set, key, suggestion("", section, root_keys()));
+
+  toml::table* tbl = nullptr;
+  std::string canon;
+  std::size_t level = 0;
+  if (section == "species" || section == "insert") {
+    toml::array* arr = root.get_as<toml::array>(section);
+    const std::size_t n = arr ? arr->size() : 0;
+    std::size_t idx = 0;
+    if (segs[0].index) {
+      idx = *segs[0].index;
+      level = 1;
+    } else if (section == "species" && segs.size() >= 3 && !segs[1].index) {
+      Keys names;
+      bool found = false;
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto* t = (*arr)[i].as_table();
+        const auto name = t ? t->get_as<std::string>("name") : nullptr;
+        if (name == nullptr) continue;
+        names.push_back(name->get());
+        if (!found && name->get() == segs[1].name) {
+          idx = i;
+          found = true;
+        }
+      }
+      if (!found)
+        throw InputError(set, key,
+                         "no species named " + in_quotes(segs[1].name) +
+                             (names.empty() ? " (the case has no named [[species]])"
+                                            : " (allowed: " + join_quoted(names) + ")"));
+      level = 2;
+    } else {
+      throw InputError(set, key,
+                       "needs an index (allowed: " + section + "[N].key, e.g. " + section + "[0]." +
+                           (section == "species" ? "friction, or species.NAME.key)" : "count)"));
+    }
+    if (idx >= n)
+      throw InputError(set, key,
+                       "index out of range (the case has " + std::to_string(n) + " [[" + section +
+                           "]]" + (n ? ", allowed: 0 to " + std::to_string(n - 1) : "") + ")");
+    tbl = (*arr)[idx].as_table();
+    canon = section + "[" + std::to_string(idx) + "]";
+    if (tbl == nullptr) throw InputError(set, key, canon + " is not a table in the case file");
+  } else {
+    if (segs[0].index) throw InputError(set, key, section + ": not an array");
+    tbl = &child_table(root, section, key, section);
+    canon = section;
+    level = 1;
+  }
+  if (level >= segs.size())
+    throw InputError(set, key,
+                     "names a table, not a key (allowed: " + typed(level) +
+                         section_keys(section)[0] + ", ...)");
+
+  // The key inside the section, and for walls faces and insert regions one level more.
+  check(level, section_keys(section));
+  if (level + 1 < segs.size()) {
+    const std::string& sub = segs[level].name;
+    const Keys* inner = nullptr;
+    if (section == "walls" && contains(face_keys(), sub)) inner = &material_keys();
+    if (section == "insert" && sub == "region") inner = &region_keys();
+    if (inner == nullptr)
+      throw InputError(set, key, "unknown key (" + typed(level + 1) + " is a value, not a table)");
+    tbl = &child_table(*tbl, sub, key, canon + "." + sub);
+    canon += "." + sub;
+    ++level;
+    check(level, *inner);
+  }
+  if (level + 1 < segs.size())
+    throw InputError(set, key, "unknown key (" + typed(level + 1) + " is a value, not a table)");
+  const std::string& leaf = segs[level].name;
+  canon += "." + leaf;
+
+  // The value: TOML if it parses as one, else a bare string.
+  std::optional<toml::table> doc;
+  try {
+    doc = toml::parse("v = " + raw, std::string_view(kSetFile));
+  } catch (const toml::parse_error&) {
+    doc.reset();
+  }
+  if (doc && doc->size() == 1 && doc->contains("v")) {
+    doc->get("v")->visit([&](const auto& v) { tbl->insert_or_assign(leaf, v); });
+  } else {
+    tbl->insert_or_assign(leaf, raw);
+  }
+  return canon;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The validating reader.
+
+struct Entry {
+  const toml::node* node;
+  SourceLocation where;
+};
+
+bool before(const toml::source_position& a, const toml::source_position& b) {
+  return a.line < b.line || (a.line == b.line && a.column < b.column);
+}
+
+class Reader {
+public:
+  Reader(CaseSpec& spec, std::string file, fs::path base, std::set<std::string> overridden)
+      : spec_(spec), file_(std::move(file)), base_(std::move(base)),
+        overridden_(std::move(overridden)) {}
+
+  void read(const toml::table& root) {
+    const SourceLocation file_loc{file_, 0, 0};
+    check_keys(root, "", root_keys());
+    read_simulation(section(root, "simulation"));
+    read_output(section(root, "output"));
+    const auto domain = section(root, "domain");
+    if (!domain)
+      throw InputError(file_loc, "domain",
+                       "missing required table [domain] (a box with lo and hi, in m)");
+    read_domain(*domain);
+    read_walls(section(root, "walls"));
+    read_species(root);
+    read_inserts(root);
+    read_contact(section(root, "contact"));
+    read_neighbour(section(root, "neighbour"));
+  }
+
+private:
+  CaseSpec& spec_;
+  std::string file_;
+  fs::path base_;
+  std::set<std::string> overridden_;
+
+  bool is_override(const std::string& path) const {
+    for (const auto& o : overridden_) {
+      if (path == o) return true;
+      if (path.size() > o.size() && path.compare(0, o.size(), o) == 0 &&
+          (path[o.size()] == '.' || path[o.size()] == '['))
+        return true;
+    }
+    return false;
+  }
+
+  SourceLocation loc(const std::string& path, const toml::source_position& p) const {
+    if (is_override(path) || p.line == 0) return SourceLocation{kSetFile, 0, 0};
+    return SourceLocation{file_, static_cast<long>(p.line), static_cast<long>(p.column)};
+  }
+
+  /// Looks up `key` in `t`; records and returns its location ("prefix" + key).
+  std::optional<Entry> find(const toml::table& t, const std::string& key, const std::string& path) {
+    const auto it = t.find(key);
+    if (it == t.end()) return std::nullopt;
+    // A "[table]" header starts before its key; a "key = value" starts at the key.
+    auto pos = it->first.source().begin;
+    const auto node_pos = it->second.source().begin;
+    if (node_pos.line > 0 && before(node_pos, pos)) pos = node_pos;
+    const SourceLocation where = loc(path, pos);
+    spec_.locations[path] = where;
+    return Entry{&it->second, where};
+  }
+
+  /// Throws for the first (in file order) key of `t` that is not in `valid`.
+  void check_keys(const toml::table& t, const std::string& prefix, const Keys& valid) {
+    const toml::key* bad = nullptr;
+    for (auto&& [k, v] : t) {
+      if (contains(valid, std::string(k.str()))) continue;
+      if (bad == nullptr || before(k.source().begin, bad->source().begin)) bad = &k;
+    }
+    if (bad == nullptr) return;
+    const std::string name(bad->str());
+    throw InputError(loc(prefix + name, bad->source().begin), prefix + name,
+                     suggestion("", name, valid));
+  }
+
+  /// A top-level table section; nullptr when absent. Checks its keys.
+  const toml::table* section(const toml::table& root, const std::string& name) {
+    return table(root, name, name, section_keys(name));
+  }
+
+  const toml::table* table(const toml::table& parent, const std::string& key,
+                           const std::string& path, const Keys& valid) {
+    const auto e = find(parent, key, path);
+    if (!e) return nullptr;
+    const toml::table* t = e->node->as_table();
+    if (t == nullptr)
+      throw InputError(e->where, path, "expected a table, got " + describe(*e->node));
+    check_keys(*t, path + ".", valid);
+    return t;
+  }
+
+  SourceLocation table_loc(const toml::table* t, const std::string& path) const {
+    if (t == nullptr) return SourceLocation{file_, 0, 0};
+    return loc(path, t->source().begin);
+  }
+
+  [[noreturn]] void missing(const toml::table* t, const std::string& table_path,
+                            const std::string& table_shown, const std::string& key,
+                            const std::string& what_allowed) const {
+    throw InputError(table_loc(t, table_path), table_path + "." + key,
+                     "missing required key in " + table_shown + " (" + what_allowed + ")");
+  }
+
+  // --- values -----------------------------------------------------------------------------
+
+  double number(const Entry& e, const std::string& path, NumRule r) const {
+    const toml::node& n = *e.node;
+    double x = 0;
+    if (n.is_floating_point())
+      x = *n.value<double>();
+    else if (n.is_integer())
+      x = static_cast<double>(*n.value<std::int64_t>());
+    else
+      throw InputError(e.where, path,
+                       "expected a number, got " + describe(n) + " (allowed: " + allowed(r) + ")");
+    if (!std::isfinite(x) || !in_bound(x, r.bound))
+      throw InputError(e.where, path,
+                       format_double(x) + " is out of range (allowed: " + allowed(r) + ")");
+    return x;
+  }
+
+  void opt_number(const toml::table* t, const std::string& prefix, const std::string& key,
+                  NumRule r, double& out) {
+    if (t == nullptr) return;
+    const std::string path = prefix + "." + key;
+    if (const auto e = find(*t, key, path)) out = number(*e, path, r);
+  }
+
+  double req_number(const toml::table* t, const std::string& prefix, const std::string& shown,
+                    const std::string& key, NumRule r) {
+    const std::string path = prefix + "." + key;
+    const auto e = t ? find(*t, key, path) : std::nullopt;
+    if (!e) missing(t, prefix, shown, key, allowed(r));
+    return number(*e, path, r);
+  }
+
+  /// A number or the string "auto" (-> empty).
+  void auto_number(const toml::table* t, const std::string& prefix, const std::string& key,
+                   NumRule r, std::optional<double>& out) {
+    if (t == nullptr) return;
+    const std::string path = prefix + "." + key;
+    const auto e = find(*t, key, path);
+    if (!e) return;
+    if (const auto s = e->node->value_exact<std::string>()) {
+      if (*s != "auto")
+        throw InputError(e->where, path,
+                         "expected a number or \"auto\", got " + describe(*e->node) +
+                             " (allowed: " + allowed(r) + ", or \"auto\")");
+      out.reset();
+      return;
+    }
+    if (!e->node->is_number())
+      throw InputError(e->where, path,
+                       "expected a number or \"auto\", got " + describe(*e->node) +
+                           " (allowed: " + allowed(r) + ", or \"auto\")");
+    out = number(*e, path, r);
+  }
+
+  std::int64_t integer(const Entry& e, const std::string& path, std::int64_t lo,
+                       const std::string& what_allowed) const {
+    const auto v = e.node->value_exact<std::int64_t>();
+    if (!v)
+      throw InputError(e.where, path,
+                       "expected an integer, got " + describe(*e.node) +
+                           " (allowed: " + what_allowed + ")");
+    if (*v < lo)
+      throw InputError(e.where, path,
+                       std::to_string(*v) + " is out of range (allowed: " + what_allowed + ")");
+    return *v;
+  }
+
+  void opt_bool(const toml::table* t, const std::string& prefix, const std::string& key,
+                bool& out) {
+    if (t == nullptr) return;
+    const std::string path = prefix + "." + key;
+    const auto e = find(*t, key, path);
+    if (!e) return;
+    const auto v = e->node->value_exact<bool>();
+    if (!v)
+      throw InputError(e->where, path,
+                       "expected a boolean, got " + describe(*e->node) +
+                           " (allowed: true or false)");
+    out = *v;
+  }
+
+  std::string str_value(const Entry& e, const std::string& path, const std::string& what) const {
+    const auto v = e.node->value_exact<std::string>();
+    if (!v)
+      throw InputError(e.where, path,
+                       "expected a string, got " + describe(*e.node) + " (allowed: " + what + ")");
+    return *v;
+  }
+
+  template <class E>
+  void opt_enum(const toml::table* t, const std::string& prefix, const std::string& key,
+                const std::vector<std::pair<std::string, E>>& names, E& out) {
+    if (t == nullptr) return;
+    const std::string path = prefix + "." + key;
+    const auto e = find(*t, key, path);
+    if (!e) return;
+    Keys valid;
+    for (const auto& [name, value] : names) valid.push_back(name);
+    const std::string s = str_value(*e, path, "one of " + join_quoted(valid));
+    for (const auto& [name, value] : names) {
+      if (name == s) {
+        out = value;
+        return;
+      }
+    }
+    throw InputError(e->where, path,
+                     "unknown value " + in_quotes(s) + " (allowed: " + join_quoted(valid) + ")");
+  }
+
+  /// An array of three numbers.
+  std::array<double, 3> vec3(const Entry& e, const std::string& path, NumRule r) const {
+    const std::string what = "an array of 3 numbers" + std::string(*r.unit ? ", in " : "") + r.unit;
+    const toml::array* a = e.node->as_array();
+    if (a == nullptr || a->size() != 3)
+      throw InputError(e.where, path,
+                       "expected " + what + ", got " + describe(*e.node) + " (allowed: " + what +
+                           ")");
+    std::array<double, 3> out{};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const toml::node& n = *a->get(i);
+      const std::string elem = path + "[" + std::to_string(i) + "]";
+      const SourceLocation where =
+          n.source().begin.line > 0 ? loc(path, n.source().begin) : e.where;
+      out[i] = number(Entry{&n, where}, elem, r);
+    }
+    return out;
+  }
+
+  void opt_vec3(const toml::table* t, const std::string& prefix, const std::string& key, NumRule r,
+                std::array<double, 3>& out) {
+    if (t == nullptr) return;
+    const std::string path = prefix + "." + key;
+    if (const auto e = find(*t, key, path)) out = vec3(*e, path, r);
+  }
+
+  /// Checks hi > lo on every axis.
+  void check_box(const SourceLocation& where, const std::string& hi_path,
+                 const std::array<double, 3>& lo, const std::array<double, 3>& hi) const {
+    static const char* axis = "xyz";
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!(hi[i] > lo[i]))
+        throw InputError(where, hi_path,
+                         std::string("hi[") + std::to_string(i) + "] = " + format_double(hi[i]) +
+                             " is not greater than lo[" + std::to_string(i) +
+                             "] = " + format_double(lo[i]) + " on the " + axis[i] +
+                             " axis (allowed: hi > lo on every axis)");
+    }
+  }
+
+  void read_material(const toml::table* t, const std::string& prefix, MaterialSpec& m) {
+    opt_number(t, prefix, "youngs_modulus", {Bound::Positive, "Pa"}, m.youngs_modulus);
+    opt_number(t, prefix, "poisson_ratio", {Bound::Poisson, ""}, m.poisson_ratio);
+    opt_number(t, prefix, "restitution", {Bound::Unit, ""}, m.restitution);
+    opt_number(t, prefix, "friction", {Bound::NonNegative, ""}, m.friction);
+    opt_number(t, prefix, "tangential_restitution", {Bound::Unit, ""}, m.tangential_restitution);
+    opt_number(t, prefix, "rolling_friction", {Bound::NonNegative, ""}, m.rolling_friction);
+  }
+
+  /// The array of tables `name` ([[species]], [[insert]]), at least one element.
+  const toml::array& table_array(const toml::table& root, const std::string& name,
+                                 const std::string& what) {
+    const SourceLocation file_loc{file_, 0, 0};
+    const auto e = find(root, name, name);
+    const std::string need = "at least one [[" + name + "]] table, " + what;
+    if (!e) throw InputError(file_loc, name, "missing required [[" + name + "]] (" + need + ")");
+    const toml::array* a = e->node->as_array();
+    if (a == nullptr)
+      throw InputError(e->where, name,
+                       "expected an array of tables [[" + name + "]], got " + describe(*e->node) +
+                           " (allowed: " + need + ")");
+    if (a->empty()) throw InputError(e->where, name, "is empty (allowed: " + need + ")");
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const toml::node& n = *a->get(i);
+      const std::string path = name + "[" + std::to_string(i) + "]";
+      if (!n.is_table())
+        throw InputError(n.source().begin.line > 0 ? loc(path, n.source().begin) : e->where, path,
+                         "expected a table, got " + describe(n) + " (allowed: " + need + ")");
+      spec_.locations[path] = n.source().begin.line > 0 ? loc(path, n.source().begin) : e->where;
+      check_keys(*n.as_table(), path + ".", section_keys(name));
+    }
+    return *a;
+  }
+
+  // --- sections ---------------------------------------------------------------------------
+
+  void read_simulation(const toml::table* t) {
+    SimulationSpec& s = spec_.simulation;
+    const std::string p = "simulation";
+    if (t != nullptr) {
+      if (const auto e = find(*t, "dimension", p + ".dimension")) {
+        const auto d =
+            integer(*e, p + ".dimension", std::numeric_limits<std::int64_t>::min(), "2 or 3");
+        if (d != 2 && d != 3)
+          throw InputError(e->where, p + ".dimension",
+                           std::to_string(d) + " is not a valid dimension (allowed: 2 or 3)");
+        s.dimension = static_cast<int>(d);
+      }
+    }
+    s.end_time = req_number(t, p, "[simulation]", "end_time", kTime);
+    auto_number(t, p, "time_step", kTime, s.time_step);
+    opt_number(t, p, "time_step_fraction", {Bound::HalfOpenUnit, ""}, s.time_step_fraction);
+    opt_bool(t, p, "force_time_step", s.force_time_step);
+    opt_vec3(t, p, "gravity", {Bound::Any, "m/s^2"}, s.gravity);
+    opt_number(t, p, "insertion_overlap_tolerance", {Bound::NonNegative, ""},
+               s.insertion_overlap_tolerance);
+    if (s.dimension == 2 && s.gravity[1] != 0.0)
+      throw InputError(spec_.where("simulation.gravity"), "simulation.gravity",
+                       "y component " + format_double(s.gravity[1]) +
+                           " is not 0 in dimension 2 (allowed: gravity in the x-z plane, "
+                           "[gx, 0, gz])");
+  }
+
+  void read_output(const toml::table* t) {
+    opt_number(t, "output", "frame_interval", kTime, spec_.output.frame_interval);
+    opt_number(t, "output", "series_interval", kTime, spec_.output.series_interval);
+  }
+
+  void read_domain(const toml::table& t) {
+    DomainSpec& d = spec_.domain;
+    const NumRule any_m{Bound::Any, "m"};
+    for (const char* key : {"lo", "hi"}) {
+      const std::string path = std::string("domain.") + key;
+      const auto e = find(t, key, path);
+      if (!e) missing(&t, "domain", "[domain]", key, "an array of 3 numbers, in m");
+      (std::string(key) == "lo" ? d.lo : d.hi) = vec3(*e, path, any_m);
+    }
+    check_box(spec_.where("domain.hi"), "domain.hi", d.lo, d.hi);
+    if (const auto e = find(t, "periodic", "domain.periodic")) {
+      const std::string what = "an array of 3 booleans";
+      const toml::array* a = e->node->as_array();
+      if (a == nullptr || a->size() != 3)
+        throw InputError(e->where, "domain.periodic",
+                         "expected " + what + ", got " + describe(*e->node) + " (allowed: " + what +
+                             ")");
+      for (std::size_t i = 0; i < 3; ++i) {
+        const auto v = a->get(i)->value_exact<bool>();
+        if (!v)
+          throw InputError(e->where, "domain.periodic",
+                           "element " + std::to_string(i) + " is " + describe(*a->get(i)) +
+                               " (allowed: " + what + ")");
+        d.periodic[i] = *v;
+      }
+    }
+  }
+
+  void read_walls(const toml::table* t) {
+    MaterialSpec base;
+    read_material(t, "walls", base);
+    for (std::size_t f = 0; f < kFaceNames.size(); ++f) {
+      const std::string face = kFaceNames[f];
+      MaterialSpec m = base;
+      if (t != nullptr) {
+        const toml::table* ft = table(*t, face, "walls." + face, material_keys());
+        read_material(ft, "walls." + face, m);
+      }
+      spec_.domain.wall_material[f] = m;
+    }
+  }
+
+  void read_species(const toml::table& root) {
+    const toml::array& arr =
+        table_array(root, "species", "each with a name, a diameter and a density");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const toml::table* t = arr.get(i)->as_table();
+      const std::string p = "species[" + std::to_string(i) + "]";
+      SpeciesSpec s;
+      const auto name = find(*t, "name", p + ".name");
+      const std::string name_rule = "a non-empty name, unique among the [[species]]";
+      if (!name) missing(t, p, "[[species]] " + p, "name", name_rule);
+      s.name = str_value(*name, p + ".name", name_rule);
+      if (s.name.empty())
+        throw InputError(name->where, p + ".name", "is empty (allowed: " + name_rule + ")");
+      const int other = spec_.species_index(s.name);
+      if (other >= 0)
+        throw InputError(name->where, p + ".name",
+                         "duplicate species name " + in_quotes(s.name) + ", also species[" +
+                             std::to_string(other) + "] at " +
+                             spec_.where("species[" + std::to_string(other) + "].name").str() +
+                             " (allowed: " + name_rule + ")");
+      s.diameter = req_number(t, p, "[[species]] " + p, "diameter", kLength);
+      s.density = req_number(t, p, "[[species]] " + p, "density", {Bound::Positive, "kg/m^3"});
+      read_material(t, p, s.material);
+      spec_.species.push_back(s);
+    }
+  }
+
+  void read_inserts(const toml::table& root) {
+    const toml::array& arr =
+        table_array(root, "insert", "each naming a species and a count or a file");
+    Keys names;
+    for (const auto& s : spec_.species) names.push_back(s.name);
+    const NumRule any_m{Bound::Any, "m"};
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const toml::table* t = arr.get(i)->as_table();
+      const std::string p = "insert[" + std::to_string(i) + "]";
+      const std::string shown = "[[insert]] " + p;
+      InsertSpec in;
+
+      const auto species = find(*t, "species", p + ".species");
+      const std::string species_rule = "one of " + join_quoted(names);
+      if (!species) missing(t, p, shown, "species", "the name of a [[species]]: " + species_rule);
+      in.species = str_value(*species, p + ".species", species_rule);
+      if (spec_.species_index(in.species) < 0)
+        throw InputError(species->where, p + ".species",
+                         "unknown species " + in_quotes(in.species) + " (allowed: " + species_rule +
+                             ")");
+
+      opt_enum<Placement>(t, p, "placement",
+                          {{"random", Placement::Random},
+                           {"lattice", Placement::Lattice},
+                           {"file", Placement::File}},
+                          in.placement);
+      const bool from_file = in.placement == Placement::File;
+
+      const auto count = find(*t, "count", p + ".count");
+      if (from_file && count)
+        throw InputError(count->where, p + ".count",
+                         "not allowed with placement = \"file\" (the file lists the particles)");
+      if (!from_file) {
+        if (!count) missing(t, p, shown, "count", "an integer >= 1");
+        in.count = static_cast<long>(integer(*count, p + ".count", 1, "an integer >= 1"));
+      }
+
+      const auto file = find(*t, "file", p + ".file");
+      if (!from_file && file)
+        throw InputError(file->where, p + ".file",
+                         std::string("not allowed with placement = \"") + to_string(in.placement) +
+                             "\" (only with placement = \"file\")");
+      if (from_file) {
+        const std::string rule =
+            "a LAMMPS data file, relative to the case file's folder or absolute";
+        if (!file) missing(t, p, shown, "file", rule + ", required with placement = \"file\"");
+        const std::string given = str_value(*file, p + ".file", rule);
+        if (given.empty())
+          throw InputError(file->where, p + ".file", "is empty (allowed: " + rule + ")");
+        fs::path path(given);
+        if (path.is_relative()) path = base_ / path;
+        std::error_code ec;
+        path = fs::absolute(path, ec).lexically_normal();
+        if (ec || !fs::is_regular_file(path, ec))
+          throw InputError(file->where, p + ".file",
+                           "file not found: " + path.string() + " (allowed: " + rule + ")");
+        in.file = path.string();
+      }
+
+      in.region_lo = spec_.domain.lo;
+      in.region_hi = spec_.domain.hi;
+      if (const toml::table* region = table(*t, "region", p + ".region", region_keys())) {
+        opt_vec3(region, p + ".region", "lo", any_m, in.region_lo);
+        opt_vec3(region, p + ".region", "hi", any_m, in.region_hi);
+        const SourceLocation where = spec_.where(p + ".region.hi");
+        check_box(where, p + ".region.hi", in.region_lo, in.region_hi);
+        for (std::size_t a = 0; a < 3; ++a) {
+          const bool lo_out = in.region_lo[a] < spec_.domain.lo[a];
+          const bool hi_out = in.region_hi[a] > spec_.domain.hi[a];
+          if (lo_out || hi_out) {
+            const std::string which = lo_out ? "lo" : "hi";
+            const double v = lo_out ? in.region_lo[a] : in.region_hi[a];
+            throw InputError(spec_.where(p + ".region." + which), p + ".region." + which,
+                             which + "[" + std::to_string(a) + "] = " + format_double(v) +
+                                 " is outside the domain (allowed: a box inside the domain, " +
+                                 format_double(spec_.domain.lo[a]) + " <= x <= " +
+                                 format_double(spec_.domain.hi[a]) + " on this axis)");
+          }
+        }
+      }
+      opt_vec3(t, p, "velocity", {Bound::Any, "m/s"}, in.velocity);
+      opt_number(t, p, "velocity_spread", {Bound::NonNegative, "m/s"}, in.velocity_spread);
+      if (const auto seed = find(*t, "seed", p + ".seed"))
+        in.seed = static_cast<std::uint64_t>(integer(*seed, p + ".seed", 0, "an integer >= 0"));
+      spec_.inserts.push_back(in);
+    }
+  }
+
+  void read_contact(const toml::table* t) {
+    ContactSpec& c = spec_.contact;
+    const std::string p = "contact";
+    opt_enum<NormalModel>(t, p, "normal",
+                          {{"linear", NormalModel::Linear},
+                           {"hertz", NormalModel::Hertz},
+                           {"walton_braun", NormalModel::WaltonBraun}},
+                          c.normal);
+    const NumRule stiffness{Bound::Positive, "N/m"};
+    const auto k = t ? find(*t, "stiffness", p + ".stiffness") : std::nullopt;
+    if (c.normal == NormalModel::Linear) {
+      if (!k)
+        missing(t, p, "[contact]", "stiffness",
+                allowed(stiffness) + ", required with normal = \"linear\"");
+      c.stiffness = number(*k, p + ".stiffness", stiffness);
+    } else if (k) {
+      throw InputError(k->where, p + ".stiffness",
+                       std::string("not allowed with normal = \"") + to_string(c.normal) +
+                           "\" (only with normal = \"linear\"; Hertzian stiffness follows from "
+                           "the material)");
+    }
+    opt_enum<TangentialModel>(
+        t, p, "tangential",
+        {{"history", TangentialModel::History}, {"none", TangentialModel::None}}, c.tangential);
+    auto_number(t, p, "stiffness_ratio", {Bound::Positive, ""}, c.stiffness_ratio);
+    opt_enum<RollingModel>(t, p, "rolling",
+                           {{"none", RollingModel::None},
+                            {"constant_torque", RollingModel::ConstantTorque},
+                            {"spring_dashpot", RollingModel::SpringDashpot}},
+                           c.rolling);
+    auto_number(t, p, "characteristic_velocity", {Bound::Positive, "m/s"},
+                c.characteristic_velocity);
+    opt_number(t, p, "max_overlap", {Bound::OpenUnit, ""}, c.max_overlap);
+  }
+
+  void read_neighbour(const toml::table* t) {
+    auto_number(t, "neighbour", "skin", kLength, spec_.neighbour.skin);
+  }
+};
+
+} // namespace
+
+CaseSpec read_case_string(const std::string& text, const std::string& source_name,
+                          const std::vector<std::string>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(text, std::string_view(source_name));
+  } catch (const toml::parse_error& e) {
+    const auto& b = e.source().begin;
+    std::string what(e.description());
+    std::replace(what.begin(), what.end(), '\n', ' '); // one line
+    throw InputError(
+        SourceLocation{source_name, static_cast<long>(b.line), static_cast<long>(b.column)}, "",
+        "TOML syntax error: " + what);
+  }
+  std::set<std::string> overridden;
+  for (const auto& o : overrides) overridden.insert(apply_override(root, o));
+
+  fs::path base = fs::path(source_name).parent_path();
+  if (base.empty()) base = ".";
+  std::error_code ec;
+  const fs::path abs_base = fs::absolute(base, ec);
+  if (!ec) base = abs_base;
+
+  CaseSpec spec;
+  spec.source_file = source_name;
+  Reader(spec, source_name, base, std::move(overridden)).read(root);
+  return spec;
+}
+
+CaseSpec read_case_file(const std::string& path, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec))
+    throw InputError(SourceLocation{path, 0, 0}, "",
+                     "is a folder, not a case file (allowed: a TOML case file)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw InputError(SourceLocation{path, 0, 0}, "",
+                     "cannot open the case file (allowed: a readable TOML file)");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return read_case_string(ss.str(), path, overrides);
+}
+
+} // namespace fluidem
