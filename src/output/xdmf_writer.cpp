@@ -66,30 +66,34 @@ constexpr Field kAttributes[] = {
     {"id", "/particles/all/id/value", "Int", "8", false},
 };
 
-// A HyperSlab DataItem selecting frame k of a [F][N](3) dataset.
-void hyperslab(std::string& out, const Field& f, const std::string& h5, std::size_t k,
-               const std::string& n, const std::string& frames, const char* indent) {
+// A DataItem selecting frame k of the [F][N] or [F][N][3] dataset of field f.
+void frame_item(std::string& out, const Field& f, const std::string& h5, std::size_t k,
+                const std::string& n, const std::string& frames, XdmfFlavour flavour,
+                const char* indent) {
   const std::string ks = std::to_string(k);
-  out += indent;
-  if (f.vector) {
-    out += "<DataItem ItemType=\"HyperSlab\" Type=\"HyperSlab\" Dimensions=\"1 " + n + " 3\">\n";
+  const std::string type =
+      std::string("NumberType=\"") + f.type + "\" Precision=\"" + f.precision + "\" Format=\"HDF\"";
+  // start, stride, count and the dataset's dims, per dimension
+  const std::string start = f.vector ? ks + " 0 0" : ks + " 0";
+  const std::string stride = f.vector ? "1 1 1" : "1 1";
+  const std::string count = f.vector ? "1 " + n + " 3" : "1 " + n;
+  const std::string dims = f.vector ? frames + " " + n + " 3" : frames + " " + n;
+  if (flavour == XdmfFlavour::kXdmf3) {
+    // Xdmf3's HDF controller syntax: file:dataset|start:stride:count:dataspace
     out += indent;
-    out += "  <DataItem Dimensions=\"3 3\" Format=\"XML\">" + ks + " 0 0 1 1 1 1 " + n +
-           " 3</DataItem>\n";
-    out += indent;
-    out += "  <DataItem Dimensions=\"" + frames + " " + n + " 3\" NumberType=\"" + f.type +
-           "\" Precision=\"" + f.precision + "\" Format=\"HDF\">" + h5 + ":" + f.dataset +
+    out += "<DataItem Dimensions=\"" + std::string(f.vector ? n + " 3" : n) + "\" " + type + ">" +
+           h5 + ":" + f.dataset + "|" + start + ":" + stride + ":" + count + ":" + dims +
            "</DataItem>\n";
-  } else {
-    out += "<DataItem ItemType=\"HyperSlab\" Type=\"HyperSlab\" Dimensions=\"1 " + n + "\">\n";
-    out += indent;
-    out +=
-        "  <DataItem Dimensions=\"3 2\" Format=\"XML\">" + ks + " 0 1 1 1 " + n + "</DataItem>\n";
-    out += indent;
-    out += "  <DataItem Dimensions=\"" + frames + " " + n + "\" NumberType=\"" + f.type +
-           "\" Precision=\"" + f.precision + "\" Format=\"HDF\">" + h5 + ":" + f.dataset +
-           "</DataItem>\n";
+    return;
   }
+  out += indent;
+  out += "<DataItem ItemType=\"HyperSlab\" Type=\"HyperSlab\" Dimensions=\"" + count + "\">\n";
+  out += indent;
+  out += std::string("  <DataItem Dimensions=\"3 ") + (f.vector ? "3" : "2") +
+         "\" Format=\"XML\">" + start + " " + stride + " " + count + "</DataItem>\n";
+  out += indent;
+  out += "  <DataItem Dimensions=\"" + dims + "\" " + type + ">" + h5 + ":" + f.dataset +
+         "</DataItem>\n";
   out += indent;
   out += "</DataItem>\n";
 }
@@ -97,7 +101,10 @@ void hyperslab(std::string& out, const Field& f, const std::string& h5, std::siz
 } // namespace
 
 std::string particles_xdmf(const std::string& h5_filename_relative, std::size_t n_particles,
-                           const std::vector<double>& frame_times) {
+                           const std::vector<double>& frame_times, XdmfFlavour flavour) {
+  if (h5_filename_relative.find_first_of(":|") != std::string::npos)
+    throw std::invalid_argument("XDMF: the HDF5 file name '" + h5_filename_relative +
+                                "' must not contain ':' or '|'");
   const std::string h5 = xml_escape(h5_filename_relative);
   const std::string n = std::to_string(n_particles);
   const std::string frames = std::to_string(frame_times.size());
@@ -118,12 +125,12 @@ std::string particles_xdmf(const std::string& h5_filename_relative, std::size_t 
            kH5mdVertexIndexPath + "</DataItem>\n";
     out += "        </Topology>\n";
     out += "        <Geometry GeometryType=\"XYZ\">\n";
-    hyperslab(out, kGeometry, h5, k, n, frames, "          ");
+    frame_item(out, kGeometry, h5, k, n, frames, flavour, "          ");
     out += "        </Geometry>\n";
     for (const Field& f : kAttributes) {
       out += std::string("        <Attribute Name=\"") + f.name + "\" AttributeType=\"" +
              (f.vector ? "Vector" : "Scalar") + "\" Center=\"Node\">\n";
-      hyperslab(out, f, h5, k, n, frames, "          ");
+      frame_item(out, f, h5, k, n, frames, flavour, "          ");
       out += "        </Attribute>\n";
     }
     out += "      </Grid>\n";
@@ -135,8 +142,9 @@ std::string particles_xdmf(const std::string& h5_filename_relative, std::size_t 
 }
 
 void write_particles_xdmf(const std::string& xmf_path, const std::string& h5_filename_relative,
-                          std::size_t n_particles, const std::vector<double>& frame_times) {
-  const std::string text = particles_xdmf(h5_filename_relative, n_particles, frame_times);
+                          std::size_t n_particles, const std::vector<double>& frame_times,
+                          XdmfFlavour flavour) {
+  const std::string text = particles_xdmf(h5_filename_relative, n_particles, frame_times, flavour);
   const std::string tmp = xmf_path + ".tmp";
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (f == nullptr) throw std::runtime_error("cannot write '" + tmp + "': " + std::strerror(errno));
