@@ -909,20 +909,39 @@ private:
   }
 };
 
-} // namespace
+/// `s` with control characters escaped, so a message stays one line.
+std::string one_line(const std::string& s) {
+  std::string out;
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (u < 0x20 || u == 0x7f) {
+      static const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[u >> 4];
+      out += hex[u & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
 
-CaseSpec read_case_string(const std::string& text, const std::string& source_name,
-                          const std::vector<std::string>& overrides) {
+CaseSpec read_case(const std::string& text, const std::string& source_name,
+                   const std::vector<std::string>& overrides) {
   toml::table root;
   try {
     root = toml::parse(text, std::string_view(source_name));
   } catch (const toml::parse_error& e) {
     const auto& b = e.source().begin;
-    std::string what(e.description());
-    std::replace(what.begin(), what.end(), '\n', ' '); // one line
     throw InputError(
         SourceLocation{source_name, static_cast<long>(b.line), static_cast<long>(b.column)}, "",
-        "TOML syntax error: " + what);
+        "TOML syntax error: " + std::string(e.description()));
   }
   std::set<std::string> overridden;
   for (const auto& o : overrides) overridden.insert(apply_override(root, o));
@@ -937,6 +956,18 @@ CaseSpec read_case_string(const std::string& text, const std::string& source_nam
   spec.source_file = source_name;
   Reader(spec, source_name, base, std::move(overridden)).read(root);
   return spec;
+}
+
+} // namespace
+
+CaseSpec read_case_string(const std::string& text, const std::string& source_name,
+                          const std::vector<std::string>& overrides) {
+  try {
+    return read_case(text, source_name, overrides);
+  } catch (const InputError& e) {
+    // Keys and values quoted in a message may hold control characters ("a\nb" = 1).
+    throw InputError(one_line(e.what()));
+  }
 }
 
 CaseSpec read_case_file(const std::string& path, const std::vector<std::string>& overrides) {

@@ -314,6 +314,14 @@ TEST(CaseReaderErrors, UnknownKeysEverywhere) {
                   "did you mean \"frame_interval\"?");
 }
 
+TEST(CaseReaderErrors, ControlCharactersEscapedInMessages) {
+  // error_of() fails the test if the message spans more than one line.
+  const std::string t = minimal() + "[contact]\n\"a\\nb\" = 1\n";
+  expect_error_at(t, "\"a\\nb\"", "contact.a\\nb", "unknown key");
+  const std::string msg = error_of(minimal(), {"contact.a\nb=1"});
+  EXPECT_EQ(msg.rfind("--set: contact.a\\nb: unknown key", 0), 0u) << msg;
+}
+
 TEST(CaseReaderErrors, FirstUnknownKeyInFileOrder) {
   // toml++ tables are ordered by name; the error must still name the first one in the file.
   const std::string t = minimal() + "[contact]\nzzz = 1\naaa = 2\n";
