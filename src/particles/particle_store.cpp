@@ -41,7 +41,7 @@ void ParticleStore::add(const Vec3& p, const Vec3& v, double r, double rho, std:
 
 void ParticleStore::zero_forces() {
   const std::size_t n = size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i) {
     fx[i] = fy[i] = fz[i] = 0.0;
     tx[i] = ty[i] = tz[i] = 0.0;

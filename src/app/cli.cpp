@@ -1,0 +1,133 @@
+#include "app/cli.hpp"
+
+#include <omp.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "app/progress.hpp"
+#include "core/error.hpp"
+#include "fluidem_version.hpp"
+#include "integrate/simulation.hpp"
+#include "io/case_reader.hpp"
+
+namespace fluidem {
+
+namespace {
+
+void print_report(const CaseSpec& spec, const CaseReport& r) {
+  fmt::print("case               {}\n", spec.source_file);
+  fmt::print("dimension          {} ({})\n", spec.simulation.dimension,
+             spec.simulation.dimension == 2 ? "discs in the x-z plane" : "spheres");
+  fmt::print("contact model      normal {}, tangential {}, rolling {}\n",
+             to_string(spec.contact.normal), to_string(spec.contact.tangential),
+             to_string(spec.contact.rolling));
+  fmt::print("particles          {}\n", r.particle_count);
+  fmt::print("total mass         {:.6g} kg\n", r.total_mass);
+  if (spec.contact.normal == NormalModel::Hertz)
+    fmt::print("impact speed       {:.4g} m/s (for Hertz contact durations)\n",
+               r.characteristic_velocity);
+  fmt::print("contact duration per pair:\n");
+  for (const auto& d : r.durations) fmt::print("  {:<28} {:.4g} s\n", d.pair, d.duration);
+  fmt::print("largest stable dt  {:.4g} s (shortest contact / 10)\n", r.stable_time_step);
+  fmt::print("chosen dt          {:.4g} s{}\n", r.chosen_time_step,
+             r.time_step_forced ? "  (FORCED above the stability limit)" : "");
+  fmt::print("steps              {:.0f}\n", spec.simulation.end_time / r.chosen_time_step);
+  fmt::print("expected overlap   {:.3g} of a diameter under the bed's own weight\n",
+             r.expected_overlap_ratio);
+  fmt::print("neighbour skin     {:.4g} m\n", r.skin);
+}
+
+std::string default_out_dir(const std::string& case_path) {
+  return (std::filesystem::path("out") / std::filesystem::path(case_path).stem()).string();
+}
+
+} // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"fluidem: discrete particle simulation of gas-fluidised beds (CFD-DEM)\n"
+               "Exit codes: 0 success, 2 invalid input, 3 run stopped because it went unstable.",
+               "fluidem"};
+  app.set_version_flag("--version", std::string("fluidem ") + kVersion);
+  app.require_subcommand(1);
+
+  std::string case_path, out_dir;
+  std::vector<std::string> overrides;
+  int threads = 0;
+  auto* run = app.add_subcommand("run", "Run a case and write its results to OUT");
+  run->add_option("case", case_path, "Case file (TOML)")->required();
+  run->add_option("--out,-o", out_dir, "Output directory (default: out/<case name>)");
+  run->add_option("--set", overrides,
+                  "Override a case value: section.key=value (repeatable), e.g. "
+                  "--set simulation.end_time=0.5");
+  run->add_option("--threads,-t", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+
+  std::string check_path;
+  std::vector<std::string> check_overrides;
+  auto* check = app.add_subcommand("check", "Validate a case and print its derived quantities");
+  check->add_option("case", check_path, "Case file (TOML)")->required();
+  check->add_option("--set", check_overrides, "Override a case value: section.key=value");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+
+  try {
+    if (*check) {
+      const CaseSpec spec = read_case_file(check_path, check_overrides);
+      Simulation sim(spec);
+      print_report(sim.spec(), sim.report());
+      fmt::print("case is valid\n");
+      return 0;
+    }
+    if (threads > 0) omp_set_num_threads(threads);
+    if (out_dir.empty()) out_dir = default_out_dir(case_path);
+    const CaseSpec spec = read_case_file(case_path, overrides);
+    Simulation sim(spec);
+    print_report(sim.spec(), sim.report());
+    fmt::print("threads            {}\noutput             {}\n", omp_get_max_threads(), out_dir);
+    std::fflush(stdout);
+    ProgressDisplay progress(stdout);
+    RunSummary s;
+    try {
+      s = sim.run(out_dir, [&](const RunStatus& st) { progress(st); });
+    } catch (const InstabilityError&) {
+      progress.finish();
+      throw;
+    }
+    progress.finish();
+    fmt::print("done: {} steps in {:.3f} s wall, {:.4g} particle-steps/s\n", s.steps,
+               s.wall_seconds, s.particle_steps_per_second);
+    fmt::print("time in contacts {:.3f} s, integration {:.3f} s, neighbour lists {:.3f} s "
+               "({} builds), output {:.3f} s\n",
+               s.seconds_contacts, s.seconds_integration, s.seconds_neighbour, s.neighbour_builds,
+               s.seconds_output);
+    fmt::print("memory {} bytes per particle; energy balance drift {:.3g} (relative)\n",
+               s.bytes_per_particle, s.energy_drift);
+    fmt::print("results: {}/particles.h5 (+ particles.xmf for ParaView), {}/series.csv\n",
+               out_dir, out_dir);
+    return 0;
+  } catch (const InputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const InstabilityError& e) {
+    fmt::print(stderr, "error: {}\nthe outputs up to the last good frame are in {}\n", e.what(),
+               out_dir);
+    return 3;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+}
+
+} // namespace fluidem

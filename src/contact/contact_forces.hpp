@@ -1,0 +1,28 @@
+// Soft-sphere contact forces over the neighbour list: particle-particle pairs and particle-wall
+// contacts, composed from the sub-models named in the case (normal x tangential x rolling).
+// The model choice is resolved once into a template instantiation: no virtual call per contact.
+#pragma once
+#include "contact/contact_table.hpp"
+#include "neighbour/neighbour_list.hpp"
+#include "particles/particle_store.hpp"
+
+namespace fluidem {
+
+struct ContactStats {
+  long n_contacts = 0;             ///< touching pairs + wall contacts
+  double max_overlap_ratio = 0.0;  ///< overlap / smaller diameter (wall: / particle diameter)
+  long max_overlap_particle = -1;  ///< id of a particle in the deepest contact
+  double elastic_energy = 0.0;     ///< J stored in all springs (normal, tangential, rolling)
+  double dissipated = 0.0;         ///< J dissipated during this step
+};
+
+/// History doubles per contact needed by the chosen sub-models.
+int contact_history_width(const ContactTable& table);
+
+/// Add contact forces and torques to p.f*, p.t* (which the caller zeroes). Velocities are the
+/// ones at which the forces are evaluated (half-step velocities in velocity Verlet); `dt` is the
+/// step over which the tangential displacement and the dissipation are integrated.
+ContactStats compute_contact_forces(ParticleStore& p, NeighbourList& nl,
+                                    const ContactTable& table, double dt);
+
+} // namespace fluidem

@@ -1,0 +1,131 @@
+#include "contact/contact_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "contact/hertz_damping.hpp"
+#include "contact/kernels/normal_force.hpp"
+#include "particles/particle_store.hpp"
+
+namespace fluidem {
+
+namespace {
+
+double inv_e_part(const MaterialSpec& m) {
+  return (1.0 - m.poisson_ratio * m.poisson_ratio) / m.youngs_modulus;
+}
+double inv_g_part(const MaterialSpec& m) {
+  const double g = m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
+  return (2.0 - m.poisson_ratio) / g;
+}
+
+double auto_characteristic_velocity(const CaseSpec& spec) {
+  const auto& g = spec.simulation.gravity;
+  const double gabs = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  double height = 0.0;
+  if (gabs > 0.0) {
+    for (int a = 0; a < 3; ++a)
+      height += std::abs(g[a]) / gabs * (spec.domain.hi[a] - spec.domain.lo[a]);
+  }
+  double v_insert = 0.0;
+  for (const auto& ins : spec.inserts) {
+    const auto& v = ins.velocity;
+    const double s = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
+                     std::sqrt(3.0) * ins.velocity_spread;
+    v_insert = std::max(v_insert, s);
+  }
+  return std::max(0.1, std::sqrt(2.0 * gabs * height) + v_insert);
+}
+
+} // namespace
+
+ContactTable::ContactTable(const CaseSpec& spec)
+    : n_(static_cast<int>(spec.species.size())), normal_(spec.contact.normal),
+      tangential_(spec.contact.tangential), rolling_(spec.contact.rolling) {
+  const auto& c = spec.contact;
+  if (normal_ == NormalModel::WaltonBraun) {
+    throw InputError(spec.where("contact.normal"), "contact.normal",
+                     "\"walton_braun\" is not implemented yet (implemented: \"linear\", "
+                     "\"hertz\")");
+  }
+  v_char_ = c.characteristic_velocity ? *c.characteristic_velocity
+                                      : auto_characteristic_velocity(spec);
+
+  auto make = [&](const MaterialSpec& a, const MaterialSpec& b, bool wall,
+                  const std::string& key) {
+    PairParams p;
+    const double e = wall ? b.restitution : 0.5 * (a.restitution + b.restitution);
+    const double beta0 =
+        wall ? b.tangential_restitution : 0.5 * (a.tangential_restitution + b.tangential_restitution);
+    p.mu = wall ? b.friction : 0.5 * (a.friction + b.friction);
+    p.mu_r = wall ? b.rolling_friction : 0.5 * (a.rolling_friction + b.rolling_friction);
+    p.restitution = e;
+    p.e_star = 1.0 / (inv_e_part(a) + inv_e_part(b));
+    p.tangential_damping = kernels::restitution_damping_factor(beta0);
+    p.rolling_damping = kernels::restitution_damping_factor(e);
+    if (normal_ == NormalModel::Linear) {
+      p.kn = c.stiffness;
+      p.normal_damping = kernels::restitution_damping_factor(e);
+      // [Deen07 eq. 43]: equal normal and tangential contact durations.
+      const double lb = beta0 > 0.0 ? std::log(beta0) : 0.0;
+      const double le = e > 0.0 ? std::log(e) : 0.0;
+      const double pi2 = std::numbers::pi * std::numbers::pi;
+      const double ratio = c.stiffness_ratio ? *c.stiffness_ratio
+                                             : 2.0 / 7.0 * (pi2 + lb * lb) / (pi2 + le * le);
+      p.kt = ratio * p.kn;
+    } else {
+      if (e <= 0.0) {
+        throw InputError(spec.where(key), key,
+                         "the Hertz model needs restitution > 0 (allowed: (0, 1]); use "
+                         "contact.normal = \"linear\" for e = 0");
+      }
+      p.kn = 4.0 / 3.0 * p.e_star;
+      p.normal_damping = hertz_damping_alpha(e);
+      // Mindlin k_t = 8 G* sqrt(R* delta) [Chang08 eq. 2.16]; a given ratio multiplies the
+      // tangent normal stiffness dF/d(delta) = 2 E* sqrt(R* delta).
+      p.kt = c.stiffness_ratio ? *c.stiffness_ratio * 2.0 * p.e_star
+                               : 8.0 / (inv_g_part(a) + inv_g_part(b));
+    }
+    return p;
+  };
+
+  pp_.resize(n_ * n_);
+  pw_.resize(n_ * 6);
+  t_contact_min_ = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n_; ++i) {
+    const auto& si = spec.species[i];
+    const double ri = 0.5 * si.diameter, mi = sphere_mass(ri, si.density);
+    for (int j = 0; j < n_; ++j) {
+      const auto& sj = spec.species[j];
+      pp_[i * n_ + j] = make(si.material, sj.material, false,
+                             "species[" + std::to_string(j) + "].restitution");
+      if (j < i) continue;
+      const double rj = 0.5 * sj.diameter, mj = sphere_mass(rj, sj.density);
+      const double t = contact_duration(mi * mj / (mi + mj), ri * rj / (ri + rj), pp_[i * n_ + j]);
+      rows_.push_back({si.name + "-" + sj.name, t});
+      t_contact_min_ = std::min(t_contact_min_, t);
+    }
+    for (int f = 0; f < 6; ++f) {
+      pw_[i * 6 + f] = make(si.material, spec.domain.wall_material[f], true,
+                            std::string("walls.") + kFaceNames[f] + ".restitution");
+      if (spec.domain.periodic[f / 2]) continue;
+      if (spec.simulation.dimension == 2 && f / 2 == 1) continue;  // no y walls for discs
+      const double t = contact_duration(mi, ri, pw_[i * 6 + f]);
+      rows_.push_back({si.name + "-wall " + kFaceNames[f], t});
+      t_contact_min_ = std::min(t_contact_min_, t);
+    }
+  }
+}
+
+double ContactTable::contact_duration(double m_eff, double r_eff, const PairParams& p) const {
+  if (normal_ == NormalModel::Linear) {
+    const double le = p.restitution > 0.0 ? std::log(p.restitution) : 0.0;
+    // [Deen07 eq. 41]; for e = 0 the critically damped limit is taken as pi sqrt(m/k).
+    return std::sqrt(m_eff * (std::numbers::pi * std::numbers::pi + le * le) / p.kn);
+  }
+  return hertz_contact_duration(m_eff, p.kn * std::sqrt(r_eff), p.normal_damping, v_char_);
+}
+
+} // namespace fluidem

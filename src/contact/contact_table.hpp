@@ -1,0 +1,68 @@
+// Per-run contact coefficients for every species pair and every (species, wall face), built once
+// from the case's materials with the mixing rules below, outside the hot loop.
+//
+// Mixing for unlike materials: E* = 1/((1-nu_a^2)/E_a + (1-nu_b^2)/E_b) [Zhu07 Table 1],
+// G* = 1/((2-nu_a)/G_a + (2-nu_b)/G_b) with G = E/(2(1+nu)) [Chang08 eq. 2.16];
+// e, mu, beta0 and mu_r of a particle pair are the arithmetic means of the two materials.
+// A particle-wall contact uses the wall's e, mu, beta0, mu_r and a wall of infinite mass.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/case_spec.hpp"
+
+namespace fluidem {
+
+struct PairParams {
+  double kn = 0;               ///< linear: k_n, N/m; Hertz: 4/3 E*, Pa (K = kn sqrt(R*))
+  double normal_damping = 0;   ///< linear: factor of [Deen07 eq. 27]; Hertz: Tsuji's alpha
+  double kt = 0;               ///< linear: k_t, N/m; Hertz: c_t, Pa (k_t = c_t sqrt(R* delta))
+  double tangential_damping = 0;  ///< factor of [Deen07 eq. 30] from beta0
+  double mu = 0;               ///< Coulomb friction
+  double mu_r = 0;             ///< rolling friction, dimensionless
+  double rolling_damping = 0;  ///< factor of [Deen07 eq. 27] from e (rolling spring-dashpot)
+  double restitution = 0;      ///< e_n (for reports)
+  double e_star = 0;           ///< effective Young's modulus, Pa (reports)
+};
+
+class ContactTable {
+public:
+  /// Build from the case. Throws InputError (naming the key) for a model that is named but
+  /// not implemented, or parameters the model cannot accept (Hertz with e = 0).
+  explicit ContactTable(const CaseSpec& spec);
+
+  const PairParams& pair(int si, int sj) const { return pp_[si * n_ + sj]; }
+  const PairParams& wall(int s, int face) const { return pw_[s * 6 + face]; }
+  int species_count() const { return n_; }
+  NormalModel normal() const { return normal_; }
+  TangentialModel tangential() const { return tangential_; }
+  RollingModel rolling() const { return rolling_; }
+
+  /// The impact speed used for Hertz contact durations, m/s (case value or the automatic one:
+  /// free fall over the domain height plus the fastest insertion speed, at least 0.1 m/s).
+  double characteristic_velocity() const { return v_char_; }
+
+  /// Normal contact duration of a head-on impact at the characteristic velocity, s:
+  /// linear [Deen07 eq. 41]; Hertz from the damped impact (contact/hertz_damping.hpp).
+  double contact_duration(double m_eff, double r_eff, const PairParams& p) const;
+  /// Shortest contact duration over all species pairs and walls, s.
+  double shortest_contact_duration() const { return t_contact_min_; }
+
+  struct DurationRow {
+    std::string pair;  ///< e.g. "glass-glass" or "glass-wall z_lo"
+    double duration;   ///< s
+  };
+  const std::vector<DurationRow>& durations() const { return rows_; }
+
+private:
+  int n_ = 0;
+  NormalModel normal_;
+  TangentialModel tangential_;
+  RollingModel rolling_;
+  double v_char_ = 1.0;
+  double t_contact_min_ = 0.0;
+  std::vector<PairParams> pp_, pw_;
+  std::vector<DurationRow> rows_;
+};
+
+} // namespace fluidem

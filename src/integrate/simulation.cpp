@@ -1,0 +1,298 @@
+#include "integrate/simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "fluidem_version.hpp"
+#include "io/case_writer.hpp"
+#include "output/h5md_writer.hpp"
+#include "output/series_writer.hpp"
+#include "output/xdmf_writer.hpp"
+#include "particles/insertion.hpp"
+
+namespace fluidem {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// At least this many particle steps per contact: below it the run is refused unless forced.
+constexpr double kMinStepsPerContact = 10.0;
+
+BoxGeometry box_from(const CaseSpec& spec) {
+  BoxGeometry b;
+  b.lo = spec.domain.lo;
+  b.hi = spec.domain.hi;
+  b.periodic = spec.domain.periodic;
+  for (int f = 0; f < 6; ++f) {
+    const int a = f / 2;
+    b.wall[f] = !b.periodic[a] && !(spec.simulation.dimension == 2 && a == 1);
+  }
+  return b;
+}
+
+/// Overlap under the bed's own weight: a bottom particle carries the column above it,
+/// F = m g h / d with h the height the particles fill at packing fraction 0.6 (3-D) or area
+/// fraction 0.82 (2-D); delta = F/k_n (linear) or (F/K)^{2/3} (Hertz, against the floor).
+double expected_overlap_ratio(const CaseSpec& spec, const ParticleStore& p,
+                              const ContactTable& t) {
+  const auto& g = spec.simulation.gravity;
+  const double gabs = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  if (gabs == 0.0 || p.size() == 0 || spec.species.empty()) return 0.0;
+  int down = 2;  // the axis gravity points along
+  for (int a = 0; a < 3; ++a)
+    if (std::abs(g[a]) > std::abs(g[down])) down = a;
+  double base = 1.0, solid = 0.0;
+  const bool two_d = spec.simulation.dimension == 2;
+  for (int a = 0; a < 3; ++a)
+    if (a != down && !(two_d && a == 1)) base *= spec.domain.hi[a] - spec.domain.lo[a];
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double r = p.radius[i];
+    solid += two_d ? std::numbers::pi * r * r : 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  }
+  const double h = solid / ((two_d ? 0.82 : 0.6) * base);
+  const auto& s = spec.species[0];
+  const double r = 0.5 * s.diameter;
+  const double f = sphere_mass(r, s.density) * gabs * h / s.diameter;
+  const int face = 2 * down + (g[down] > 0 ? 1 : 0);
+  const PairParams& pp = t.wall(0, face);
+  const double delta = t.normal() == NormalModel::Linear
+                           ? f / pp.kn
+                           : std::pow(f / (pp.kn * std::sqrt(r)), 2.0 / 3.0);
+  return delta / s.diameter;
+}
+
+} // namespace
+
+Simulation::Simulation(CaseSpec spec) : spec_(std::move(spec)) {
+  table_ = std::make_unique<ContactTable>(spec_);
+  insert_particles(spec_, p_);
+
+  double dmax = 0.0, mass = 0.0;
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    dmax = std::max(dmax, 2.0 * p_.radius[i]);
+    mass += p_.mass[i];
+  }
+  for (const auto& s : spec_.species) dmax = std::max(dmax, s.diameter);
+  const double skin = spec_.neighbour.skin ? *spec_.neighbour.skin : 0.2 * dmax;
+
+  // Time step from the contact duration [Deen07 eq. 41-42].
+  const double tc = table_->shortest_contact_duration();
+  const double dt_limit = tc / kMinStepsPerContact;
+  const auto& sim = spec_.simulation;
+  dt_ = sim.time_step ? *sim.time_step : sim.time_step_fraction * tc;
+  if (dt_ > dt_limit && !sim.force_time_step) {
+    throw InputError(spec_.where("simulation.time_step"), "simulation.time_step",
+                     fmt::format("{:.4g} s is above the stability limit {:.4g} s (the shortest "
+                                 "contact lasts {:.4g} s and needs at least {} steps); choose a "
+                                 "smaller step, \"auto\", or set simulation.force_time_step = "
+                                 "true",
+                                 dt_, dt_limit, tc, kMinStepsPerContact));
+  }
+  spec_.simulation.time_step = dt_;  // the resolved case reproduces this run
+
+  report_.particle_count = p_.size();
+  report_.total_mass = mass;
+  report_.durations = table_->durations();
+  report_.characteristic_velocity = table_->characteristic_velocity();
+  report_.stable_time_step = dt_limit;
+  report_.chosen_time_step = dt_;
+  report_.time_step_forced = dt_ > dt_limit;
+  report_.expected_overlap_ratio = expected_overlap_ratio(spec_, p_, *table_);
+  report_.skin = skin;
+
+  nl_ = std::make_unique<NeighbourList>(box_from(spec_), skin, contact_history_width(*table_));
+  nl_->build(p_);
+  compute_forces();
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::compute_forces() {
+  p_.zero_forces();
+  const auto t0 = Clock::now();
+  stats_ = compute_contact_forces(p_, *nl_, *table_, dt_);
+  t_contacts_ += seconds_since(t0);
+  e_dsp_ += stats_.dissipated;
+}
+
+void Simulation::step() {
+  const std::size_t n = p_.size();
+  const double h = 0.5 * dt_;
+  const double gx = spec_.simulation.gravity[0], gy = spec_.simulation.gravity[1],
+               gz = spec_.simulation.gravity[2];
+  const auto& box = nl_->box();
+  auto t0 = Clock::now();
+#pragma omp parallel for schedule(static) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double im = p_.inv_mass[i], ii = p_.inv_inertia[i];
+    p_.vx[i] += h * (p_.fx[i] * im + gx);
+    p_.vy[i] += h * (p_.fy[i] * im + gy);
+    p_.vz[i] += h * (p_.fz[i] * im + gz);
+    p_.wx[i] += h * p_.tx[i] * ii;
+    p_.wy[i] += h * p_.ty[i] * ii;
+    p_.wz[i] += h * p_.tz[i] * ii;
+    p_.x[i] += dt_ * p_.vx[i];
+    p_.y[i] += dt_ * p_.vy[i];
+    p_.z[i] += dt_ * p_.vz[i];
+    // Periodic axes: keep centres inside [lo, hi).
+    if (box.periodic[0]) p_.x[i] -= box.length(0) * std::floor((p_.x[i] - box.lo[0]) / box.length(0));
+    if (box.periodic[1]) p_.y[i] -= box.length(1) * std::floor((p_.y[i] - box.lo[1]) / box.length(1));
+    if (box.periodic[2]) p_.z[i] -= box.length(2) * std::floor((p_.z[i] - box.lo[2]) / box.length(2));
+  }
+  t_integration_ += seconds_since(t0);
+
+  t0 = Clock::now();
+  if (nl_->needs_rebuild(p_)) nl_->build(p_);
+  t_neighbour_ += seconds_since(t0);
+
+  compute_forces();
+
+  t0 = Clock::now();
+#pragma omp parallel for schedule(static) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double im = p_.inv_mass[i], ii = p_.inv_inertia[i];
+    p_.vx[i] += h * (p_.fx[i] * im + gx);
+    p_.vy[i] += h * (p_.fy[i] * im + gy);
+    p_.vz[i] += h * (p_.fz[i] * im + gz);
+    p_.wx[i] += h * p_.tx[i] * ii;
+    p_.wy[i] += h * p_.ty[i] * ii;
+    p_.wz[i] += h * p_.tz[i] * ii;
+  }
+  t_integration_ += seconds_since(t0);
+  ++step_;
+  time_ = static_cast<double>(step_) * dt_;
+}
+
+void Simulation::check_stability() const {
+  const auto where = fmt::format("at t = {:.6g} s (step {})", time_, step_);
+  if (stats_.max_overlap_ratio > spec_.contact.max_overlap) {
+    throw InstabilityError(fmt::format(
+        "run unstable {}: particle {} overlaps a neighbour or wall by {:.3g} of its diameter "
+        "(limit contact.max_overlap = {}); reduce simulation.time_step",
+        where, stats_.max_overlap_particle, stats_.max_overlap_ratio, spec_.contact.max_overlap));
+  }
+  const auto& box = nl_->box();
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    const double q[9] = {p_.x[i], p_.y[i], p_.z[i], p_.vx[i], p_.vy[i],
+                         p_.vz[i], p_.wx[i], p_.wy[i], p_.wz[i]};
+    for (double v : q) {
+      if (!std::isfinite(v)) {
+        throw InstabilityError(fmt::format("run unstable {}: particle {} has a non-finite "
+                                           "position or velocity",
+                                           where, p_.id[i]));
+      }
+    }
+    for (int a = 0; a < 3; ++a) {
+      if (box.periodic[a] || (spec_.simulation.dimension == 2 && a == 1)) continue;
+      if (q[a] < box.lo[a] - p_.radius[i] || q[a] > box.hi[a] + p_.radius[i]) {
+        throw InstabilityError(fmt::format("run unstable {}: particle {} left the closed domain "
+                                           "along {} ({} = {:.6g} m, domain [{}, {}])",
+                                           where, p_.id[i], "xyz"[a], "xyz"[a], q[a],
+                                           box.lo[a], box.hi[a]));
+      }
+    }
+  }
+}
+
+void Simulation::advance(long n) {
+  for (long k = 0; k < n; ++k) {
+    step();
+    if (stats_.max_overlap_ratio > spec_.contact.max_overlap) check_stability();
+  }
+}
+
+RunSummary Simulation::run(const std::string& out_dir,
+                           const std::function<void(const RunStatus&)>& progress) {
+  namespace fs = std::filesystem;
+  fs::create_directories(out_dir);
+  {
+    std::ofstream resolved(fs::path(out_dir) / "case.resolved.toml");
+    resolved << "# fluidem " << kVersion << ": the fully resolved case of this run; running it "
+             << "reproduces the run.\n"
+             << write_case_toml(spec_);
+    if (!resolved) throw std::runtime_error("cannot write " + out_dir + "/case.resolved.toml");
+  }
+  H5mdBox hbox{spec_.domain.lo, spec_.domain.hi, spec_.domain.periodic};
+  H5mdWriter h5((fs::path(out_dir) / "particles.h5").string(), p_.size(),
+                spec_.simulation.dimension, kVersion, hbox);
+  SeriesWriter series((fs::path(out_dir) / "series.csv").string(),
+                      {"time", "e_kin", "e_rot", "e_pot", "e_el", "e_dsp", "e_total",
+                       "n_contacts", "max_overlap_ratio", "neighbour_builds"});
+  std::vector<double> frame_times;
+  const std::string xmf = (fs::path(out_dir) / "particles.xmf").string();
+
+  const long total = static_cast<long>(std::llround(spec_.simulation.end_time / dt_));
+  const long frame_every = std::max(1L, std::lround(spec_.output.frame_interval / dt_));
+  const long series_every = std::max(1L, std::lround(spec_.output.series_interval / dt_));
+  const long check_every = std::min(series_every, 100L);
+  const long progress_every = std::max(1L, std::min(200L, 2000000L / std::max<long>(1, p_.size())));
+  double seconds_output = 0.0;
+  double e0 = 0.0, escale = 0.0;
+
+  auto write_outputs = [&]() {
+    const auto t0 = Clock::now();
+    if (step_ % series_every == 0 || step_ == total) {
+      const Energies e = energies();
+      const double tot = e.kinetic + e.rotational + e.potential + stats_.elastic_energy + e_dsp_;
+      if (step_ == 0) {
+        e0 = tot;
+        escale = std::max(std::abs(tot), 1e-300);
+      }
+      series.write_row({time_, e.kinetic, e.rotational, e.potential, stats_.elastic_energy,
+                        e_dsp_, tot, static_cast<double>(stats_.n_contacts),
+                        stats_.max_overlap_ratio, static_cast<double>(nl_->builds())});
+    }
+    if (step_ % frame_every == 0 || step_ == total) {
+      h5.write_frame(step_, time_, p_);
+      h5.flush();
+      frame_times.push_back(time_);
+      write_particles_xdmf(xmf, "particles.h5", p_.size(), frame_times);
+    }
+    seconds_output += seconds_since(t0);
+  };
+
+  const auto start = Clock::now();
+  const long step0 = step_;
+  write_outputs();
+  try {
+    check_stability();
+    while (step_ < total) {
+      step();
+      if (step_ % check_every == 0 || stats_.max_overlap_ratio > spec_.contact.max_overlap)
+        check_stability();
+      write_outputs();
+      if (progress && (step_ % progress_every == 0 || step_ == total))
+        progress({step_, total, time_, spec_.simulation.end_time, p_.size()});
+    }
+  } catch (...) {
+    series.close();
+    h5.flush();
+    throw;
+  }
+  RunSummary s;
+  s.steps = step_ - step0;
+  s.wall_seconds = seconds_since(start);
+  s.particle_steps_per_second =
+      static_cast<double>(s.steps) * static_cast<double>(p_.size()) / std::max(s.wall_seconds, 1e-9);
+  s.neighbour_builds = nl_->builds();
+  s.seconds_contacts = t_contacts_;
+  s.seconds_integration = t_integration_;
+  s.seconds_neighbour = t_neighbour_;
+  s.seconds_output = seconds_output;
+  s.bytes_per_particle = p_.size() ? (p_.bytes() + nl_->bytes()) / p_.size() : 0;
+  const Energies e = energies();
+  s.energy_drift =
+      (e.kinetic + e.rotational + e.potential + stats_.elastic_energy + e_dsp_ - e0) / escale;
+  return s;
+}
+
+} // namespace fluidem

@@ -1,0 +1,177 @@
+#include "neighbour/neighbour_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fluidem {
+
+NeighbourList::NeighbourList(const BoxGeometry& box, double skin, int history_width)
+    : box_(box), skin_(skin), hw_(history_width) {}
+
+bool NeighbourList::needs_rebuild(const ParticleStore& p) const {
+  const std::size_t n = p.size();
+  if (builds_ == 0 || x0_.size() != n) return true;
+  const double limit2 = 0.25 * skin_ * skin_;
+  int moved = 0;
+#pragma omp parallel for schedule(static) reduction(max : moved) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double dx = min_image(p.x[i] - x0_[i], 0);
+    const double dy = min_image(p.y[i] - y0_[i], 1);
+    const double dz = min_image(p.z[i] - z0_[i], 2);
+    if (dx * dx + dy * dy + dz * dz > limit2) moved = 1;
+  }
+  return moved != 0;
+}
+
+void NeighbourList::build_cells(const ParticleStore& p, double cell_size) {
+  const std::size_t n = p.size();
+  for (int a = 0; a < 3; ++a) {
+    const double l = box_.length(a);
+    int nc = static_cast<int>(std::floor(l / cell_size));
+    nc = std::clamp(nc, 1, 1 << 20);
+    ncell_[a] = nc;
+    inv_cell_[a] = nc / l;
+  }
+  const std::size_t ncells = static_cast<std::size_t>(ncell_[0]) * ncell_[1] * ncell_[2];
+  particle_cell_.resize(n);
+  const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
+#pragma omp parallel for schedule(static) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::array<int, 3> c{};
+    for (int a = 0; a < 3; ++a) {
+      double rel = (*pos[a])[i] - box_.lo[a];
+      if (box_.periodic[a]) rel -= box_.length(a) * std::floor(rel / box_.length(a));
+      c[a] = std::clamp(static_cast<int>(rel * inv_cell_[a]), 0, ncell_[a] - 1);
+    }
+    particle_cell_[i] = static_cast<std::uint32_t>((c[2] * ncell_[1] + c[1]) * ncell_[0] + c[0]);
+  }
+  // Counting sort, stable: particles of a cell in ascending index order.
+  cell_start_.assign(ncells + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++cell_start_[particle_cell_[i] + 1];
+  for (std::size_t c = 0; c < ncells; ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_particles_.resize(n);
+  count_.assign(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) cell_particles_[count_[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+void NeighbourList::build(const ParticleStore& p) {
+  const std::size_t n = p.size();
+  double rmax = 0.0;
+  for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, p.radius[i]);
+  build_cells(p, 2.0 * rmax + skin_);
+
+  std::swap(old_offset_, offset);
+  std::swap(old_partner_, partner);
+  std::swap(old_history_, history);
+  std::swap(old_wall_particle_, wall_particle);
+  std::swap(old_wall_face_, wall_face);
+  std::swap(old_wall_history_, wall_history);
+  const bool carry = builds_ > 0 && old_offset_.size() == n + 1;
+
+  // Neighbour cells of each cell, deduplicated (periodic axes with fewer than 3 cells).
+  auto for_each_partner = [&](std::size_t i, auto&& visit) {
+    const std::uint32_t c = particle_cell_[i];
+    const int cx = static_cast<int>(c % ncell_[0]);
+    const int cy = static_cast<int>((c / ncell_[0]) % ncell_[1]);
+    const int cz = static_cast<int>(c / (static_cast<std::uint32_t>(ncell_[0]) * ncell_[1]));
+    std::uint32_t seen[27];
+    int nseen = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          int q[3] = {cx + dx, cy + dy, cz + dz};
+          bool ok = true;
+          for (int a = 0; a < 3 && ok; ++a) {
+            if (q[a] < 0 || q[a] >= ncell_[a]) {
+              if (box_.periodic[a]) q[a] = (q[a] + ncell_[a]) % ncell_[a];
+              else ok = false;
+            }
+          }
+          if (!ok) continue;
+          const auto cell = static_cast<std::uint32_t>((q[2] * ncell_[1] + q[1]) * ncell_[0] + q[0]);
+          if (std::find(seen, seen + nseen, cell) != seen + nseen) continue;
+          seen[nseen++] = cell;
+          for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+            const std::uint32_t j = cell_particles_[k];
+            if (j <= i) continue;
+            const double dxp = min_image(p.x[j] - p.x[i], 0);
+            const double dyp = min_image(p.y[j] - p.y[i], 1);
+            const double dzp = min_image(p.z[j] - p.z[i], 2);
+            const double cut = p.radius[i] + p.radius[j] + skin_;
+            if (dxp * dxp + dyp * dyp + dzp * dzp < cut * cut) visit(j);
+          }
+        }
+  };
+
+  offset.assign(n + 1, 0);
+#pragma omp parallel for schedule(dynamic, 256) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t count = 0;
+    for_each_partner(i, [&](std::uint32_t) { ++count; });
+    offset[i + 1] = count;
+  }
+  for (std::size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
+  partner.resize(offset[n]);
+  history.assign(static_cast<std::size_t>(offset[n]) * hw_, 0.0);
+#pragma omp parallel for schedule(dynamic, 256) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t k = offset[i];
+    for_each_partner(i, [&](std::uint32_t j) { partner[k++] = j; });
+    // Deterministic order within a row: ascending partner index.
+    std::sort(partner.begin() + offset[i], partner.begin() + offset[i + 1]);
+    if (carry && hw_ > 0) {
+      for (std::uint32_t e = offset[i]; e < offset[i + 1]; ++e) {
+        for (std::uint32_t o = old_offset_[i]; o < old_offset_[i + 1]; ++o) {
+          if (old_partner_[o] != partner[e]) continue;
+          std::copy_n(&old_history_[static_cast<std::size_t>(o) * hw_], hw_,
+                      &history[static_cast<std::size_t>(e) * hw_]);
+          break;
+        }
+      }
+    }
+  }
+
+  // Wall entries.
+  wall_particle.clear();
+  wall_face.clear();
+  const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int f = 0; f < 6; ++f) {
+      if (!box_.wall[f]) continue;
+      const int a = f / 2;
+      const double gap = (f % 2 == 0) ? (*pos[a])[i] - box_.lo[a] : box_.hi[a] - (*pos[a])[i];
+      if (gap < p.radius[i] + skin_) {
+        wall_particle.push_back(static_cast<std::uint32_t>(i));
+        wall_face.push_back(static_cast<std::uint8_t>(f));
+      }
+    }
+  }
+  wall_history.assign(wall_particle.size() * hw_, 0.0);
+  if (carry && hw_ > 0) {
+    std::size_t o = 0;
+    for (std::size_t e = 0; e < wall_particle.size(); ++e) {
+      const auto key = static_cast<std::uint64_t>(wall_particle[e]) * 8 + wall_face[e];
+      while (o < old_wall_particle_.size() &&
+             static_cast<std::uint64_t>(old_wall_particle_[o]) * 8 + old_wall_face_[o] < key)
+        ++o;
+      if (o < old_wall_particle_.size() &&
+          static_cast<std::uint64_t>(old_wall_particle_[o]) * 8 + old_wall_face_[o] == key)
+        std::copy_n(&old_wall_history_[o * hw_], hw_, &wall_history[e * hw_]);
+    }
+  }
+
+  x0_ = p.x;
+  y0_ = p.y;
+  z0_ = p.z;
+  ++builds_;
+}
+
+std::size_t NeighbourList::bytes() const {
+  auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return b(offset) + b(partner) + b(history) + b(wall_particle) + b(wall_face) + b(wall_history) +
+         b(x0_) + b(y0_) + b(z0_) + b(cell_start_) + b(cell_particles_) + b(particle_cell_) +
+         b(old_offset_) + b(old_partner_) + b(old_history_) + b(old_wall_particle_) +
+         b(old_wall_face_) + b(old_wall_history_) + b(count_);
+}
+
+} // namespace fluidem

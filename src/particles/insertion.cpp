@@ -1,0 +1,224 @@
+#include "particles/insertion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+namespace fluidem {
+
+namespace {
+
+/// Uniform hash grid over inserted particles for overlap queries during insertion.
+class InsertionGrid {
+public:
+  explicit InsertionGrid(double cell) : cell_(cell) {}
+  void add(std::size_t idx, const Vec3& x) { cells_[key(x)].push_back(idx); }
+  /// Largest overlap (m) of a sphere (x, r) with the stored particles; also the partner index.
+  double max_overlap(const ParticleStore& p, const Vec3& x, double r, std::size_t* who) const {
+    double worst = -1e300;
+    const long cx = coord(x.x), cy = coord(x.y), cz = coord(x.z);
+    for (long dz = -1; dz <= 1; ++dz)
+      for (long dy = -1; dy <= 1; ++dy)
+        for (long dx = -1; dx <= 1; ++dx) {
+          auto it = cells_.find(pack(cx + dx, cy + dy, cz + dz));
+          if (it == cells_.end()) continue;
+          for (std::size_t j : it->second) {
+            const double ov = r + p.radius[j] - norm(x - p.position(j));
+            if (ov > worst) {
+              worst = ov;
+              if (who) *who = j;
+            }
+          }
+        }
+    return worst;
+  }
+
+private:
+  long coord(double v) const { return static_cast<long>(std::floor(v / cell_)); }
+  static std::uint64_t pack(long a, long b, long c) {
+    return (static_cast<std::uint64_t>(a & 0x1FFFFF) << 42) |
+           (static_cast<std::uint64_t>(b & 0x1FFFFF) << 21) | static_cast<std::uint64_t>(c & 0x1FFFFF);
+  }
+  std::uint64_t key(const Vec3& x) const { return pack(coord(x.x), coord(x.y), coord(x.z)); }
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
+};
+
+struct Candidate {
+  Vec3 x;
+  double r, rho;
+};
+
+std::vector<Candidate> read_lammps_data(const CaseSpec& spec, const InsertSpec& ins,
+                                        const std::string& key, double density) {
+  std::ifstream in(ins.file);
+  if (!in) throw InputError(spec.where(key + ".file"), key + ".file", "cannot open " + ins.file);
+  std::string line;
+  long natoms = -1;
+  std::vector<Candidate> out;
+  bool in_atoms = false;
+  long line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const auto hash = line.find('#');
+    std::string body = hash == std::string::npos ? line : line.substr(0, hash);
+    std::istringstream ss(body);
+    if (!in_atoms) {
+      long v;
+      std::string word;
+      if (ss >> v >> word && word == "atoms") natoms = v;
+      if (line.rfind("Atoms", 0) == 0) in_atoms = true;
+      continue;
+    }
+    long id, type;
+    double d, rho, x, y, z;
+    if (!(ss >> id)) {
+      if (!out.empty()) break;  // blank line after the section, or the next section
+      continue;
+    }
+    if (!(ss >> type >> d >> rho >> x >> y >> z) || d <= 0.0 || rho <= 0.0) {
+      throw InputError(SourceLocation{ins.file, line_no, 1}, key + ".file",
+                       "expected 'id type diameter density x y z' with diameter > 0 and "
+                       "density > 0 in the Atoms section");
+    }
+    out.push_back({{x, y, z}, 0.5 * d, density > 0.0 ? density : rho});
+  }
+  if (natoms < 0 || static_cast<long>(out.size()) != natoms) {
+    throw InputError(SourceLocation{ins.file, 0, 0}, key + ".file",
+                     fmt::format("LAMMPS data file declares {} atoms but its Atoms section "
+                                 "holds {}",
+                                 natoms, out.size()));
+  }
+  return out;
+}
+
+} // namespace
+
+void insert_particles(const CaseSpec& spec, ParticleStore& store) {
+  const auto& dom = spec.domain;
+  const bool two_d = spec.simulation.dimension == 2;
+  const double y_mid = 0.5 * (dom.lo[1] + dom.hi[1]);
+  double dmax = 0.0;
+  for (const auto& s : spec.species) dmax = std::max(dmax, s.diameter);
+  InsertionGrid grid(std::max(dmax, 1e-12));
+  const double tol = spec.simulation.insertion_overlap_tolerance;
+
+  for (std::size_t k = 0; k < spec.inserts.size(); ++k) {
+    const auto& ins = spec.inserts[k];
+    const std::string key = "insert[" + std::to_string(k) + "]";
+    const int s = spec.species_index(ins.species);
+    if (s < 0) throw InputError(spec.where(key + ".species"), key + ".species", "unknown species");
+    const auto& sp = spec.species[s];
+    const double r = 0.5 * sp.diameter;
+    std::mt19937_64 rng(ins.seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    auto velocity = [&]() {
+      Vec3 v{ins.velocity[0], ins.velocity[1], ins.velocity[2]};
+      if (ins.velocity_spread > 0.0) {
+        for (int a = 0; a < 3; ++a) v[a] += ins.velocity_spread * (2.0 * unit(rng) - 1.0);
+      }
+      if (two_d) v.y = 0.0;
+      return v;
+    };
+    std::array<double, 3> lo = ins.region_lo, hi = ins.region_hi;
+    for (int a = 0; a < 3; ++a) lo[a] += r, hi[a] -= r;
+    if (two_d) lo[1] = hi[1] = y_mid;
+    for (int a = 0; a < 3; ++a) {
+      if (hi[a] < lo[a] && hi[a] > lo[a] - 1e-9 * sp.diameter) hi[a] = lo[a];  // round-off
+      if (hi[a] < lo[a]) {
+        throw InputError(spec.where(key + ".region"), key + ".region",
+                         fmt::format("the region is narrower than one particle diameter ({} m) "
+                                     "along {}",
+                                     sp.diameter, "xyz"[a]));
+      }
+    }
+
+    auto place = [&](const Vec3& x, double radius, double rho) {
+      const std::size_t idx = store.size();
+      store.add(x, velocity(), radius, rho, s, static_cast<std::int64_t>(idx + 1));
+      grid.add(idx, x);
+    };
+
+    if (ins.placement == Placement::Random) {
+      const long max_attempts = 2000 * ins.count + 100000;
+      long placed = 0, attempts = 0;
+      while (placed < ins.count && attempts < max_attempts) {
+        ++attempts;
+        Vec3 x{lo[0] + (hi[0] - lo[0]) * unit(rng), lo[1] + (hi[1] - lo[1]) * unit(rng),
+               lo[2] + (hi[2] - lo[2]) * unit(rng)};
+        if (two_d) x.y = y_mid;
+        if (grid.max_overlap(store, x, r, nullptr) > 0.0) continue;
+        place(x, r, sp.density);
+        ++placed;
+      }
+      if (placed < ins.count) {
+        throw InputError(spec.where(key + ".count"), key + ".count",
+                         fmt::format("only {} of {} particles of diameter {} m fit in the region "
+                                     "by random placement; enlarge the region or use "
+                                     "placement = \"lattice\"",
+                                     placed, ins.count, sp.diameter));
+      }
+    } else if (ins.placement == Placement::Lattice) {
+      // Simple cubic (square in 2-D) lattice of spacing d, filled x fastest, then y, then z.
+      std::array<long, 3> m{};
+      for (int a = 0; a < 3; ++a)
+        m[a] = static_cast<long>(std::floor((hi[a] - lo[a]) / sp.diameter * (1 + 1e-12))) + 1;
+      if (two_d) m[1] = 1;
+      const long capacity = m[0] * m[1] * m[2];
+      if (capacity < ins.count) {
+        throw InputError(spec.where(key + ".count"), key + ".count",
+                         fmt::format("the region holds at most {} particles of diameter {} m on "
+                                     "a lattice, {} requested",
+                                     capacity, sp.diameter, ins.count));
+      }
+      for (long c = 0; c < ins.count; ++c) {
+        const long ix = c % m[0], iy = (c / m[0]) % m[1], iz = c / (m[0] * m[1]);
+        Vec3 x{lo[0] + static_cast<double>(ix) * sp.diameter, lo[1] + static_cast<double>(iy) * sp.diameter,
+               lo[2] + static_cast<double>(iz) * sp.diameter};
+        if (two_d) x.y = y_mid;
+        place(x, r, sp.density);
+      }
+    } else {
+      for (const auto& c : read_lammps_data(spec, ins, key, 0.0)) {
+        Vec3 x = c.x;
+        if (two_d) x.y = y_mid;
+        place(x, c.r, c.rho);
+      }
+    }
+  }
+
+  // Every particle inside the domain, and no overlap beyond the tolerance.
+  InsertionGrid check(std::max(dmax, 1e-12));
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    const Vec3 x = store.position(i);
+    const double ri = store.radius[i];
+    for (int a = 0; a < 3; ++a) {
+      if (two_d && a == 1) continue;
+      const double slack = dom.periodic[a] ? 0.0 : ri * (1.0 - 2.0 * tol);
+      if (x[a] < dom.lo[a] + slack || x[a] > dom.hi[a] - slack) {
+        throw InputError(spec.where("insert"), "insert",
+                         fmt::format("particle {} at ({}, {}, {}) m lies outside the domain "
+                                     "along {} (allowed: its sphere inside [{}, {}])",
+                                     store.id[i], x.x, x.y, x.z, "xyz"[a], dom.lo[a], dom.hi[a]));
+      }
+    }
+    std::size_t who = 0;
+    const double ov = check.max_overlap(store, x, ri, &who);
+    if (ov > tol * 2.0 * std::min(ri, store.radius[who])) {
+      throw InputError(spec.where("insert"), "insert",
+                       fmt::format("particles {} and {} overlap by {:.3g} of the smaller "
+                                   "diameter at insertion (allowed: "
+                                   "simulation.insertion_overlap_tolerance = {})",
+                                   store.id[who], store.id[i],
+                                   ov / (2.0 * std::min(ri, store.radius[who])), tol));
+    }
+    check.add(i, x);
+  }
+}
+
+} // namespace fluidem
