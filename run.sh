@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Install what is missing, build fluidem in Release, run the demo case and draw its picture.
+set -euo pipefail
+cd "$(dirname "$0")"
+tools/install-deps.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLUIDEM_BUILD_TESTS=OFF -DFLUIDEM_BUILD_BENCH=OFF >/dev/null
+cmake --build build -j"$(nproc)" --target fluidem
+out=out/pouring_soft
+./build/fluidem run cases/hoomans96/pouring_soft.toml --out "$out"
+/usr/bin/python3 python/fluidem_plot.py "$out" --out "$out/snapshot.png"
+echo
+echo "results:  $out/particles.h5 (open $out/particles.xmf in ParaView), $out/series.csv"
+echo "picture:  $out/snapshot.png"
