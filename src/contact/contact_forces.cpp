@@ -31,8 +31,9 @@ struct ContactOutput {
   Vec3 force;        ///< on i
   Vec3 torque_unit;  ///< n x F_t: torque on i is r_i * this, on a partner particle r_j * this
   Vec3 torque_roll;  ///< rolling torque on i (partner gets the opposite)
+  Vec3 nc_force, nc_torque_unit, nc_torque_roll;  ///< the non-conservative parts of the above
   double fn_abs = 0.0;
-  double elastic = 0.0, dissipated = 0.0;
+  double elastic = 0.0, spring_loss = 0.0;
 };
 
 template <NormalModel Normal, bool Tangential, RollingModel Rolling>
@@ -54,7 +55,7 @@ ContactOutput evaluate(const ContactInput& c, const PairParams& pp, double* hist
   out.force = c.n * (-fn);
   out.fn_abs = std::abs(fn);
   out.elastic = nr.energy;
-  out.dissipated = nr.damping_coeff * vn * vn * dt;
+  out.nc_force = c.n * (-nr.damping_coeff * vn);
 
   const bool rotate = !(c.n_prev.x == c.n.x && c.n_prev.y == c.n.y && c.n_prev.z == c.n.z);
   if constexpr (Tangential) {
@@ -69,8 +70,10 @@ ContactOutput evaluate(const ContactInput& c, const PairParams& pp, double* hist
     hist[0] = delta.x, hist[1] = delta.y, hist[2] = delta.z;
     out.force += tr.force;
     out.torque_unit = cross(c.n, tr.force);
+    out.nc_force += tr.nonconservative;
+    out.nc_torque_unit = cross(c.n, tr.nonconservative);
     out.elastic += tr.energy;
-    out.dissipated += tr.dissipated;
+    out.spring_loss += tr.spring_loss;
   }
   if constexpr (Rolling != RollingModel::None) {
     // [Zhu07 Table 1], methods 2 and 1.
@@ -90,14 +93,16 @@ ContactOutput evaluate(const ContactInput& c, const PairParams& pp, double* hist
       th[0] = theta.x, th[1] = theta.y, th[2] = theta.z;
     }
     out.torque_roll = rr.torque;
+    out.nc_torque_roll = rr.nonconservative;
     out.elastic += rr.energy;
-    out.dissipated += rr.dissipated;
+    out.spring_loss += rr.spring_loss;
   }
   return out;
 }
 
 template <NormalModel Normal, bool Tangential, RollingModel Rolling>
-ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& table, double dt) {
+ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& table, double dt,
+                     NonconservativeForces& nc) {
   ContactStats st;
   const int hw = nl.history_width();
   // A contact that ends takes its spring energy with it: count it as dissipated. (Hertz springs
@@ -108,12 +113,12 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     if (!loaded) return;
     if constexpr (Normal == NormalModel::Linear) {
       if constexpr (Tangential) {
-        st.dissipated += 0.5 * pp.kt * (hist[0] * hist[0] + hist[1] * hist[1] + hist[2] * hist[2]);
+        st.spring_losses += 0.5 * pp.kt * (hist[0] * hist[0] + hist[1] * hist[1] + hist[2] * hist[2]);
       }
       if constexpr (Rolling == RollingModel::SpringDashpot) {
         const double* th = hist + (Tangential ? 3 : 0);
         const double k_r = 2.25 * pp.kn * pp.mu_r * pp.mu_r * r_eff * r_eff;
-        st.dissipated += 0.5 * k_r * (th[0] * th[0] + th[1] * th[1] + th[2] * th[2]);
+        st.spring_losses += 0.5 * k_r * (th[0] * th[0] + th[1] * th[1] + th[2] * th[2]);
       }
     }
     std::fill_n(hist, hw, 0.0);
@@ -166,9 +171,15 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       const Vec3 tj = out.torque_unit * rj - out.torque_roll;
       p.tx[i] += ti.x, p.ty[i] += ti.y, p.tz[i] += ti.z;
       p.tx[j] += tj.x, p.ty[j] += tj.y, p.tz[j] += tj.z;
+      nc.fx[i] += out.nc_force.x, nc.fy[i] += out.nc_force.y, nc.fz[i] += out.nc_force.z;
+      nc.fx[j] -= out.nc_force.x, nc.fy[j] -= out.nc_force.y, nc.fz[j] -= out.nc_force.z;
+      const Vec3 nti = out.nc_torque_unit * ri + out.nc_torque_roll;
+      const Vec3 ntj = out.nc_torque_unit * rj - out.nc_torque_roll;
+      nc.tx[i] += nti.x, nc.ty[i] += nti.y, nc.tz[i] += nti.z;
+      nc.tx[j] += ntj.x, nc.ty[j] += ntj.y, nc.tz[j] += ntj.z;
       ++st.n_contacts;
       st.elastic_energy += out.elastic;
-      st.dissipated += out.dissipated;
+      st.spring_losses += out.spring_loss;
       track_overlap(c.overlap / (2.0 * std::min(ri, rj)), i);
     }
   }
@@ -203,9 +214,12 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     p.fx[i] += out.force.x, p.fy[i] += out.force.y, p.fz[i] += out.force.z;
     const Vec3 ti = out.torque_unit * ri + out.torque_roll;
     p.tx[i] += ti.x, p.ty[i] += ti.y, p.tz[i] += ti.z;
+    nc.fx[i] += out.nc_force.x, nc.fy[i] += out.nc_force.y, nc.fz[i] += out.nc_force.z;
+    const Vec3 nti = out.nc_torque_unit * ri + out.nc_torque_roll;
+    nc.tx[i] += nti.x, nc.ty[i] += nti.y, nc.tz[i] += nti.z;
     ++st.n_contacts;
     st.elastic_energy += out.elastic;
-    st.dissipated += out.dissipated;
+    st.spring_losses += out.spring_loss;
     track_overlap(c.overlap / (2.0 * ri), i);
   }
   return st;
@@ -213,31 +227,47 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
 
 template <NormalModel Normal, bool Tangential>
 ContactStats dispatch_rolling(ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                              double dt) {
+                              double dt, NonconservativeForces& nc) {
   switch (t.rolling()) {
-  case RollingModel::None: return compute<Normal, Tangential, RollingModel::None>(p, nl, t, dt);
+  case RollingModel::None:
+    return compute<Normal, Tangential, RollingModel::None>(p, nl, t, dt, nc);
   case RollingModel::ConstantTorque:
-    return compute<Normal, Tangential, RollingModel::ConstantTorque>(p, nl, t, dt);
+    return compute<Normal, Tangential, RollingModel::ConstantTorque>(p, nl, t, dt, nc);
   case RollingModel::SpringDashpot:
-    return compute<Normal, Tangential, RollingModel::SpringDashpot>(p, nl, t, dt);
+    return compute<Normal, Tangential, RollingModel::SpringDashpot>(p, nl, t, dt, nc);
   }
   return {};
 }
 
 template <NormalModel Normal>
 ContactStats dispatch_tangential(ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                                 double dt) {
-  return t.tangential() == TangentialModel::History ? dispatch_rolling<Normal, true>(p, nl, t, dt)
-                                                    : dispatch_rolling<Normal, false>(p, nl, t, dt);
+                                 double dt, NonconservativeForces& nc) {
+  return t.tangential() == TangentialModel::History
+             ? dispatch_rolling<Normal, true>(p, nl, t, dt, nc)
+             : dispatch_rolling<Normal, false>(p, nl, t, dt, nc);
 }
 
 } // namespace
 
+void NonconservativeForces::reset(std::size_t n) {
+  for (auto* v : {&fx, &fy, &fz, &tx, &ty, &tz}) v->assign(n, 0.0);
+}
+
+double NonconservativeForces::dissipated(const ParticleStore& p, double dt) const {
+  double w = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    w += fx[i] * p.vx[i] + fy[i] * p.vy[i] + fz[i] * p.vz[i];
+    w += tx[i] * p.wx[i] + ty[i] * p.wy[i] + tz[i] * p.wz[i];
+  }
+  return -w * dt;
+}
+
 ContactStats compute_contact_forces(ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                                    double dt) {
+                                    double dt, NonconservativeForces& nc) {
+  nc.reset(p.size());
   switch (t.normal()) {
-  case NormalModel::Linear: return dispatch_tangential<NormalModel::Linear>(p, nl, t, dt);
-  case NormalModel::Hertz: return dispatch_tangential<NormalModel::Hertz>(p, nl, t, dt);
+  case NormalModel::Linear: return dispatch_tangential<NormalModel::Linear>(p, nl, t, dt, nc);
+  case NormalModel::Hertz: return dispatch_tangential<NormalModel::Hertz>(p, nl, t, dt, nc);
   case NormalModel::WaltonBraun: break;  // rejected when the ContactTable was built
   }
   return {};

@@ -13,7 +13,18 @@ struct ContactStats {
   double max_overlap_ratio = 0.0;  ///< overlap / smaller diameter (wall: / particle diameter)
   long max_overlap_particle = -1;  ///< id of a particle in the deepest contact
   double elastic_energy = 0.0;     ///< J stored in all springs (normal, tangential, rolling)
-  double dissipated = 0.0;         ///< J dissipated during this step
+  double spring_losses = 0.0;      ///< J removed from springs this step (Coulomb limit, release)
+};
+
+/// Per-particle sums of the non-conservative contact forces and torques (dashpots, sliding
+/// friction, rolling resistance). Their work, evaluated by the integrator with the full-step
+/// velocities, is the energy the contacts dissipate: with velocity Verlet this is exactly the
+/// kinetic energy they remove, so the energy balance measures only the integration error.
+struct NonconservativeForces {
+  std::vector<double> fx, fy, fz, tx, ty, tz;
+  void reset(std::size_t n);
+  /// -sum (F.v + T.w) dt: energy dissipated over a step of length dt, J.
+  double dissipated(const ParticleStore& p, double dt) const;
 };
 
 /// History doubles per contact needed by the chosen sub-models.
@@ -23,6 +34,7 @@ int contact_history_width(const ContactTable& table);
 /// ones at which the forces are evaluated (half-step velocities in velocity Verlet); `dt` is the
 /// step over which the tangential displacement and the dissipation are integrated.
 ContactStats compute_contact_forces(ParticleStore& p, NeighbourList& nl,
-                                    const ContactTable& table, double dt);
+                                    const ContactTable& table, double dt,
+                                    NonconservativeForces& nc);
 
 } // namespace fluidem

@@ -119,9 +119,9 @@ Simulation::~Simulation() = default;
 void Simulation::compute_forces() {
   p_.zero_forces();
   const auto t0 = Clock::now();
-  stats_ = compute_contact_forces(p_, *nl_, *table_, dt_);
+  stats_ = compute_contact_forces(p_, *nl_, *table_, dt_, nc_);
   t_contacts_ += seconds_since(t0);
-  e_dsp_ += stats_.dissipated;
+  e_dsp_ += stats_.spring_losses;
 }
 
 void Simulation::step() {
@@ -167,6 +167,9 @@ void Simulation::step() {
     p_.wy[i] += h * p_.ty[i] * ii;
     p_.wz[i] += h * p_.tz[i] * ii;
   }
+  // Work of the non-conservative contact forces with the full-step velocities: with velocity
+  // Verlet the force computed at t+dt acts with mean velocity v(t+dt) over [t+dt/2, t+3dt/2].
+  e_dsp_ += nc_.dissipated(p_, dt_);
   t_integration_ += seconds_since(t0);
   ++step_;
   time_ = static_cast<double>(step_) * dt_;

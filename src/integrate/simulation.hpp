@@ -90,6 +90,7 @@ private:
   std::unique_ptr<NeighbourList> nl_;
   CaseReport report_;
   ContactStats stats_;
+  NonconservativeForces nc_;
   double dt_ = 0.0, time_ = 0.0, e_dsp_ = 0.0;
   long step_ = 0;
   double t_contacts_ = 0.0, t_integration_ = 0.0, t_neighbour_ = 0.0;

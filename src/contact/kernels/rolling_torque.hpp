@@ -12,9 +12,10 @@
 namespace fluidem::kernels {
 
 struct RollingResult {
-  Vec3 torque;        ///< on particle i, N m (particle j receives the opposite)
-  double dissipated;  ///< J over this step
-  double energy;      ///< elastic energy in the rolling spring, J
+  Vec3 torque;            ///< on particle i, N m (particle j receives the opposite)
+  Vec3 nonconservative;   ///< the part of `torque` that is not the spring's, N m
+  double spring_loss;     ///< energy removed from the spring by the limit, J
+  double energy;          ///< elastic energy in the rolling spring, J
 };
 
 /// `w_roll`: relative angular velocity w_i - w_j projected on the tangent plane.
@@ -27,7 +28,7 @@ inline RollingResult rolling_constant_torque(const Vec3& w_roll, double mu_r, do
   const double m_stop = w / (inv_inertia_sum * dt);  // torque that stops w_rel in one step
   if (m > m_stop) m = m_stop;
   const Vec3 torque = w_roll * (-m / w);
-  return {torque, m * w * dt, 0.0};
+  return {torque, torque, 0.0, 0.0};
 }
 
 /// `theta` is the rolling history (rotated into the current tangent plane); it is updated.
@@ -35,19 +36,19 @@ inline RollingResult rolling_spring_dashpot(Vec3& theta, const Vec3& w_roll, dou
                                             double c_r, double mu_r, double r_eff, double fn_abs,
                                             double dt) {
   if (k_r <= 0.0) return {};
-  const double e_old = 0.5 * k_r * norm2(theta);
   theta += w_roll * dt;
   const Vec3 m_spring = -k_r * theta;
   Vec3 m = m_spring - c_r * w_roll;
   const double mmax = mu_r * r_eff * fn_abs;
   const double m2 = norm2(m);
-  if (m2 <= mmax * mmax) return {m, c_r * norm2(w_roll) * dt, 0.5 * k_r * norm2(theta)};
+  if (m2 <= mmax * mmax) return {m, -c_r * w_roll, 0.0, 0.5 * k_r * norm2(theta)};
   // Limited as the tangential spring (tangential_force.hpp): the spring alone stays in the limit.
   m *= mmax / std::sqrt(m2);
+  const double e_trial = 0.5 * k_r * norm2(theta);
   const double ms2 = norm2(m_spring);
   if (ms2 > mmax * mmax) theta *= mmax / std::sqrt(ms2);
   const double e_new = 0.5 * k_r * norm2(theta);
-  return {m, -dot(m, w_roll) * dt - (e_new - e_old), e_new};
+  return {m, m + k_r * theta, e_trial - e_new, e_new};
 }
 
 } // namespace fluidem::kernels
