@@ -36,6 +36,7 @@ inline RollingResult rolling_spring_dashpot(Vec3& theta, const Vec3& w_roll, dou
                                             double c_r, double mu_r, double r_eff, double fn_abs,
                                             double dt) {
   if (k_r <= 0.0) return {};
+  const double e_old = 0.5 * k_r * norm2(theta);
   theta += w_roll * dt;
   const Vec3 m_spring = -k_r * theta;
   Vec3 m = m_spring - c_r * w_roll;
@@ -44,11 +45,10 @@ inline RollingResult rolling_spring_dashpot(Vec3& theta, const Vec3& w_roll, dou
   if (m2 <= mmax * mmax) return {m, -c_r * w_roll, 0.0, 0.5 * k_r * norm2(theta)};
   // Limited as the tangential spring (tangential_force.hpp): the spring alone stays in the limit.
   m *= mmax / std::sqrt(m2);
-  const double e_trial = 0.5 * k_r * norm2(theta);
   const double ms2 = norm2(m_spring);
   if (ms2 > mmax * mmax) theta *= mmax / std::sqrt(ms2);
   const double e_new = 0.5 * k_r * norm2(theta);
-  return {m, m + k_r * theta, e_trial - e_new, e_new};
+  return {m, m, e_old - e_new, e_new};  // booked as the sliding tangential spring
 }
 
 } // namespace fluidem::kernels
