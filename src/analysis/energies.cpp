@@ -25,7 +25,8 @@ double bed_surface_height(const ParticleStore& p, double x_lo, double x_hi, doub
   std::vector<double> top(ncol, z_lo);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double rel = (p.x[i] - x_lo) / (x_hi - x_lo);
-    const auto c = std::min(ncol - 1, static_cast<std::size_t>(std::max(0.0, rel) * static_cast<double>(ncol)));
+    const auto c = std::min(
+        ncol - 1, static_cast<std::size_t>(std::max(0.0, rel) * static_cast<double>(ncol)));
     top[c] = std::max(top[c], p.z[i] + p.radius[i]);
   }
   double sum = 0.0;

@@ -9,9 +9,9 @@
 namespace fluidem {
 
 struct Energies {
-  double kinetic = 0.0;     ///< sum 1/2 m v^2, J
-  double rotational = 0.0;  ///< sum 1/2 I w^2, J
-  double potential = 0.0;   ///< -sum m g.x, J
+  double kinetic = 0.0;    ///< sum 1/2 m v^2, J
+  double rotational = 0.0; ///< sum 1/2 I w^2, J
+  double potential = 0.0;  ///< -sum m g.x, J
 };
 
 Energies particle_energies(const ParticleStore& p, const std::array<double, 3>& gravity);

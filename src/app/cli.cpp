@@ -114,8 +114,8 @@ int run_cli(int argc, char** argv) {
                s.seconds_output);
     fmt::print("memory {} bytes per particle; energy balance drift {:.3g} (relative)\n",
                s.bytes_per_particle, s.energy_drift);
-    fmt::print("results: {}/particles.h5 (+ particles.xmf for ParaView), {}/series.csv\n",
-               out_dir, out_dir);
+    fmt::print("results: {}/particles.h5 (+ particles.xmf for ParaView), {}/series.csv\n", out_dir,
+               out_dir);
     return 0;
   } catch (const InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

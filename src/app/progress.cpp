@@ -28,8 +28,10 @@ void ProgressDisplay::operator()(const RunStatus& s) {
                                 100.0 * static_cast<double>(s.step) /
                                     static_cast<double>(std::max(1L, s.total_steps)),
                                 rate, eta);
-  if (terminal_) fmt::print(out_, "\r{}\x1b[K", line);
-  else fmt::print(out_, "{}\n", line);
+  if (terminal_)
+    fmt::print(out_, "\r{}\x1b[K", line);
+  else
+    fmt::print(out_, "{}\n", line);
   std::fflush(out_);
   printed_ = true;
 }

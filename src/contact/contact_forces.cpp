@@ -19,19 +19,19 @@ namespace {
 
 /// One contact between particle i and partner b (a particle or a wall of infinite mass).
 struct ContactInput {
-  Vec3 n;            ///< unit normal from i towards the partner
-  Vec3 n_prev;       ///< normal one step earlier (for rotating the history)
-  double overlap;    ///< m, > 0
-  Vec3 v_rel;        ///< contact-point velocity of i relative to the partner [Deen07 eq. 12]
-  Vec3 w_rel;        ///< w_i - w_partner
+  Vec3 n;         ///< unit normal from i towards the partner
+  Vec3 n_prev;    ///< normal one step earlier (for rotating the history)
+  double overlap; ///< m, > 0
+  Vec3 v_rel;     ///< contact-point velocity of i relative to the partner [Deen07 eq. 12]
+  Vec3 w_rel;     ///< w_i - w_partner
   double r_eff, m_eff, inv_inertia_sum;
 };
 
 struct ContactOutput {
-  Vec3 force;        ///< on i
-  Vec3 torque_unit;  ///< n x F_t: torque on i is r_i * this, on a partner particle r_j * this
-  Vec3 torque_roll;  ///< rolling torque on i (partner gets the opposite)
-  Vec3 nc_force, nc_torque_unit, nc_torque_roll;  ///< the non-conservative parts of the above
+  Vec3 force;       ///< on i
+  Vec3 torque_unit; ///< n x F_t: torque on i is r_i * this, on a partner particle r_j * this
+  Vec3 torque_roll; ///< rolling torque on i (partner gets the opposite)
+  Vec3 nc_force, nc_torque_unit, nc_torque_roll; ///< the non-conservative parts of the above
   double fn_abs = 0.0;
   double elastic = 0.0, spring_loss = 0.0;
 };
@@ -41,7 +41,7 @@ ContactOutput evaluate(const ContactInput& c, const PairParams& pp, double* hist
   ContactOutput out;
   // Normal force [Deen07 eq. 24-27] or Hertz-Tsuji [Chang08 eq. 2.15, 2.22].
   kernels::NormalResponse nr;
-  double k_tangent_ref;  // normal stiffness used to scale rolling springs
+  double k_tangent_ref; // normal stiffness used to scale rolling springs
   if constexpr (Normal == NormalModel::Linear) {
     nr = kernels::linear_normal(pp.kn, pp.normal_damping, c.m_eff, c.overlap);
     k_tangent_ref = pp.kn;
@@ -50,7 +50,7 @@ ContactOutput evaluate(const ContactInput& c, const PairParams& pp, double* hist
     nr = kernels::hertz_normal(k_hertz, pp.normal_damping, c.m_eff, c.overlap);
     k_tangent_ref = nr.stiffness;
   }
-  const double vn = dot(c.v_rel, c.n);  // > 0 when approaching
+  const double vn = dot(c.v_rel, c.n); // > 0 when approaching
   const double fn = nr.elastic + nr.damping_coeff * vn;
   out.force = c.n * (-fn);
   out.fn_abs = std::abs(fn);
@@ -63,8 +63,8 @@ ContactOutput evaluate(const ContactInput& c, const PairParams& pp, double* hist
     const Vec3 v_t = c.v_rel - c.n * vn;
     Vec3 delta{hist[0], hist[1], hist[2]};
     if (rotate && norm2(delta) > 0.0) delta = kernels::rotate_with_contact(delta, c.n_prev, c.n);
-    const double k_t = (Normal == NormalModel::Linear) ? pp.kt
-                                                       : pp.kt * std::sqrt(c.r_eff * c.overlap);
+    const double k_t =
+        (Normal == NormalModel::Linear) ? pp.kt : pp.kt * std::sqrt(c.r_eff * c.overlap);
     const double eta_t = pp.tangential_damping * std::sqrt(2.0 / 7.0 * c.m_eff * k_t);
     const auto tr = kernels::tangential_spring(delta, v_t, k_t, eta_t, pp.mu, out.fn_abs, dt);
     hist[0] = delta.x, hist[1] = delta.y, hist[2] = delta.z;
@@ -80,8 +80,8 @@ ContactOutput evaluate(const ContactInput& c, const PairParams& pp, double* hist
     const Vec3 w_roll = c.w_rel - c.n * dot(c.w_rel, c.n);
     kernels::RollingResult rr;
     if constexpr (Rolling == RollingModel::ConstantTorque) {
-      rr = kernels::rolling_constant_torque(w_roll, pp.mu_r, c.r_eff, out.fn_abs,
-                                            c.inv_inertia_sum, dt);
+      rr = kernels::rolling_constant_torque(w_roll, pp.mu_r, c.r_eff, out.fn_abs, c.inv_inertia_sum,
+                                            dt);
     } else {
       double* th = hist + (Tangential ? 3 : 0);
       Vec3 theta{th[0], th[1], th[2]};
@@ -113,7 +113,8 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     if (!loaded) return;
     if constexpr (Normal == NormalModel::Linear) {
       if constexpr (Tangential) {
-        st.spring_losses += 0.5 * pp.kt * (hist[0] * hist[0] + hist[1] * hist[1] + hist[2] * hist[2]);
+        st.spring_losses +=
+            0.5 * pp.kt * (hist[0] * hist[0] + hist[1] * hist[1] + hist[2] * hist[2]);
       }
       if constexpr (Rolling == RollingModel::SpringDashpot) {
         const double* th = hist + (Tangential ? 3 : 0);
@@ -142,7 +143,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       const double d2 = dx * dx + dy * dy + dz * dz;
       double* hist = hw ? &nl.history[static_cast<std::size_t>(e) * hw] : nullptr;
       if (d2 >= rsum * rsum) {
-        if (hw) {  // contact lost: history reset
+        if (hw) { // contact lost: history reset
           const double rj = p.radius[j];
           release(hist, table.pair(p.species[i], p.species[j]), ri * rj / rsum);
         }
@@ -200,7 +201,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     }
     ContactInput c;
     c.n = Vec3{};
-    c.n[a] = lo_face ? -1.0 : 1.0;  // from the particle towards the wall
+    c.n[a] = lo_face ? -1.0 : 1.0; // from the particle towards the wall
     c.n_prev = c.n;
     c.overlap = ri - gap;
     const Vec3 wi = p.angular_velocity(i);
@@ -226,8 +227,8 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
 }
 
 template <NormalModel Normal, bool Tangential>
-ContactStats dispatch_rolling(ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                              double dt, NonconservativeForces& nc) {
+ContactStats dispatch_rolling(ParticleStore& p, NeighbourList& nl, const ContactTable& t, double dt,
+                              NonconservativeForces& nc) {
   switch (t.rolling()) {
   case RollingModel::None:
     return compute<Normal, Tangential, RollingModel::None>(p, nl, t, dt, nc);
@@ -266,9 +267,12 @@ ContactStats compute_contact_forces(ParticleStore& p, NeighbourList& nl, const C
                                     double dt, NonconservativeForces& nc) {
   nc.reset(p.size());
   switch (t.normal()) {
-  case NormalModel::Linear: return dispatch_tangential<NormalModel::Linear>(p, nl, t, dt, nc);
-  case NormalModel::Hertz: return dispatch_tangential<NormalModel::Hertz>(p, nl, t, dt, nc);
-  case NormalModel::WaltonBraun: break;  // rejected when the ContactTable was built
+  case NormalModel::Linear:
+    return dispatch_tangential<NormalModel::Linear>(p, nl, t, dt, nc);
+  case NormalModel::Hertz:
+    return dispatch_tangential<NormalModel::Hertz>(p, nl, t, dt, nc);
+  case NormalModel::WaltonBraun:
+    break; // rejected when the ContactTable was built
   }
   return {};
 }

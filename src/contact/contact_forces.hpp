@@ -9,11 +9,11 @@
 namespace fluidem {
 
 struct ContactStats {
-  long n_contacts = 0;             ///< touching pairs + wall contacts
-  double max_overlap_ratio = 0.0;  ///< overlap / smaller diameter (wall: / particle diameter)
-  long max_overlap_particle = -1;  ///< id of a particle in the deepest contact
-  double elastic_energy = 0.0;     ///< J stored in all springs (normal, tangential, rolling)
-  double spring_losses = 0.0;      ///< J removed from springs this step (Coulomb limit, release)
+  long n_contacts = 0;            ///< touching pairs + wall contacts
+  double max_overlap_ratio = 0.0; ///< overlap / smaller diameter (wall: / particle diameter)
+  long max_overlap_particle = -1; ///< id of a particle in the deepest contact
+  double elastic_energy = 0.0;    ///< J stored in all springs (normal, tangential, rolling)
+  double spring_losses = 0.0;     ///< J removed from springs this step (Coulomb limit, release)
 };
 
 /// Per-particle sums of the non-conservative contact forces and torques (dashpots, sliding
@@ -33,8 +33,7 @@ int contact_history_width(const ContactTable& table);
 /// Add contact forces and torques to p.f*, p.t* (which the caller zeroes). Velocities are the
 /// ones at which the forces are evaluated (half-step velocities in velocity Verlet); `dt` is the
 /// step over which the tangential displacement and the dissipation are integrated.
-ContactStats compute_contact_forces(ParticleStore& p, NeighbourList& nl,
-                                    const ContactTable& table, double dt,
-                                    NonconservativeForces& nc);
+ContactStats compute_contact_forces(ParticleStore& p, NeighbourList& nl, const ContactTable& table,
+                                    double dt, NonconservativeForces& nc);
 
 } // namespace fluidem

@@ -32,8 +32,8 @@ double auto_characteristic_velocity(const CaseSpec& spec) {
   double v_insert = 0.0;
   for (const auto& ins : spec.inserts) {
     const auto& v = ins.velocity;
-    const double s = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
-                     std::sqrt(3.0) * ins.velocity_spread;
+    const double s =
+        std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + std::sqrt(3.0) * ins.velocity_spread;
     v_insert = std::max(v_insert, s);
   }
   return std::max(0.1, std::sqrt(2.0 * gabs * height) + v_insert);
@@ -50,15 +50,14 @@ ContactTable::ContactTable(const CaseSpec& spec)
                      "\"walton_braun\" is not implemented yet (implemented: \"linear\", "
                      "\"hertz\")");
   }
-  v_char_ = c.characteristic_velocity ? *c.characteristic_velocity
-                                      : auto_characteristic_velocity(spec);
+  v_char_ =
+      c.characteristic_velocity ? *c.characteristic_velocity : auto_characteristic_velocity(spec);
 
-  auto make = [&](const MaterialSpec& a, const MaterialSpec& b, bool wall,
-                  const std::string& key) {
+  auto make = [&](const MaterialSpec& a, const MaterialSpec& b, bool wall, const std::string& key) {
     PairParams p;
     const double e = wall ? b.restitution : 0.5 * (a.restitution + b.restitution);
-    const double beta0 =
-        wall ? b.tangential_restitution : 0.5 * (a.tangential_restitution + b.tangential_restitution);
+    const double beta0 = wall ? b.tangential_restitution
+                              : 0.5 * (a.tangential_restitution + b.tangential_restitution);
     p.mu = wall ? b.friction : 0.5 * (a.friction + b.friction);
     p.mu_r = wall ? b.rolling_friction : 0.5 * (a.rolling_friction + b.rolling_friction);
     p.restitution = e;
@@ -72,8 +71,8 @@ ContactTable::ContactTable(const CaseSpec& spec)
       const double lb = beta0 > 0.0 ? std::log(beta0) : 0.0;
       const double le = e > 0.0 ? std::log(e) : 0.0;
       const double pi2 = std::numbers::pi * std::numbers::pi;
-      const double ratio = c.stiffness_ratio ? *c.stiffness_ratio
-                                             : 2.0 / 7.0 * (pi2 + lb * lb) / (pi2 + le * le);
+      const double ratio =
+          c.stiffness_ratio ? *c.stiffness_ratio : 2.0 / 7.0 * (pi2 + lb * lb) / (pi2 + le * le);
       p.kt = ratio * p.kn;
     } else {
       if (e <= 0.0) {
@@ -99,8 +98,8 @@ ContactTable::ContactTable(const CaseSpec& spec)
     const double ri = 0.5 * si.diameter, mi = sphere_mass(ri, si.density);
     for (int j = 0; j < n_; ++j) {
       const auto& sj = spec.species[j];
-      pp_[i * n_ + j] = make(si.material, sj.material, false,
-                             "species[" + std::to_string(j) + "].restitution");
+      pp_[i * n_ + j] =
+          make(si.material, sj.material, false, "species[" + std::to_string(j) + "].restitution");
       if (j < i) continue;
       const double rj = 0.5 * sj.diameter, mj = sphere_mass(rj, sj.density);
       const double t = contact_duration(mi * mj / (mi + mj), ri * rj / (ri + rj), pp_[i * n_ + j]);
@@ -111,7 +110,7 @@ ContactTable::ContactTable(const CaseSpec& spec)
       pw_[i * 6 + f] = make(si.material, spec.domain.wall_material[f], true,
                             std::string("walls.") + kFaceNames[f] + ".restitution");
       if (spec.domain.periodic[f / 2]) continue;
-      if (spec.simulation.dimension == 2 && f / 2 == 1) continue;  // no y walls for discs
+      if (spec.simulation.dimension == 2 && f / 2 == 1) continue; // no y walls for discs
       const double t = contact_duration(mi, ri, pw_[i * 6 + f]);
       rows_.push_back({si.name + "-wall " + kFaceNames[f], t});
       t_contact_min_ = std::min(t_contact_min_, t);

@@ -14,15 +14,15 @@
 namespace fluidem {
 
 struct PairParams {
-  double kn = 0;               ///< linear: k_n, N/m; Hertz: 4/3 E*, Pa (K = kn sqrt(R*))
-  double normal_damping = 0;   ///< linear: factor of [Deen07 eq. 27]; Hertz: Tsuji's alpha
-  double kt = 0;               ///< linear: k_t, N/m; Hertz: c_t, Pa (k_t = c_t sqrt(R* delta))
-  double tangential_damping = 0;  ///< factor of [Deen07 eq. 30] from beta0
-  double mu = 0;               ///< Coulomb friction
-  double mu_r = 0;             ///< rolling friction, dimensionless
-  double rolling_damping = 0;  ///< factor of [Deen07 eq. 27] from e (rolling spring-dashpot)
-  double restitution = 0;      ///< e_n (for reports)
-  double e_star = 0;           ///< effective Young's modulus, Pa (reports)
+  double kn = 0;                 ///< linear: k_n, N/m; Hertz: 4/3 E*, Pa (K = kn sqrt(R*))
+  double normal_damping = 0;     ///< linear: factor of [Deen07 eq. 27]; Hertz: Tsuji's alpha
+  double kt = 0;                 ///< linear: k_t, N/m; Hertz: c_t, Pa (k_t = c_t sqrt(R* delta))
+  double tangential_damping = 0; ///< factor of [Deen07 eq. 30] from beta0
+  double mu = 0;                 ///< Coulomb friction
+  double mu_r = 0;               ///< rolling friction, dimensionless
+  double rolling_damping = 0;    ///< factor of [Deen07 eq. 27] from e (rolling spring-dashpot)
+  double restitution = 0;        ///< e_n (for reports)
+  double e_star = 0;             ///< effective Young's modulus, Pa (reports)
 };
 
 class ContactTable {
@@ -49,8 +49,8 @@ public:
   double shortest_contact_duration() const { return t_contact_min_; }
 
   struct DurationRow {
-    std::string pair;  ///< e.g. "glass-glass" or "glass-wall z_lo"
-    double duration;   ///< s
+    std::string pair; ///< e.g. "glass-glass" or "glass-wall z_lo"
+    double duration;  ///< s
   };
   const std::vector<DurationRow>& durations() const { return rows_; }
 

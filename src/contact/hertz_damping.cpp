@@ -31,7 +31,7 @@ HertzImpact scaled_hertz_impact(double alpha) {
     if (x > xmax) xmax = x;
     if (v <= 0.0 && x <= 0.0) break;
   }
-  return {0.0, t, xmax};  // overdamped: the particles never separate
+  return {0.0, t, xmax}; // overdamped: the particles never separate
 }
 
 double hertz_damping_alpha(double e) {

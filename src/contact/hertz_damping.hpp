@@ -9,9 +9,9 @@
 namespace fluidem {
 
 struct HertzImpact {
-  double restitution;     ///< -X'(end)/X'(0)
-  double duration;        ///< scaled contact duration T_c
-  double max_overlap;     ///< scaled maximum overlap X_max
+  double restitution; ///< -X'(end)/X'(0)
+  double duration;    ///< scaled contact duration T_c
+  double max_overlap; ///< scaled maximum overlap X_max
 };
 
 /// Solve the scaled damped Hertz impact for a given alpha >= 0.

@@ -22,9 +22,12 @@ int CaseSpec::species_index(const std::string& name) const {
 
 const char* to_string(NormalModel m) {
   switch (m) {
-  case NormalModel::Linear: return "linear";
-  case NormalModel::Hertz: return "hertz";
-  case NormalModel::WaltonBraun: return "walton_braun";
+  case NormalModel::Linear:
+    return "linear";
+  case NormalModel::Hertz:
+    return "hertz";
+  case NormalModel::WaltonBraun:
+    return "walton_braun";
   }
   return "?";
 }
@@ -33,17 +36,23 @@ const char* to_string(TangentialModel m) {
 }
 const char* to_string(RollingModel m) {
   switch (m) {
-  case RollingModel::None: return "none";
-  case RollingModel::ConstantTorque: return "constant_torque";
-  case RollingModel::SpringDashpot: return "spring_dashpot";
+  case RollingModel::None:
+    return "none";
+  case RollingModel::ConstantTorque:
+    return "constant_torque";
+  case RollingModel::SpringDashpot:
+    return "spring_dashpot";
   }
   return "?";
 }
 const char* to_string(Placement p) {
   switch (p) {
-  case Placement::Random: return "random";
-  case Placement::Lattice: return "lattice";
-  case Placement::File: return "file";
+  case Placement::Random:
+    return "random";
+  case Placement::Lattice:
+    return "lattice";
+  case Placement::File:
+    return "file";
   }
   return "?";
 }

@@ -15,29 +15,29 @@ namespace fluidem {
 
 /// Contact material of a species or a wall [Zhu07 Table 1; Deen07 eq. 11-21, 43].
 struct MaterialSpec {
-  double youngs_modulus = 1.0e7;        ///< E, Pa
-  double poisson_ratio = 0.25;          ///< nu, -
-  double restitution = 0.9;             ///< e_n in [0,1]
-  double friction = 0.3;                ///< Coulomb mu >= 0
-  double tangential_restitution = 0.0;  ///< beta_0 in [0,1] [Deen07 eq. 19, 43]
-  double rolling_friction = 0.0;        ///< mu_r >= 0, dimensionless (torque = mu_r R* |F_n|)
+  double youngs_modulus = 1.0e7;       ///< E, Pa
+  double poisson_ratio = 0.25;         ///< nu, -
+  double restitution = 0.9;            ///< e_n in [0,1]
+  double friction = 0.3;               ///< Coulomb mu >= 0
+  double tangential_restitution = 0.0; ///< beta_0 in [0,1] [Deen07 eq. 19, 43]
+  double rolling_friction = 0.0;       ///< mu_r >= 0, dimensionless (torque = mu_r R* |F_n|)
 };
 
 struct SpeciesSpec {
   std::string name;
-  double diameter = 0.0;  ///< m, > 0
-  double density = 0.0;   ///< kg/m^3, > 0
+  double diameter = 0.0; ///< m, > 0
+  double density = 0.0;  ///< kg/m^3, > 0
   MaterialSpec material;
 };
 
 /// The six faces of the box, in this order everywhere.
 enum class Face : int { XLo = 0, XHi, YLo, YHi, ZLo, ZHi };
 inline constexpr std::array<const char*, 6> kFaceNames = {"x_lo", "x_hi", "y_lo",
-                                                         "y_hi", "z_lo", "z_hi"};
+                                                          "y_hi", "z_lo", "z_hi"};
 
 struct DomainSpec {
-  std::array<double, 3> lo{0, 0, 0};  ///< m
-  std::array<double, 3> hi{1, 1, 1};  ///< m
+  std::array<double, 3> lo{0, 0, 0}; ///< m
+  std::array<double, 3> hi{1, 1, 1}; ///< m
   std::array<bool, 3> periodic{false, false, false};
   /// Material of each face (ignored on periodic axes); [walls] sets all, [walls.x_lo] one.
   std::array<MaterialSpec, 6> wall_material{};
@@ -46,14 +46,14 @@ struct DomainSpec {
 enum class Placement { Random, Lattice, File };
 
 struct InsertSpec {
-  std::string species;                ///< name of a [[species]]
-  long count = 0;                     ///< particles to insert (ignored for File placement)
-  std::array<double, 3> region_lo{};  ///< m; defaults to the domain
-  std::array<double, 3> region_hi{};  ///< m
+  std::string species;               ///< name of a [[species]]
+  long count = 0;                    ///< particles to insert (ignored for File placement)
+  std::array<double, 3> region_lo{}; ///< m; defaults to the domain
+  std::array<double, 3> region_hi{}; ///< m
   Placement placement = Placement::Random;
-  std::string file;                   ///< LAMMPS data file (id type diameter density x y z)
-  std::array<double, 3> velocity{0, 0, 0};  ///< m/s
-  double velocity_spread = 0.0;              ///< m/s, uniform in [-s, s] per component
+  std::string file;                        ///< LAMMPS data file (id type diameter density x y z)
+  std::array<double, 3> velocity{0, 0, 0}; ///< m/s
+  double velocity_spread = 0.0;            ///< m/s, uniform in [-s, s] per component
   std::uint64_t seed = 1;
 };
 
@@ -63,36 +63,36 @@ enum class RollingModel { None, ConstantTorque, SpringDashpot };
 
 struct ContactSpec {
   NormalModel normal = NormalModel::Hertz;
-  double stiffness = 0.0;  ///< k_n, N/m (linear model only; required there)
+  double stiffness = 0.0; ///< k_n, N/m (linear model only; required there)
   TangentialModel tangential = TangentialModel::History;
-  std::optional<double> stiffness_ratio;          ///< k_t/k_n; empty = [Deen07 eq. 43]
+  std::optional<double> stiffness_ratio; ///< k_t/k_n; empty = [Deen07 eq. 43]
   RollingModel rolling = RollingModel::None;
-  std::optional<double> characteristic_velocity;  ///< m/s for Hertz durations; empty = auto
-  double max_overlap = 0.1;  ///< instability guard: overlap / smaller diameter
+  std::optional<double> characteristic_velocity; ///< m/s for Hertz durations; empty = auto
+  double max_overlap = 0.1;                      ///< instability guard: overlap / smaller diameter
 };
 
 struct SimulationSpec {
-  int dimension = 3;                      ///< 2: discs moving in the x-z plane; 3: spheres
-  double end_time = 0.0;                  ///< s, > 0
-  std::optional<double> time_step;        ///< s; empty = "auto"
-  double time_step_fraction = 0.02;       ///< auto dt = fraction x shortest contact duration
-  bool force_time_step = false;           ///< allow dt above the stability limit
-  std::array<double, 3> gravity{0, 0, -9.81};  ///< m/s^2
-  double insertion_overlap_tolerance = 0.01;   ///< allowed initial overlap / smaller diameter
+  int dimension = 3;                          ///< 2: discs moving in the x-z plane; 3: spheres
+  double end_time = 0.0;                      ///< s, > 0
+  std::optional<double> time_step;            ///< s; empty = "auto"
+  double time_step_fraction = 0.02;           ///< auto dt = fraction x shortest contact duration
+  bool force_time_step = false;               ///< allow dt above the stability limit
+  std::array<double, 3> gravity{0, 0, -9.81}; ///< m/s^2
+  double insertion_overlap_tolerance = 0.01;  ///< allowed initial overlap / smaller diameter
 };
 
 struct OutputSpec {
-  double frame_interval = 0.01;    ///< s between particle frames (particles.h5)
-  double series_interval = 0.001;  ///< s between rows of series.csv
+  double frame_interval = 0.01;   ///< s between particle frames (particles.h5)
+  double series_interval = 0.001; ///< s between rows of series.csv
 };
 
 struct NeighbourSpec {
-  std::optional<double> skin;  ///< m; empty = 0.2 x the largest diameter
+  std::optional<double> skin; ///< m; empty = 0.2 x the largest diameter
 };
 
 /// The whole case, plus where each key came from (for error messages).
 struct CaseSpec {
-  std::string source_file;  ///< path of the case file as given
+  std::string source_file; ///< path of the case file as given
   SimulationSpec simulation;
   OutputSpec output;
   DomainSpec domain;

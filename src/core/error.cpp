@@ -11,8 +11,7 @@ std::string SourceLocation::str() const {
   return s;
 }
 
-InputError::InputError(const SourceLocation& where, const std::string& key,
-                       const std::string& what)
+InputError::InputError(const SourceLocation& where, const std::string& key, const std::string& what)
     : std::runtime_error(where.str() + ": " + (key.empty() ? std::string() : key + ": ") + what) {}
 
 } // namespace fluidem

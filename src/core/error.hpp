@@ -7,9 +7,9 @@ namespace fluidem {
 
 /// Where a value came from: a case file position, or a command-line override.
 struct SourceLocation {
-  std::string file;  ///< case file path, or "--set" for a command-line override
-  long line = 0;     ///< 1-based; 0 when unknown
-  long column = 0;   ///< 1-based; 0 when unknown
+  std::string file; ///< case file path, or "--set" for a command-line override
+  long line = 0;    ///< 1-based; 0 when unknown
+  long column = 0;  ///< 1-based; 0 when unknown
   std::string str() const;
 };
 

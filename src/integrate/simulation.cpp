@@ -42,12 +42,11 @@ BoxGeometry box_from(const CaseSpec& spec) {
 /// Overlap under the bed's own weight: a bottom particle carries the column above it,
 /// F = m g h / d with h the height the particles fill at packing fraction 0.6 (3-D) or area
 /// fraction 0.82 (2-D); delta = F/k_n (linear) or (F/K)^{2/3} (Hertz, against the floor).
-double expected_overlap_ratio(const CaseSpec& spec, const ParticleStore& p,
-                              const ContactTable& t) {
+double expected_overlap_ratio(const CaseSpec& spec, const ParticleStore& p, const ContactTable& t) {
   const auto& g = spec.simulation.gravity;
   const double gabs = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
   if (gabs == 0.0 || p.size() == 0 || spec.species.empty()) return 0.0;
-  int down = 2;  // the axis gravity points along
+  int down = 2; // the axis gravity points along
   for (int a = 0; a < 3; ++a)
     if (std::abs(g[a]) > std::abs(g[down])) down = a;
   double base = 1.0, solid = 0.0;
@@ -97,7 +96,7 @@ Simulation::Simulation(CaseSpec spec) : spec_(std::move(spec)) {
                                  "true",
                                  dt_, dt_limit, tc, kMinStepsPerContact));
   }
-  spec_.simulation.time_step = dt_;  // the resolved case reproduces this run
+  spec_.simulation.time_step = dt_; // the resolved case reproduces this run
 
   report_.particle_count = p_.size();
   report_.total_mass = mass;
@@ -144,9 +143,12 @@ void Simulation::step() {
     p_.y[i] += dt_ * p_.vy[i];
     p_.z[i] += dt_ * p_.vz[i];
     // Periodic axes: keep centres inside [lo, hi).
-    if (box.periodic[0]) p_.x[i] -= box.length(0) * std::floor((p_.x[i] - box.lo[0]) / box.length(0));
-    if (box.periodic[1]) p_.y[i] -= box.length(1) * std::floor((p_.y[i] - box.lo[1]) / box.length(1));
-    if (box.periodic[2]) p_.z[i] -= box.length(2) * std::floor((p_.z[i] - box.lo[2]) / box.length(2));
+    if (box.periodic[0])
+      p_.x[i] -= box.length(0) * std::floor((p_.x[i] - box.lo[0]) / box.length(0));
+    if (box.periodic[1])
+      p_.y[i] -= box.length(1) * std::floor((p_.y[i] - box.lo[1]) / box.length(1));
+    if (box.periodic[2])
+      p_.z[i] -= box.length(2) * std::floor((p_.z[i] - box.lo[2]) / box.length(2));
   }
   t_integration_ += seconds_since(t0);
 
@@ -185,7 +187,7 @@ void Simulation::check_stability() const {
   }
   const auto& box = nl_->box();
   for (std::size_t i = 0; i < p_.size(); ++i) {
-    const double q[9] = {p_.x[i], p_.y[i], p_.z[i], p_.vx[i], p_.vy[i],
+    const double q[9] = {p_.x[i],  p_.y[i],  p_.z[i],  p_.vx[i], p_.vy[i],
                          p_.vz[i], p_.wx[i], p_.wy[i], p_.wz[i]};
     for (double v : q) {
       if (!std::isfinite(v)) {
@@ -199,8 +201,8 @@ void Simulation::check_stability() const {
       if (q[a] < box.lo[a] - p_.radius[i] || q[a] > box.hi[a] + p_.radius[i]) {
         throw InstabilityError(fmt::format("run unstable {}: particle {} left the closed domain "
                                            "along {} ({} = {:.6g} m, domain [{}, {}])",
-                                           where, p_.id[i], "xyz"[a], "xyz"[a], q[a],
-                                           box.lo[a], box.hi[a]));
+                                           where, p_.id[i], "xyz"[a], "xyz"[a], q[a], box.lo[a],
+                                           box.hi[a]));
       }
     }
   }
@@ -228,8 +230,8 @@ RunSummary Simulation::run(const std::string& out_dir,
   H5mdWriter h5((fs::path(out_dir) / "particles.h5").string(), p_.size(),
                 spec_.simulation.dimension, kVersion, hbox);
   SeriesWriter series((fs::path(out_dir) / "series.csv").string(),
-                      {"time", "e_kin", "e_rot", "e_pot", "e_el", "e_dsp", "e_total",
-                       "n_contacts", "max_overlap_ratio", "neighbour_builds"});
+                      {"time", "e_kin", "e_rot", "e_pot", "e_el", "e_dsp", "e_total", "n_contacts",
+                       "max_overlap_ratio", "neighbour_builds"});
   std::vector<double> frame_times;
   const std::string xmf = (fs::path(out_dir) / "particles.xmf").string();
 
@@ -250,9 +252,9 @@ RunSummary Simulation::run(const std::string& out_dir,
         e0 = tot;
         escale = std::max(std::abs(tot), 1e-300);
       }
-      series.write_row({time_, e.kinetic, e.rotational, e.potential, stats_.elastic_energy,
-                        e_dsp_, tot, static_cast<double>(stats_.n_contacts),
-                        stats_.max_overlap_ratio, static_cast<double>(nl_->builds())});
+      series.write_row({time_, e.kinetic, e.rotational, e.potential, stats_.elastic_energy, e_dsp_,
+                        tot, static_cast<double>(stats_.n_contacts), stats_.max_overlap_ratio,
+                        static_cast<double>(nl_->builds())});
     }
     if (step_ % frame_every == 0 || step_ == total) {
       h5.write_frame(step_, time_, p_);
@@ -284,8 +286,8 @@ RunSummary Simulation::run(const std::string& out_dir,
   RunSummary s;
   s.steps = step_ - step0;
   s.wall_seconds = seconds_since(start);
-  s.particle_steps_per_second =
-      static_cast<double>(s.steps) * static_cast<double>(p_.size()) / std::max(s.wall_seconds, 1e-9);
+  s.particle_steps_per_second = static_cast<double>(s.steps) * static_cast<double>(p_.size()) /
+                                std::max(s.wall_seconds, 1e-9);
   s.neighbour_builds = nl_->builds();
   s.seconds_contacts = t_contacts_;
   s.seconds_integration = t_integration_;

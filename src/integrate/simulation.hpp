@@ -22,14 +22,14 @@ namespace fluidem {
 /// Quantities a user needs before a run (`fluidem check`).
 struct CaseReport {
   std::size_t particle_count = 0;
-  double total_mass = 0.0;                      ///< kg
-  std::vector<ContactTable::DurationRow> durations;  ///< contact duration per pair, s
-  double characteristic_velocity = 0.0;         ///< m/s used for Hertz durations
-  double stable_time_step = 0.0;                ///< largest accepted dt, s
-  double chosen_time_step = 0.0;                ///< s
+  double total_mass = 0.0;                          ///< kg
+  std::vector<ContactTable::DurationRow> durations; ///< contact duration per pair, s
+  double characteristic_velocity = 0.0;             ///< m/s used for Hertz durations
+  double stable_time_step = 0.0;                    ///< largest accepted dt, s
+  double chosen_time_step = 0.0;                    ///< s
   bool time_step_forced = false;
-  double expected_overlap_ratio = 0.0;          ///< under the bed's own weight, / diameter
-  double skin = 0.0;                            ///< m
+  double expected_overlap_ratio = 0.0; ///< under the bed's own weight, / diameter
+  double skin = 0.0;                   ///< m
 };
 
 /// Status passed to the progress callback.
@@ -48,7 +48,7 @@ struct RunSummary {
   double seconds_contacts = 0.0, seconds_integration = 0.0, seconds_neighbour = 0.0,
          seconds_output = 0.0;
   std::size_t bytes_per_particle = 0;
-  double energy_drift = 0.0;  ///< (E_total(end) - E_total(0)) / E_scale
+  double energy_drift = 0.0; ///< (E_total(end) - E_total(0)) / E_scale
 };
 
 class Simulation {

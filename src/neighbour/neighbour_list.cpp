@@ -51,7 +51,8 @@ void NeighbourList::build_cells(const ParticleStore& p, double cell_size) {
   for (std::size_t c = 0; c < ncells; ++c) cell_start_[c + 1] += cell_start_[c];
   cell_particles_.resize(n);
   count_.assign(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) cell_particles_[count_[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::size_t i = 0; i < n; ++i)
+    cell_particles_[count_[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
 }
 
 void NeighbourList::build(const ParticleStore& p) {
@@ -83,12 +84,15 @@ void NeighbourList::build(const ParticleStore& p) {
           bool ok = true;
           for (int a = 0; a < 3 && ok; ++a) {
             if (q[a] < 0 || q[a] >= ncell_[a]) {
-              if (box_.periodic[a]) q[a] = (q[a] + ncell_[a]) % ncell_[a];
-              else ok = false;
+              if (box_.periodic[a])
+                q[a] = (q[a] + ncell_[a]) % ncell_[a];
+              else
+                ok = false;
             }
           }
           if (!ok) continue;
-          const auto cell = static_cast<std::uint32_t>((q[2] * ncell_[1] + q[1]) * ncell_[0] + q[0]);
+          const auto cell =
+              static_cast<std::uint32_t>((q[2] * ncell_[1] + q[1]) * ncell_[0] + q[0]);
           if (std::find(seen, seen + nseen, cell) != seen + nseen) continue;
           seen[nseen++] = cell;
           for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {

@@ -34,12 +34,12 @@ public:
   // Pair list (CSR by owner i): partners of i are partner[offset[i] .. offset[i+1]).
   std::vector<std::uint32_t> offset;
   std::vector<std::uint32_t> partner;
-  std::vector<double> history;  ///< history_width doubles per pair entry
+  std::vector<double> history; ///< history_width doubles per pair entry
 
   // Wall entries: particle index and face (0..5), sorted by particle.
   std::vector<std::uint32_t> wall_particle;
   std::vector<std::uint8_t> wall_face;
-  std::vector<double> wall_history;  ///< history_width doubles per wall entry
+  std::vector<double> wall_history; ///< history_width doubles per wall entry
 
   int history_width() const { return hw_; }
   double skin() const { return skin_; }
@@ -61,7 +61,7 @@ private:
   double skin_;
   int hw_;
   long builds_ = 0;
-  std::vector<double> x0_, y0_, z0_;  ///< positions at the last build
+  std::vector<double> x0_, y0_, z0_; ///< positions at the last build
   // Cell grid
   std::array<int, 3> ncell_{1, 1, 1};
   std::array<double, 3> inv_cell_{1, 1, 1};

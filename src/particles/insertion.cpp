@@ -42,7 +42,8 @@ private:
   long coord(double v) const { return static_cast<long>(std::floor(v / cell_)); }
   static std::uint64_t pack(long a, long b, long c) {
     return (static_cast<std::uint64_t>(a & 0x1FFFFF) << 42) |
-           (static_cast<std::uint64_t>(b & 0x1FFFFF) << 21) | static_cast<std::uint64_t>(c & 0x1FFFFF);
+           (static_cast<std::uint64_t>(b & 0x1FFFFF) << 21) |
+           static_cast<std::uint64_t>(c & 0x1FFFFF);
   }
   std::uint64_t key(const Vec3& x) const { return pack(coord(x.x), coord(x.y), coord(x.z)); }
   double cell_;
@@ -78,7 +79,7 @@ std::vector<Candidate> read_lammps_data(const CaseSpec& spec, const InsertSpec& 
     long id, type;
     double d, rho, x, y, z;
     if (!(ss >> id)) {
-      if (!out.empty()) break;  // blank line after the section, or the next section
+      if (!out.empty()) break; // blank line after the section, or the next section
       continue;
     }
     if (!(ss >> type >> d >> rho >> x >> y >> z) || d <= 0.0 || rho <= 0.0) {
@@ -129,7 +130,7 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
     for (int a = 0; a < 3; ++a) lo[a] += r, hi[a] -= r;
     if (two_d) lo[1] = hi[1] = y_mid;
     for (int a = 0; a < 3; ++a) {
-      if (hi[a] < lo[a] && hi[a] > lo[a] - 1e-9 * sp.diameter) hi[a] = lo[a];  // round-off
+      if (hi[a] < lo[a] && hi[a] > lo[a] - 1e-9 * sp.diameter) hi[a] = lo[a]; // round-off
       if (hi[a] < lo[a]) {
         throw InputError(spec.where(key + ".region"), key + ".region",
                          fmt::format("the region is narrower than one particle diameter ({} m) "
@@ -178,7 +179,8 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
       }
       for (long c = 0; c < ins.count; ++c) {
         const long ix = c % m[0], iy = (c / m[0]) % m[1], iz = c / (m[0] * m[1]);
-        Vec3 x{lo[0] + static_cast<double>(ix) * sp.diameter, lo[1] + static_cast<double>(iy) * sp.diameter,
+        Vec3 x{lo[0] + static_cast<double>(ix) * sp.diameter,
+               lo[1] + static_cast<double>(iy) * sp.diameter,
                lo[2] + static_cast<double>(iz) * sp.diameter};
         if (two_d) x.y = y_mid;
         place(x, r, sp.density);

@@ -13,7 +13,9 @@ void for_each_array(ParticleStore& p, F&& f) {
 }
 } // namespace
 
-double sphere_mass(double r, double rho) { return rho * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
+double sphere_mass(double r, double rho) {
+  return rho * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+}
 
 void ParticleStore::reserve(std::size_t n) {
   for_each_array(*this, [n](auto& a) { a.reserve(n); });
@@ -34,7 +36,7 @@ void ParticleStore::add(const Vec3& p, const Vec3& v, double r, double rho, std:
   radius.push_back(r);
   mass.push_back(m);
   inv_mass.push_back(1.0 / m);
-  inv_inertia.push_back(1.0 / (0.4 * m * r * r));  // solid sphere I = 2/5 m r^2
+  inv_inertia.push_back(1.0 / (0.4 * m * r * r)); // solid sphere I = 2/5 m r^2
   species.push_back(s);
   id.push_back(pid);
 }

@@ -11,7 +11,7 @@ namespace fluidem::kernels {
 inline Vec3 rotate_with_contact(const Vec3& v, const Vec3& n0, const Vec3& n) {
   const double c = dot(n0, n);
   const Vec3 w = cross(n0, n);
-  if (c <= -1.0 + 1e-12) return -v;  // normal flipped: cannot happen within one step
+  if (c <= -1.0 + 1e-12) return -v; // normal flipped: cannot happen within one step
   return c * v + cross(w, v) + (dot(w, v) / (1.0 + c)) * w;
 }
 

@@ -14,10 +14,10 @@ namespace fluidem::kernels {
 
 /// Magnitudes of the normal contact response for a given overlap and approach speed.
 struct NormalResponse {
-  double elastic;        ///< spring force magnitude, N (repulsive, along -n on particle i)
-  double damping_coeff;  ///< eta_n, kg/s: damping force = -eta_n v_n
-  double stiffness;      ///< tangent stiffness dF/d(delta), N/m (for tangential/rolling springs)
-  double energy;         ///< elastic energy stored, J
+  double elastic;       ///< spring force magnitude, N (repulsive, along -n on particle i)
+  double damping_coeff; ///< eta_n, kg/s: damping force = -eta_n v_n
+  double stiffness;     ///< tangent stiffness dF/d(delta), N/m (for tangential/rolling springs)
+  double energy;        ///< elastic energy stored, J
 };
 
 /// Damping factor -2 ln e / sqrt(pi^2 + ln^2 e) (2 for e = 0) [Deen07 eq. 27, 30].
@@ -35,7 +35,7 @@ inline NormalResponse linear_normal(double k, double damping_factor, double m_ef
 /// Hertz spring with Tsuji damping [Chang08 eq. 2.15, 2.22]. `k_hertz` = 4/3 E* sqrt(R*).
 inline NormalResponse hertz_normal(double k_hertz, double alpha, double m_eff, double delta) {
   const double sd = std::sqrt(delta);
-  const double qd = std::sqrt(sd);  // delta^{1/4}
+  const double qd = std::sqrt(sd); // delta^{1/4}
   return {k_hertz * delta * sd, alpha * std::sqrt(m_eff * k_hertz) * qd, 1.5 * k_hertz * sd,
           0.4 * k_hertz * delta * delta * sd};
 }

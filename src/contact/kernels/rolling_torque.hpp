@@ -12,10 +12,10 @@
 namespace fluidem::kernels {
 
 struct RollingResult {
-  Vec3 torque;            ///< on particle i, N m (particle j receives the opposite)
-  Vec3 nonconservative;   ///< the part of `torque` that is not the spring's, N m
-  double spring_loss;     ///< energy removed from the spring by the limit, J
-  double energy;          ///< elastic energy in the rolling spring, J
+  Vec3 torque;          ///< on particle i, N m (particle j receives the opposite)
+  Vec3 nonconservative; ///< the part of `torque` that is not the spring's, N m
+  double spring_loss;   ///< energy removed from the spring by the limit, J
+  double energy;        ///< elastic energy in the rolling spring, J
 };
 
 /// `w_roll`: relative angular velocity w_i - w_j projected on the tangent plane.
@@ -25,16 +25,15 @@ inline RollingResult rolling_constant_torque(const Vec3& w_roll, double mu_r, do
   const double w = norm(w_roll);
   if (w <= 0.0 || mu_r <= 0.0) return {};
   double m = mu_r * r_eff * fn_abs;
-  const double m_stop = w / (inv_inertia_sum * dt);  // torque that stops w_rel in one step
+  const double m_stop = w / (inv_inertia_sum * dt); // torque that stops w_rel in one step
   if (m > m_stop) m = m_stop;
   const Vec3 torque = w_roll * (-m / w);
   return {torque, torque, 0.0, 0.0};
 }
 
 /// `theta` is the rolling history (rotated into the current tangent plane); it is updated.
-inline RollingResult rolling_spring_dashpot(Vec3& theta, const Vec3& w_roll, double k_r,
-                                            double c_r, double mu_r, double r_eff, double fn_abs,
-                                            double dt) {
+inline RollingResult rolling_spring_dashpot(Vec3& theta, const Vec3& w_roll, double k_r, double c_r,
+                                            double mu_r, double r_eff, double fn_abs, double dt) {
   if (k_r <= 0.0) return {};
   const double e_old = 0.5 * k_r * norm2(theta);
   theta += w_roll * dt;
@@ -48,7 +47,7 @@ inline RollingResult rolling_spring_dashpot(Vec3& theta, const Vec3& w_roll, dou
   const double ms2 = norm2(m_spring);
   if (ms2 > mmax * mmax) theta *= mmax / std::sqrt(ms2);
   const double e_new = 0.5 * k_r * norm2(theta);
-  return {m, m, e_old - e_new, e_new};  // booked as the sliding tangential spring
+  return {m, m, e_old - e_new, e_new}; // booked as the sliding tangential spring
 }
 
 } // namespace fluidem::kernels

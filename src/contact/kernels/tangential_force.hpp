@@ -19,10 +19,10 @@
 namespace fluidem::kernels {
 
 struct TangentialResult {
-  Vec3 force;             ///< on particle i, N
-  Vec3 nonconservative;   ///< the part of `force` that is not the spring's, N
-  double spring_loss;     ///< energy removed from the spring by the Coulomb limit, J
-  double energy;          ///< elastic energy stored in the spring after the step, J
+  Vec3 force;           ///< on particle i, N
+  Vec3 nonconservative; ///< the part of `force` that is not the spring's, N
+  double spring_loss;   ///< energy removed from the spring by the Coulomb limit, J
+  double energy;        ///< elastic energy stored in the spring after the step, J
   bool sliding;
 };
 
