@@ -225,7 +225,7 @@ struct HertzDamped {
   double e, v;
 };
 void PrintTo(const HertzDamped& h, std::ostream* os) {
-  *os << "e = " << h.e << ", v = " << h.v;
+  *os << "e" << h.e << "_v" << h.v; // also the ctest name suffix
 }
 
 class HertzPairRestitution : public ::testing::TestWithParam<HertzDamped> {};

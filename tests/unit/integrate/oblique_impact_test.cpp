@@ -46,7 +46,7 @@ struct Oblique {
   double e;     // wall restitution
 };
 void PrintTo(const Oblique& o, std::ostream* os) {
-  *os << "mu = " << o.mu << ", v_t/v_n = " << o.ratio << ", e = " << o.e;
+  *os << "mu" << o.mu << "_tan" << o.ratio << "_e" << o.e; // also the ctest name suffix
 }
 
 struct Result {
