@@ -12,7 +12,11 @@ ProgressDisplay::ProgressDisplay(std::FILE* out)
 
 void ProgressDisplay::operator()(const RunStatus& s) {
   const auto now = std::chrono::steady_clock::now();
-  if (step_at_start_ < 0) step_at_start_ = s.step;
+  if (step_at_start_ < 0) {  // the first call marks the start: rate and ETA count from here
+    step_at_start_ = s.step;
+    start_ = last_ = now;
+    return;
+  }
   const double since_last = std::chrono::duration<double>(now - last_).count();
   const bool done = s.step >= s.total_steps;
   if (since_last < (terminal_ ? 0.5 : 10.0) && !done) return;

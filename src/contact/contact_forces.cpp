@@ -53,7 +53,11 @@ ContactOutput evaluate(const ContactInput& c, const PairParams& pp, double* hist
   const double vn = dot(c.v_rel, c.n); // > 0 when approaching
   const double fn = nr.elastic + nr.damping_coeff * vn;
   out.force = c.n * (-fn);
-  out.fn_abs = std::abs(fn);
+  // The Coulomb and rolling limits scale with the compressive load. The dashpot makes the normal
+  // force briefly tensile at the end of a damped contact; [Deen07 eq. 28] writes |F_n|, which
+  // would let friction act on a pulling contact (J_t/J_n = 1.002 mu at e = 0.9), so the tensile
+  // part is not counted.
+  out.fn_abs = fn > 0.0 ? fn : 0.0;
   out.elastic = nr.energy;
   out.nc_force = c.n * (-nr.damping_coeff * vn);
 

@@ -88,6 +88,8 @@ Simulation::Simulation(CaseSpec spec) : spec_(std::move(spec)) {
   const double dt_limit = tc / kMinStepsPerContact;
   const auto& sim = spec_.simulation;
   dt_ = sim.time_step ? *sim.time_step : sim.time_step_fraction * tc;
+  // An automatic step is shortened so that a whole number of steps ends exactly at end_time.
+  if (!sim.time_step && sim.end_time > 0.0) dt_ = sim.end_time / std::ceil(sim.end_time / dt_);
   if (dt_ > dt_limit && !sim.force_time_step) {
     throw InputError(spec_.where("simulation.time_step"), "simulation.time_step",
                      fmt::format("{:.4g} s is above the stability limit {:.4g} s (the shortest "
@@ -235,17 +237,21 @@ RunSummary Simulation::run(const std::string& out_dir,
   std::vector<double> frame_times;
   const std::string xmf = (fs::path(out_dir) / "particles.xmf").string();
 
-  const long total = static_cast<long>(std::llround(spec_.simulation.end_time / dt_));
-  const long frame_every = std::max(1L, std::lround(spec_.output.frame_interval / dt_));
-  const long series_every = std::max(1L, std::lround(spec_.output.series_interval / dt_));
-  const long check_every = std::min(series_every, 100L);
+  // The run ends at the first step at or after end_time; outputs are written at the first step
+  // at or after each multiple of their interval (no drift from rounding intervals to steps).
+  const double eps = 1e-9 * dt_;
+  const long total = static_cast<long>(std::ceil(spec_.simulation.end_time / dt_ - 1e-9));
+  const double frame_dt = spec_.output.frame_interval, series_dt = spec_.output.series_interval;
+  double next_frame = time_, next_series = time_;
+  const long check_every = 100;
   const long progress_every = std::max(1L, std::min(200L, 2000000L / std::max<long>(1, p_.size())));
   double seconds_output = 0.0;
   double e0 = 0.0, escale = 0.0;
 
   auto write_outputs = [&]() {
     const auto t0 = Clock::now();
-    if (step_ % series_every == 0 || step_ == total) {
+    if (time_ >= next_series - eps || step_ == total) {
+      while (next_series <= time_ + eps) next_series += series_dt;
       const Energies e = energies();
       const double tot = e.kinetic + e.rotational + e.potential + stats_.elastic_energy + e_dsp_;
       if (step_ == 0) {
@@ -256,7 +262,8 @@ RunSummary Simulation::run(const std::string& out_dir,
                         tot, static_cast<double>(stats_.n_contacts), stats_.max_overlap_ratio,
                         static_cast<double>(nl_->builds())});
     }
-    if (step_ % frame_every == 0 || step_ == total) {
+    if (time_ >= next_frame - eps || step_ == total) {
+      while (next_frame <= time_ + eps) next_frame += frame_dt;
       h5.write_frame(step_, time_, p_);
       h5.flush();
       frame_times.push_back(time_);
@@ -268,6 +275,7 @@ RunSummary Simulation::run(const std::string& out_dir,
   const auto start = Clock::now();
   const long step0 = step_;
   write_outputs();
+  if (progress) progress({step_, total, time_, spec_.simulation.end_time, p_.size()});
   try {
     check_stability();
     while (step_ < total) {

@@ -200,13 +200,23 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
     const Vec3 x = store.position(i);
     const double ri = store.radius[i];
     for (int a = 0; a < 3; ++a) {
-      if (two_d && a == 1) continue;
-      const double slack = dom.periodic[a] ? 0.0 : ri * (1.0 - 2.0 * tol);
-      if (x[a] < dom.lo[a] + slack || x[a] > dom.hi[a] - slack) {
+      if ((two_d && a == 1) || dom.periodic[a]) continue;
+      if (x[a] < dom.lo[a] || x[a] > dom.hi[a]) {
         throw InputError(spec.where("insert"), "insert",
                          fmt::format("particle {} at ({}, {}, {}) m lies outside the domain "
-                                     "along {} (allowed: its sphere inside [{}, {}])",
+                                     "along {} (allowed: centre in [{}, {}])",
                                      store.id[i], x.x, x.y, x.z, "xyz"[a], dom.lo[a], dom.hi[a]));
+      }
+      const double wall_overlap = ri - std::min(x[a] - dom.lo[a], dom.hi[a] - x[a]);
+      if (wall_overlap > tol * 2.0 * ri) {
+        throw InputError(spec.where("insert"), "insert",
+                         fmt::format("particle {} at ({}, {}, {}) m overlaps the {} wall by "
+                                     "{:.3g} of its diameter at insertion (allowed: "
+                                     "simulation.insertion_overlap_tolerance = {})",
+                                     store.id[i], x.x, x.y, x.z,
+                                     x[a] - dom.lo[a] < dom.hi[a] - x[a] ? kFaceNames[2 * a]
+                                                                         : kFaceNames[2 * a + 1],
+                                     wall_overlap / (2.0 * ri), tol));
       }
     }
     std::size_t who = 0;
