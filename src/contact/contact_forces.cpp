@@ -19,11 +19,12 @@ namespace {
 
 /// One contact between particle i and partner b (a particle or a wall of infinite mass).
 struct ContactInput {
-  Vec3 n;         ///< unit normal from i towards the partner
-  Vec3 n_prev;    ///< normal one step earlier (for rotating the history)
-  double overlap; ///< m, > 0
-  Vec3 v_rel;     ///< contact-point velocity of i relative to the partner [Deen07 eq. 12]
-  Vec3 w_rel;     ///< w_i - w_partner
+  Vec3 n;                    ///< unit normal from i towards the partner
+  Vec3 d_prev;               ///< separation one step earlier, unnormalised (rotates the history)
+  bool fixed_normal = false; ///< wall contact: the normal never turns
+  double overlap;            ///< m, > 0
+  Vec3 v_rel; ///< contact-point velocity of i relative to the partner [Deen07 eq. 12]
+  Vec3 w_rel; ///< w_i - w_partner
   double r_eff, m_eff, inv_inertia_sum;
 };
 
@@ -37,7 +38,8 @@ struct ContactOutput {
 };
 
 template <NormalModel Normal, bool Tangential, RollingModel Rolling>
-ContactOutput evaluate(const ContactInput& c, const PairParams& pp, double* hist, double dt) {
+[[gnu::always_inline]] inline ContactOutput evaluate(const ContactInput& c, const PairParams& pp,
+                                                     double* hist, double dt) {
   ContactOutput out;
   // Normal force [Deen07 eq. 24-27] or Hertz-Tsuji [Chang08 eq. 2.15, 2.22].
   kernels::NormalResponse nr;
@@ -61,12 +63,14 @@ ContactOutput evaluate(const ContactInput& c, const PairParams& pp, double* hist
   out.elastic = nr.energy;
   out.nc_force = c.n * (-nr.damping_coeff * vn);
 
-  const bool rotate = !(c.n_prev.x == c.n.x && c.n_prev.y == c.n.y && c.n_prev.z == c.n.z);
+  // The previous normal is only needed (one sqrt) when there is history to rotate.
+  auto previous_normal = [&c]() { return c.d_prev / norm(c.d_prev); };
   if constexpr (Tangential) {
     // [Deen07 eq. 28-32]
     const Vec3 v_t = c.v_rel - c.n * vn;
     Vec3 delta{hist[0], hist[1], hist[2]};
-    if (rotate && norm2(delta) > 0.0) delta = kernels::rotate_with_contact(delta, c.n_prev, c.n);
+    if (!c.fixed_normal && norm2(delta) > 0.0)
+      delta = kernels::rotate_with_contact(delta, previous_normal(), c.n);
     const double k_t =
         (Normal == NormalModel::Linear) ? pp.kt : pp.kt * std::sqrt(c.r_eff * c.overlap);
     const double eta_t = pp.tangential_damping * std::sqrt(2.0 / 7.0 * c.m_eff * k_t);
@@ -89,7 +93,8 @@ ContactOutput evaluate(const ContactInput& c, const PairParams& pp, double* hist
     } else {
       double* th = hist + (Tangential ? 3 : 0);
       Vec3 theta{th[0], th[1], th[2]};
-      if (rotate && norm2(theta) > 0.0) theta = kernels::rotate_with_contact(theta, c.n_prev, c.n);
+      if (!c.fixed_normal && norm2(theta) > 0.0)
+        theta = kernels::rotate_with_contact(theta, previous_normal(), c.n);
       const double k_r = 2.25 * k_tangent_ref * pp.mu_r * pp.mu_r * c.r_eff * c.r_eff;
       const double c_r = pp.rolling_damping * std::sqrt(k_r / c.inv_inertia_sum);
       rr = kernels::rolling_spring_dashpot(theta, w_roll, k_r, c_r, pp.mu_r, c.r_eff, out.fn_abs,
@@ -166,8 +171,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       c.m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
       c.inv_inertia_sum = p.inv_inertia[i] + p.inv_inertia[j];
       // Separation one step earlier: positions moved by v dt with the current velocities.
-      const Vec3 d_prev = Vec3{dx, dy, dz} - (vj - vi) * dt;
-      c.n_prev = hist ? d_prev / norm(d_prev) : c.n;
+      c.d_prev = Vec3{dx, dy, dz} - (vj - vi) * dt;
       const auto out = evaluate<Normal, Tangential, Rolling>(
           c, table.pair(p.species[i], p.species[j]), hist, dt);
       p.fx[i] += out.force.x, p.fy[i] += out.force.y, p.fz[i] += out.force.z;
@@ -206,7 +210,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     ContactInput c;
     c.n = Vec3{};
     c.n[a] = lo_face ? -1.0 : 1.0; // from the particle towards the wall
-    c.n_prev = c.n;
+    c.fixed_normal = true;
     c.overlap = ri - gap;
     const Vec3 wi = p.angular_velocity(i);
     c.v_rel = p.velocity(i) + cross(wi * ri, c.n);
