@@ -116,32 +116,35 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   const int hw = nl.history_width();
   // A contact that ends takes its spring energy with it: count it as dissipated. (Hertz springs
   // have k_t -> 0 as the overlap closes, so only the linear springs hold energy at separation.)
-  auto release = [&](double* hist, const PairParams& pp, double r_eff) {
+  auto release = [&](ContactStats& acc, double* hist, const PairParams& pp, double r_eff) {
     bool loaded = false;
     for (int k = 0; k < hw; ++k) loaded |= hist[k] != 0.0;
     if (!loaded) return;
     if constexpr (Normal == NormalModel::Linear) {
       if constexpr (Tangential) {
-        st.spring_losses +=
+        acc.spring_losses +=
             0.5 * pp.kt * (hist[0] * hist[0] + hist[1] * hist[1] + hist[2] * hist[2]);
       }
       if constexpr (Rolling == RollingModel::SpringDashpot) {
         const double* th = hist + (Tangential ? 3 : 0);
         const double k_r = 2.25 * pp.kn * pp.mu_r * pp.mu_r * r_eff * r_eff;
-        st.spring_losses += 0.5 * k_r * (th[0] * th[0] + th[1] * th[1] + th[2] * th[2]);
+        acc.spring_losses += 0.5 * k_r * (th[0] * th[0] + th[1] * th[1] + th[2] * th[2]);
       }
     }
     std::fill_n(hist, hw, 0.0);
   };
   const std::size_t n = p.size();
-  auto track_overlap = [&](double ratio, std::size_t i) {
-    if (ratio > st.max_overlap_ratio) {
-      st.max_overlap_ratio = ratio;
-      st.max_overlap_particle = p.id[i];
+  auto track_overlap = [&](ContactStats& acc, double ratio, std::size_t i) {
+    if (ratio > acc.max_overlap_ratio) {
+      acc.max_overlap_ratio = ratio;
+      acc.max_overlap_particle = p.id[i];
     }
   };
-  // Particle-particle pairs (half list: each pair once, forces applied to both).
-  for (std::size_t i = 0; i < n; ++i) {
+  // Particle-particle pairs (half list: each pair once, forces applied to both). The rows of a
+  // slab write only to particles of that slab and the next, so all even slabs run in parallel,
+  // then all odd slabs; each slab runs its rows in a fixed order and keeps its own statistics,
+  // summed in slab order: the result does not depend on the number of threads.
+  auto process_row = [&](std::size_t i, ContactStats& acc) {
     const double xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.radius[i];
     for (std::uint32_t e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
       const std::uint32_t j = nl.partner[e];
@@ -154,7 +157,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       if (d2 >= rsum * rsum) {
         if (hw) { // contact lost: history reset
           const double rj = p.radius[j];
-          release(hist, table.pair(p.species[i], p.species[j]), ri * rj / rsum);
+          release(acc, hist, table.pair(p.species[i], p.species[j]), ri * rj / rsum);
         }
         continue;
       }
@@ -186,10 +189,28 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       const Vec3 ntj = out.nc_torque_unit * rj - out.nc_torque_roll;
       nc.tx[i] += nti.x, nc.ty[i] += nti.y, nc.tz[i] += nti.z;
       nc.tx[j] += ntj.x, nc.ty[j] += ntj.y, nc.tz[j] += ntj.z;
-      ++st.n_contacts;
-      st.elastic_energy += out.elastic;
-      st.spring_losses += out.spring_loss;
-      track_overlap(c.overlap / (2.0 * std::min(ri, rj)), i);
+      ++acc.n_contacts;
+      acc.elastic_energy += out.elastic;
+      acc.spring_losses += out.spring_loss;
+      track_overlap(acc, c.overlap / (2.0 * std::min(ri, rj)), i);
+    }
+  };
+  const int nslab = nl.slab_count();
+  std::vector<ContactStats> slab_stats(nslab);
+  for (int phase = 0; phase < 2; ++phase) {
+#pragma omp parallel for schedule(dynamic, 1) if (n > 4096)
+    for (int sl = phase; sl < nslab; sl += 2) {
+      for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
+        process_row(nl.slab_particles[k], slab_stats[sl]);
+    }
+  }
+  for (const auto& ss : slab_stats) {
+    st.n_contacts += ss.n_contacts;
+    st.elastic_energy += ss.elastic_energy;
+    st.spring_losses += ss.spring_losses;
+    if (ss.max_overlap_ratio > st.max_overlap_ratio) {
+      st.max_overlap_ratio = ss.max_overlap_ratio;
+      st.max_overlap_particle = ss.max_overlap_particle;
     }
   }
   // Particle-wall contacts: wall of infinite mass, its own material.
@@ -204,7 +225,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     const double gap = lo_face ? (*pos[a])[i] - box.lo[a] : box.hi[a] - (*pos[a])[i];
     double* hist = hw ? &nl.wall_history[e * hw] : nullptr;
     if (gap >= ri) {
-      if (hw) release(hist, table.wall(p.species[i], f), ri);
+      if (hw) release(st, hist, table.wall(p.species[i], f), ri);
       continue;
     }
     ContactInput c;
@@ -229,7 +250,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     ++st.n_contacts;
     st.elastic_energy += out.elastic;
     st.spring_losses += out.spring_loss;
-    track_overlap(c.overlap / (2.0 * ri), i);
+    track_overlap(st, c.overlap / (2.0 * ri), i);
   }
   return st;
 }

@@ -69,6 +69,53 @@ void NeighbourList::build(const ParticleStore& p) {
   std::swap(old_wall_history_, wall_history);
   const bool carry = builds_ > 0 && old_offset_.size() == n + 1;
 
+  // Slabs along the axis over which the particles spread across the most cells.
+  {
+    std::array<std::uint32_t, 3> cmin{~0u, ~0u, ~0u}, cmax{0, 0, 0};
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t c = particle_cell_[i];
+      const std::array<std::uint32_t, 3> q{c % ncell_[0], (c / ncell_[0]) % ncell_[1],
+                                           c / (static_cast<std::uint32_t>(ncell_[0]) * ncell_[1])};
+      for (int a = 0; a < 3; ++a)
+        cmin[a] = std::min(cmin[a], q[a]), cmax[a] = std::max(cmax[a], q[a]);
+    }
+    slab_axis_ = 0;
+    for (int a = 1; a < 3; ++a)
+      if (n > 0 && cmax[a] - cmin[a] > cmax[slab_axis_] - cmin[slab_axis_]) slab_axis_ = a;
+    nslab_ = ncell_[slab_axis_];
+    // A periodic axis needs an even number of slabs (the last slab neighbours slab 0): the last
+    // cell then joins the slab before it.
+    if (box_.periodic[slab_axis_] && nslab_ > 1 && nslab_ % 2 == 1) --nslab_;
+    particle_slab_.resize(n);
+    const std::uint32_t stride =
+        slab_axis_ == 0 ? 1u
+                        : (slab_axis_ == 1 ? static_cast<std::uint32_t>(ncell_[0])
+                                           : static_cast<std::uint32_t>(ncell_[0] * ncell_[1]));
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t q = (particle_cell_[i] / stride) % ncell_[slab_axis_];
+      particle_slab_[i] = std::min(q, static_cast<std::uint32_t>(nslab_ - 1));
+    }
+    slab_start.assign(nslab_ + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) ++slab_start[particle_slab_[i] + 1];
+    for (int k = 0; k < nslab_; ++k) slab_start[k + 1] += slab_start[k];
+    slab_particles.resize(n);
+    count_.assign(slab_start.begin(), slab_start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i)
+      slab_particles[count_[particle_slab_[i]]++] = static_cast<std::uint32_t>(i);
+  }
+  const bool periodic_slabs = box_.periodic[slab_axis_];
+  // Owner of a pair: the particle whose slab is followed by the other's; within a slab the
+  // lower index. (With two periodic slabs each follows the other: the lower slab owns.)
+  auto owns = [&](std::uint32_t i, std::uint32_t j) {
+    const std::uint32_t si = particle_slab_[i], sj = particle_slab_[j];
+    if (si == sj) return i < j;
+    const auto next = [&](std::uint32_t sl) {
+      return periodic_slabs ? (sl + 1) % static_cast<std::uint32_t>(nslab_) : sl + 1;
+    };
+    if (sj == next(si) && si == next(sj)) return si < sj;
+    return sj == next(si);
+  };
+
   // Neighbour cells of each cell, deduplicated (periodic axes with fewer than 3 cells).
   auto for_each_partner = [&](std::size_t i, auto&& visit) {
     const std::uint32_t c = particle_cell_[i];
@@ -97,7 +144,7 @@ void NeighbourList::build(const ParticleStore& p) {
           seen[nseen++] = cell;
           for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
             const std::uint32_t j = cell_particles_[k];
-            if (j <= i) continue;
+            if (j == i || !owns(static_cast<std::uint32_t>(i), j)) continue;
             const double dxp = min_image(p.x[j] - p.x[i], 0);
             const double dyp = min_image(p.y[j] - p.y[i], 1);
             const double dzp = min_image(p.z[j] - p.z[i], 2);
@@ -124,12 +171,22 @@ void NeighbourList::build(const ParticleStore& p) {
     // Deterministic order within a row: ascending partner index.
     std::sort(partner.begin() + offset[i], partner.begin() + offset[i + 1]);
     if (carry && hw_ > 0) {
+      // The pair may have been owned by either particle: the history is antisymmetric (it is
+      // seen from the owner), so a pair found under its partner's old row is negated.
       for (std::uint32_t e = offset[i]; e < offset[i + 1]; ++e) {
-        for (std::uint32_t o = old_offset_[i]; o < old_offset_[i + 1]; ++o) {
-          if (old_partner_[o] != partner[e]) continue;
-          std::copy_n(&old_history_[static_cast<std::size_t>(o) * hw_], hw_,
-                      &history[static_cast<std::size_t>(e) * hw_]);
-          break;
+        const std::uint32_t j = partner[e];
+        double* dst = &history[static_cast<std::size_t>(e) * hw_];
+        bool found = false;
+        for (std::uint32_t o = old_offset_[i]; o < old_offset_[i + 1] && !found; ++o) {
+          if (old_partner_[o] != j) continue;
+          std::copy_n(&old_history_[static_cast<std::size_t>(o) * hw_], hw_, dst);
+          found = true;
+        }
+        for (std::uint32_t o = old_offset_[j]; o < old_offset_[j + 1] && !found; ++o) {
+          if (old_partner_[o] != i) continue;
+          const double* src = &old_history_[static_cast<std::size_t>(o) * hw_];
+          for (int h = 0; h < hw_; ++h) dst[h] = -src[h];
+          found = true;
         }
       }
     }
@@ -175,7 +232,8 @@ std::size_t NeighbourList::bytes() const {
   return b(offset) + b(partner) + b(history) + b(wall_particle) + b(wall_face) + b(wall_history) +
          b(x0_) + b(y0_) + b(z0_) + b(cell_start_) + b(cell_particles_) + b(particle_cell_) +
          b(old_offset_) + b(old_partner_) + b(old_history_) + b(old_wall_particle_) +
-         b(old_wall_face_) + b(old_wall_history_) + b(count_);
+         b(old_wall_face_) + b(old_wall_history_) + b(count_) + b(slab_start) + b(slab_particles) +
+         b(particle_slab_);
 }
 
 } // namespace fluidem

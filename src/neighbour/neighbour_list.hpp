@@ -1,9 +1,12 @@
 // Neighbour search: a cell grid and a half Verlet list with skin [Deen07 §4], rebuilt when a
-// particle has moved more than half the skin since the last build. Pair entries (i, j > i) are
-// stored per owner i in CSR form; each entry carries the contact history (tangential
-// displacement, rolling rotation), which is carried over to the rebuilt list for pairs that are
-// in both. Particles near a closed wall get wall entries with their own history.
-// No physics here: the contact module interprets the history.
+// particle has moved more than half the skin since the last build. Each pair is stored once,
+// under its owner, in CSR form. For race-free, thread-count-independent parallel force loops the
+// domain is cut into slabs one cell thick along one axis: a pair is owned by the particle in the
+// lower slab (by the lower index within a slab), so the rows of slab s touch only particles of
+// slabs s and s+1, and all even slabs (then all odd slabs) can be processed at once; each entry
+// carries the contact history (tangential displacement, rolling rotation), which is carried over to
+// the rebuilt list for pairs that are in both. Particles near a closed wall get wall entries with
+// their own history. No physics here: the contact module interprets the history.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -41,6 +44,11 @@ public:
   std::vector<std::uint8_t> wall_face;
   std::vector<double> wall_history; ///< history_width doubles per wall entry
 
+  // Slabs: the particles of slab s (whose rows are processed together) are
+  // slab_particles[slab_start[s] .. slab_start[s+1]), in ascending index order.
+  std::vector<std::uint32_t> slab_start, slab_particles;
+  int slab_count() const { return nslab_; }
+
   int history_width() const { return hw_; }
   double skin() const { return skin_; }
   long builds() const { return builds_; }
@@ -66,6 +74,8 @@ private:
   std::array<int, 3> ncell_{1, 1, 1};
   std::array<double, 3> inv_cell_{1, 1, 1};
   std::vector<std::uint32_t> cell_start_, cell_particles_, particle_cell_;
+  int slab_axis_ = 0, nslab_ = 1;
+  std::vector<std::uint32_t> particle_slab_;
   // Scratch for history carry-over
   std::vector<std::uint32_t> old_offset_, old_partner_, old_wall_particle_;
   std::vector<std::uint8_t> old_wall_face_;
