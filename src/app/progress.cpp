@@ -12,7 +12,7 @@ ProgressDisplay::ProgressDisplay(std::FILE* out)
 
 void ProgressDisplay::operator()(const RunStatus& s) {
   const auto now = std::chrono::steady_clock::now();
-  if (step_at_start_ < 0) {  // the first call marks the start: rate and ETA count from here
+  if (step_at_start_ < 0) { // the first call marks the start: rate and ETA count from here
     step_at_start_ = s.step;
     start_ = last_ = now;
     return;

@@ -131,9 +131,8 @@ void Simulation::step() {
   const double gx = spec_.simulation.gravity[0], gy = spec_.simulation.gravity[1],
                gz = spec_.simulation.gravity[2];
   const auto& box = nl_->box();
-  auto t0 = Clock::now();
-#pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) {
+  // Half kick of particle i: v += (F/m + g) dt/2, w += T/I dt/2.
+  auto kick = [&](std::size_t i) {
     const double im = p_.inv_mass[i], ii = p_.inv_inertia[i];
     p_.vx[i] += h * (p_.fx[i] * im + gx);
     p_.vy[i] += h * (p_.fy[i] * im + gy);
@@ -141,6 +140,11 @@ void Simulation::step() {
     p_.wx[i] += h * p_.tx[i] * ii;
     p_.wy[i] += h * p_.ty[i] * ii;
     p_.wz[i] += h * p_.tz[i] * ii;
+  };
+  auto t0 = Clock::now();
+#pragma omp parallel for schedule(static) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    kick(i);
     p_.x[i] += dt_ * p_.vx[i];
     p_.y[i] += dt_ * p_.vy[i];
     p_.z[i] += dt_ * p_.vz[i];
@@ -162,15 +166,7 @@ void Simulation::step() {
 
   t0 = Clock::now();
 #pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) {
-    const double im = p_.inv_mass[i], ii = p_.inv_inertia[i];
-    p_.vx[i] += h * (p_.fx[i] * im + gx);
-    p_.vy[i] += h * (p_.fy[i] * im + gy);
-    p_.vz[i] += h * (p_.fz[i] * im + gz);
-    p_.wx[i] += h * p_.tx[i] * ii;
-    p_.wy[i] += h * p_.ty[i] * ii;
-    p_.wz[i] += h * p_.tz[i] * ii;
-  }
+  for (std::size_t i = 0; i < n; ++i) kick(i);
   // Work of the non-conservative contact forces with the full-step velocities: with velocity
   // Verlet the force computed at t+dt acts with mean velocity v(t+dt) over [t+dt/2, t+3dt/2].
   e_dsp_ += nc_.dissipated(p_, dt_);
