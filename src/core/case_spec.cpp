@@ -20,6 +20,10 @@ int CaseSpec::species_index(const std::string& name) const {
   return -1;
 }
 
+const char* to_string(Engine e) {
+  return e == Engine::HardSphere ? "hard_sphere" : "soft_sphere";
+}
+
 const char* to_string(NormalModel m) {
   switch (m) {
   case NormalModel::Linear:

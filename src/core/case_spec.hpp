@@ -71,7 +71,11 @@ struct ContactSpec {
   double max_overlap = 0.1;                      ///< instability guard: overlap / smaller diameter
 };
 
+/// The particle engine: time-driven soft spheres (DEM) or event-driven hard spheres.
+enum class Engine { SoftSphere, HardSphere };
+
 struct SimulationSpec {
+  Engine engine = Engine::SoftSphere;         ///< "soft_sphere" | "hard_sphere"
   int dimension = 3;                          ///< 2: discs moving in the x-z plane; 3: spheres
   double end_time = 0.0;                      ///< s, > 0
   std::optional<double> time_step;            ///< s; empty = "auto"
@@ -79,6 +83,16 @@ struct SimulationSpec {
   bool force_time_step = false;               ///< allow dt above the stability limit
   std::array<double, 3> gravity{0, 0, -9.81}; ///< m/s^2
   double insertion_overlap_tolerance = 0.01;  ///< allowed initial overlap / smaller diameter
+};
+
+/// Event-driven hard-sphere engine [Hoomans96 §2-3; Deen07 §2.1, §4]. The flow time step DT is
+/// simulation.time_step ("auto" = 1e-4 s, as in [Hoomans96 Table 2]).
+struct HardSphereSpec {
+  /// TC model (Luding & McNamara 1998) against inelastic collapse: a collision of a particle
+  /// within this time of its previous collision is elastic (e_n = 1). s, >= 0; 0 = off.
+  double tc_time = 1.0e-6;
+  /// Guard: more events than this per particle within one DT stops the run (exit 3). >= 1.
+  double max_events_per_particle = 1000.0;
 };
 
 struct OutputSpec {
@@ -100,6 +114,7 @@ struct CaseSpec {
   std::vector<InsertSpec> inserts;
   ContactSpec contact;
   NeighbourSpec neighbour;
+  HardSphereSpec hardsphere;
 
   /// Dotted key path -> location, e.g. "contact.stiffness", "species[1].restitution",
   /// "insert[0].count", "walls.z_lo.friction". Filled by the reader for every key it saw.
@@ -111,6 +126,7 @@ struct CaseSpec {
   int species_index(const std::string& name) const;
 };
 
+const char* to_string(Engine e);
 const char* to_string(NormalModel m);
 const char* to_string(TangentialModel m);
 const char* to_string(RollingModel m);
