@@ -26,12 +26,13 @@ constexpr const char* kSetFile = "--set";
 // The schema: valid keys of every table.
 
 const Keys& root_keys() {
-  static const Keys k = {"simulation", "output", "domain",  "walls",
-                         "species",    "insert", "contact", "neighbour"};
+  static const Keys k = {"simulation", "output",  "domain",    "walls",     "species",
+                         "insert",     "contact", "neighbour", "hardsphere"};
   return k;
 }
 const Keys& simulation_keys() {
-  static const Keys k = {"dimension",
+  static const Keys k = {"engine",
+                         "dimension",
                          "end_time",
                          "time_step",
                          "time_step_fraction",
@@ -92,6 +93,10 @@ const Keys& neighbour_keys() {
   static const Keys k = {"skin"};
   return k;
 }
+const Keys& hardsphere_keys() {
+  static const Keys k = {"tc_time", "max_events_per_particle"};
+  return k;
+}
 /// Keys of a top-level table section (species and insert are arrays of tables).
 const Keys& section_keys(const std::string& section) {
   if (section == "simulation") return simulation_keys();
@@ -101,6 +106,7 @@ const Keys& section_keys(const std::string& section) {
   if (section == "species") return species_keys();
   if (section == "insert") return insert_keys();
   if (section == "contact") return contact_keys();
+  if (section == "hardsphere") return hardsphere_keys();
   return neighbour_keys();
 }
 
@@ -155,7 +161,7 @@ std::string describe(const toml::node& n) {
 // ---------------------------------------------------------------------------------------------
 // Number rules: the allowed range of a real-valued key, and its unit.
 
-enum class Bound { Any, Positive, NonNegative, Unit, Poisson, OpenUnit, HalfOpenUnit };
+enum class Bound { Any, Positive, NonNegative, AtLeastOne, Unit, Poisson, OpenUnit, HalfOpenUnit };
 
 struct NumRule {
   Bound bound;
@@ -170,6 +176,8 @@ bool in_bound(double x, Bound b) {
     return x > 0;
   case Bound::NonNegative:
     return x >= 0;
+  case Bound::AtLeastOne:
+    return x >= 1;
   case Bound::Unit:
     return x >= 0 && x <= 1;
   case Bound::Poisson:
@@ -193,6 +201,9 @@ std::string allowed(NumRule r) {
     break;
   case Bound::NonNegative:
     s = "a number >= 0";
+    break;
+  case Bound::AtLeastOne:
+    s = "a number >= 1";
     break;
   case Bound::Unit:
     s = "a number in [0, 1]";
@@ -417,6 +428,7 @@ public:
     read_inserts(root);
     read_contact(section(root, "contact"));
     read_neighbour(section(root, "neighbour"));
+    read_hardsphere(section(root, "hardsphere"));
   }
 
 private:
@@ -683,6 +695,9 @@ private:
   void read_simulation(const toml::table* t) {
     SimulationSpec& s = spec_.simulation;
     const std::string p = "simulation";
+    opt_enum<Engine>(t, p, "engine",
+                     {{"soft_sphere", Engine::SoftSphere}, {"hard_sphere", Engine::HardSphere}},
+                     s.engine);
     if (t != nullptr) {
       if (const auto e = find(*t, "dimension", p + ".dimension")) {
         const auto d =
@@ -906,6 +921,13 @@ private:
 
   void read_neighbour(const toml::table* t) {
     auto_number(t, "neighbour", "skin", kLength, spec_.neighbour.skin);
+  }
+
+  void read_hardsphere(const toml::table* t) {
+    HardSphereSpec& h = spec_.hardsphere;
+    opt_number(t, "hardsphere", "tc_time", {Bound::NonNegative, "s"}, h.tc_time);
+    opt_number(t, "hardsphere", "max_events_per_particle", {Bound::AtLeastOne, ""},
+               h.max_events_per_particle);
   }
 };
 

@@ -100,6 +100,7 @@ std::string write_case_toml(const CaseSpec& spec) {
 
   const SimulationSpec& s = spec.simulation;
   os << "\n[simulation]\n"
+     << "engine = " << toml_string(to_string(s.engine)) << "\n"
      << "dimension = " << s.dimension << "\n"
      << "end_time = " << format_double(s.end_time) << "  # s\n"
      << "time_step = " << auto_or(s.time_step) << "  # s\n"
@@ -172,6 +173,11 @@ std::string write_case_toml(const CaseSpec& spec) {
 
   os << "\n[neighbour]\n"
      << "skin = " << auto_or(spec.neighbour.skin) << "  # m\n";
+
+  const HardSphereSpec& h = spec.hardsphere;
+  os << "\n[hardsphere]\n"
+     << "tc_time = " << format_double(h.tc_time) << "  # s\n"
+     << "max_events_per_particle = " << format_double(h.max_events_per_particle) << "\n";
   return os.str();
 }
 

@@ -103,6 +103,7 @@ TEST(CaseReader, DefaultsFilled) {
   const CaseSpec c = read_case_string(minimal(), "case.toml");
   const CaseSpec d; // the struct defaults
   EXPECT_EQ(c.source_file, "case.toml");
+  EXPECT_EQ(c.simulation.engine, Engine::SoftSphere);
   EXPECT_EQ(c.simulation.dimension, d.simulation.dimension);
   EXPECT_EQ(c.simulation.end_time, 0.5);
   EXPECT_FALSE(c.simulation.time_step.has_value());
@@ -144,11 +145,16 @@ TEST(CaseReader, DefaultsFilled) {
   EXPECT_FALSE(c.contact.characteristic_velocity.has_value());
   EXPECT_EQ(c.contact.max_overlap, d.contact.max_overlap);
   EXPECT_FALSE(c.neighbour.skin.has_value());
+  EXPECT_EQ(c.hardsphere.tc_time, 1e-6);
+  EXPECT_EQ(c.hardsphere.max_events_per_particle, 1000.0);
+  EXPECT_EQ(c.hardsphere.tc_time, d.hardsphere.tc_time);
+  EXPECT_EQ(c.hardsphere.max_events_per_particle, d.hardsphere.max_events_per_particle);
 }
 
 TEST(CaseReader, AllKeysRead) {
   const std::string text = R"(
 [simulation]
+engine = "hard_sphere"
 dimension = 2
 end_time = 2
 time_step = 1e-5
@@ -204,8 +210,13 @@ max_overlap = 0.2
 
 [neighbour]
 skin = 0.0008
+
+[hardsphere]
+tc_time = 2.5e-5
+max_events_per_particle = 50
 )";
   const CaseSpec c = read_case_string(text, "case.toml");
+  EXPECT_EQ(c.simulation.engine, Engine::HardSphere);
   EXPECT_EQ(c.simulation.dimension, 2);
   EXPECT_EQ(c.simulation.end_time, 2.0); // integer accepted where a float is wanted
   ASSERT_TRUE(c.simulation.time_step.has_value());
@@ -249,9 +260,16 @@ skin = 0.0008
   EXPECT_EQ(c.contact.characteristic_velocity, 1.5);
   EXPECT_EQ(c.contact.max_overlap, 0.2);
   EXPECT_EQ(c.neighbour.skin, 0.0008);
+  EXPECT_EQ(c.hardsphere.tc_time, 2.5e-5);
+  EXPECT_EQ(c.hardsphere.max_events_per_particle, 50.0); // integer accepted
 
   // Locations of keys, in the documented path forms.
-  EXPECT_EQ(c.where("simulation.end_time").str(), "case.toml:4:1");
+  EXPECT_EQ(c.where("simulation.engine").str(), "case.toml:3:1");
+  EXPECT_EQ(c.where("simulation.end_time").str(), "case.toml:5:1");
+  EXPECT_EQ(c.where("hardsphere.tc_time").line, line_of(text, "tc_time"));
+  EXPECT_EQ(c.where("hardsphere.max_events_per_particle").line,
+            line_of(text, "max_events_per_particle"));
+  EXPECT_EQ(c.where("hardsphere").line, line_of(text, "[hardsphere]"));
   EXPECT_EQ(c.where("walls.z_lo.restitution").line, line_of(text, "restitution = 0.1"));
   EXPECT_EQ(c.where("species[0].rolling_friction").line, line_of(text, "rolling_friction"));
   EXPECT_EQ(c.where("insert[0].seed").line, line_of(text, "seed = 42"));
@@ -269,6 +287,21 @@ TEST(CaseReader, WaltonBraunAndAutoParse) {
   EXPECT_EQ(c.contact.normal, NormalModel::WaltonBraun);
   EXPECT_FALSE(c.contact.stiffness_ratio.has_value());
   EXPECT_FALSE(c.neighbour.skin.has_value());
+}
+
+TEST(CaseReader, HardSphereEngineAndTcOff) {
+  const CaseSpec c =
+      read_case_string(kSimulation + "engine = \"hard_sphere\"\n" + kDomain + kSpecies + kInsert +
+                           "[hardsphere]\ntc_time = 0\nmax_events_per_particle = 1\n",
+                       "case.toml");
+  EXPECT_EQ(c.simulation.engine, Engine::HardSphere);
+  EXPECT_EQ(c.hardsphere.tc_time, 0.0); // 0 switches the TC model off
+  EXPECT_EQ(c.hardsphere.max_events_per_particle, 1.0);
+  EXPECT_EQ(
+      read_case_string(kSimulation + "engine = \"soft_sphere\"\n" + kDomain + kSpecies + kInsert,
+                       "case.toml")
+          .simulation.engine,
+      Engine::SoftSphere);
 }
 
 // --- bad input: syntax, unknown keys ----------------------------------------------------------
@@ -308,6 +341,19 @@ TEST(CaseReaderErrors, UnknownKeysEverywhere) {
 
   t = minimal() + "[walls.z_low]\nfriction = 0.1\n";
   expect_error_at(t, "[walls.z_low]", "walls.z_low", "did you mean \"z_lo\"?");
+
+  t = minimal() + "[hardsphere]\ntc_tme = 1e-6\n";
+  expect_error_at(t, "tc_tme", "hardsphere.tc_tme", "did you mean \"tc_time\"?");
+
+  t = minimal() + "[hardsphere]\nmax_event_per_particle = 10\n";
+  expect_error_at(t, "max_event_per", "hardsphere.max_event_per_particle",
+                  "did you mean \"max_events_per_particle\"?");
+
+  t = minimal() + "[hardspheres]\ntc_time = 1e-6\n";
+  expect_error_at(t, "[hardspheres]", "hardspheres", "did you mean \"hardsphere\"?");
+
+  t = kSimulation + "engin = \"hard_sphere\"\n" + kDomain + kSpecies + kInsert;
+  expect_error_at(t, "engin", "simulation.engin", "did you mean \"engine\"?");
 
   t = minimal() + "[output]\nframe_intervall = 0.1\n";
   expect_error_at(t, "frame_intervall", "output.frame_intervall",
@@ -358,6 +404,15 @@ TEST(CaseReaderErrors, WrongTypes) {
 
   t = minimal() + "[contact]\nnormal = 1\n";
   expect_error_at(t, "normal = 1", "contact.normal", "expected a string");
+
+  t = kSimulation + "engine = 1\n" + kDomain + kSpecies + kInsert;
+  expect_error_at(t, "engine", "simulation.engine", "expected a string");
+
+  t = minimal() + "[hardsphere]\ntc_time = \"off\"\n";
+  expect_error_at(t, "tc_time", "hardsphere.tc_time", "expected a number, got the string");
+
+  t = "hardsphere = 1\n" + minimal();
+  expect_error_at(t, "hardsphere = 1", "hardsphere", "expected a table");
 
   t = minimal() + "[neighbour]\nskin = \"big\"\n";
   expect_error_at(t, "skin", "neighbour.skin", "expected a number or \"auto\"");
@@ -410,6 +465,15 @@ TEST(CaseReaderErrors, OutOfRange) {
       {"", "", "[neighbour]\nskin = 0\n", "skin", "neighbour.skin", "> 0"},
       {"", "", "[contact]\nmax_overlap = nan\n", "max_overlap", "contact.max_overlap", "(0, 1)"},
       {"", "", "[neighbour]\nskin = inf\n", "skin", "neighbour.skin", "> 0"},
+      {"", "", "[hardsphere]\ntc_time = -1e-6\n", "tc_time", "hardsphere.tc_time",
+       "-1e-06 is out of range (allowed: a number >= 0, in s)"},
+      {"", "", "[hardsphere]\ntc_time = nan\n", "tc_time", "hardsphere.tc_time", ">= 0, in s"},
+      {"", "", "[hardsphere]\nmax_events_per_particle = 0.5\n", "max_events",
+       "hardsphere.max_events_per_particle", "0.5 is out of range (allowed: a number >= 1)"},
+      {"", "", "[hardsphere]\nmax_events_per_particle = 0\n", "max_events",
+       "hardsphere.max_events_per_particle", "(allowed: a number >= 1)"},
+      {"", "", "[hardsphere]\nmax_events_per_particle = -inf\n", "max_events",
+       "hardsphere.max_events_per_particle", ">= 1"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.key);
@@ -527,6 +591,9 @@ TEST(CaseReaderErrors, UnknownEnumerationListsValid) {
   expect_error_at(t, "constant", "contact.rolling", "\"constant_torque\", \"spring_dashpot\"");
   t = minimal() + "[contact]\ntangential = \"yes\"\n";
   expect_error_at(t, "yes", "contact.tangential", "\"history\", \"none\"");
+  t = kSimulation + "engine = \"event_driven\"\n" + kDomain + kSpecies + kInsert;
+  expect_error_at(t, "event_driven", "simulation.engine",
+                  "unknown value \"event_driven\" (allowed: \"soft_sphere\", \"hard_sphere\")");
   t = minimal() + "placement = \"grid\"\n";
   expect_error_at(t, "grid", "insert[0].placement", "\"random\", \"lattice\", \"file\"");
 }
@@ -601,7 +668,8 @@ TEST(CaseReaderOverrides, AppliedByIndexAndByName) {
        "species[0].restitution=0.8", "species.steel.friction=0.45", "insert[0].count=100",
        "walls.z_lo.friction=0.1", "simulation.time_step=1e-6",
        "insert[0].region.hi=[0.1, 0.004, 0.1]", "contact.rolling=\"spring_dashpot\"",
-       "neighbour.skin=auto"});
+       "neighbour.skin=auto", "simulation.engine=hard_sphere", "hardsphere.tc_time=0",
+       "hardsphere.max_events_per_particle=20"});
   EXPECT_EQ(c.simulation.end_time, 0.25);
   EXPECT_EQ(c.contact.normal, NormalModel::Linear);
   EXPECT_EQ(c.contact.stiffness, 1000.0);
@@ -616,10 +684,15 @@ TEST(CaseReaderOverrides, AppliedByIndexAndByName) {
   EXPECT_EQ(c.inserts[0].region_lo, c.domain.lo);
   EXPECT_EQ(c.contact.rolling, RollingModel::SpringDashpot);
   EXPECT_FALSE(c.neighbour.skin.has_value());
+  EXPECT_EQ(c.simulation.engine, Engine::HardSphere);
+  EXPECT_EQ(c.hardsphere.tc_time, 0.0);
+  EXPECT_EQ(c.hardsphere.max_events_per_particle, 20.0);
   // Overridden keys are located at "--set"; the others keep their file position.
   EXPECT_EQ(c.where("simulation.end_time").file, "--set");
   EXPECT_EQ(c.where("species[1].friction").file, "--set");
   EXPECT_EQ(c.where("walls.z_lo.friction").file, "--set");
+  EXPECT_EQ(c.where("simulation.engine").file, "--set");
+  EXPECT_EQ(c.where("hardsphere.tc_time").file, "--set");
   EXPECT_EQ(c.where("species[0].diameter").str(),
             "case.toml:" + std::to_string(line_of(t, "diameter")) + ":1");
 }
@@ -640,6 +713,19 @@ TEST(CaseReaderOverrides, ValidatedLikeTheFile) {
   msg = error_of(minimal(), {"contact.normal=linear"}); // now stiffness is required
   EXPECT_NE(msg.find("contact.stiffness: missing required key"), std::string::npos) << msg;
 
+  msg = error_of(minimal(), {"hardsphere.tc_time=-1"});
+  EXPECT_EQ(msg.rfind("--set: hardsphere.tc_time: -1.0 is out of range (allowed: a number >= 0", 0),
+            0u)
+      << msg;
+
+  msg = error_of(minimal(), {"hardsphere.max_events_per_particle=0"});
+  EXPECT_EQ(msg.rfind("--set: hardsphere.max_events_per_particle: 0.0 is out of range", 0), 0u)
+      << msg;
+
+  msg = error_of(minimal(), {"simulation.engine=dsmc"});
+  EXPECT_EQ(msg, "--set: simulation.engine: unknown value \"dsmc\" (allowed: \"soft_sphere\", "
+                 "\"hard_sphere\")");
+
   msg = error_of(minimal(), {"insert[0].species=steel"});
   EXPECT_EQ(msg.rfind("--set: insert[0].species: unknown species \"steel\"", 0), 0u) << msg;
 }
@@ -656,6 +742,12 @@ TEST(CaseReaderOverrides, UnknownKeysSuggested) {
             "--set: walls.z_lo.frictoin: unknown key (did you mean \"walls.z_lo.friction\"?)");
   EXPECT_EQ(error_of(minimal(), {"insert[0].region.hj=[1,1,1]"}),
             "--set: insert[0].region.hj: unknown key (did you mean \"insert[0].region.hi\"?)");
+  EXPECT_EQ(error_of(minimal(), {"hardsphere.tc_tim=1"}),
+            "--set: hardsphere.tc_tim: unknown key (did you mean \"hardsphere.tc_time\"?)");
+  EXPECT_EQ(error_of(minimal(), {"hardspere.tc_time=1"}),
+            "--set: hardspere.tc_time: unknown key (did you mean \"hardsphere\"?)");
+  EXPECT_EQ(error_of(minimal(), {"simulation.engin=hard_sphere"}),
+            "--set: simulation.engin: unknown key (did you mean \"simulation.engine\"?)");
   std::string msg = error_of(minimal(), {"walls.z_top.friction=1"});
   EXPECT_NE(msg.find("did you mean \"walls.z_lo\"?"), std::string::npos) << msg;
 }

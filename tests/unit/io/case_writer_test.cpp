@@ -49,6 +49,7 @@ void expect_same(const MaterialSpec& a, const MaterialSpec& b, const std::string
 
 /// Every field of the case except source_file and locations (which say where a key was read).
 void expect_same(const CaseSpec& a, const CaseSpec& b) {
+  EXPECT_EQ(a.simulation.engine, b.simulation.engine);
   EXPECT_EQ(a.simulation.dimension, b.simulation.dimension);
   EXPECT_TRUE(same_bits(a.simulation.end_time, b.simulation.end_time));
   expect_same(a.simulation.time_step, b.simulation.time_step, "time_step");
@@ -95,6 +96,9 @@ void expect_same(const CaseSpec& a, const CaseSpec& b) {
               "characteristic_velocity");
   EXPECT_TRUE(same_bits(a.contact.max_overlap, b.contact.max_overlap));
   expect_same(a.neighbour.skin, b.neighbour.skin, "skin");
+  EXPECT_TRUE(same_bits(a.hardsphere.tc_time, b.hardsphere.tc_time));
+  EXPECT_TRUE(
+      same_bits(a.hardsphere.max_events_per_particle, b.hardsphere.max_events_per_particle));
 }
 
 struct TempDir {
@@ -120,6 +124,7 @@ struct TempDir {
 // A case using every key with non-default values, three placements and per-face walls.
 const char* kFullCase = R"(
 [simulation]
+engine = "hard_sphere"
 dimension = 2
 end_time = 0.30000000000000004
 time_step = 1.2345678901234567e-6
@@ -192,6 +197,10 @@ max_overlap = 0.2
 
 [neighbour]
 skin = 0.0008
+
+[hardsphere]
+tc_time = 3.3333333333333333e-7
+max_events_per_particle = 250.5
 )";
 
 TEST(CaseWriter, RoundTripFullCase) {
@@ -202,6 +211,9 @@ TEST(CaseWriter, RoundTripFullCase) {
   // Sanity: the case really is non-default where it matters.
   ASSERT_EQ(a.inserts.size(), 3u);
   ASSERT_EQ(a.contact.normal, NormalModel::Linear);
+  ASSERT_EQ(a.simulation.engine, Engine::HardSphere);
+  ASSERT_EQ(a.hardsphere.tc_time, 3.3333333333333333e-7);
+  ASSERT_EQ(a.hardsphere.max_events_per_particle, 250.5);
   ASSERT_EQ(a.domain.wall_material[static_cast<int>(Face::ZLo)].restitution, 0.1);
 
   const std::string text = write_case_toml(a);
@@ -238,6 +250,8 @@ TEST(CaseWriter, RoundTripAwkwardDoubles) {
     a.inserts[0].velocity = {-0.0, x, -x};
     a.domain.hi[0] = std::max(x, 1e-3);
     a.inserts[0].region_hi[0] = a.domain.hi[0];
+    a.hardsphere.tc_time = x;
+    a.hardsphere.max_events_per_particle = std::max(x, 1.0);
     const CaseSpec b = read_case_string(write_case_toml(a), "resolved.toml");
     expect_same(a, b);
   }
@@ -251,6 +265,7 @@ TEST(CaseWriter, DefaultsAndEveryKeyWritten) {
   const CaseSpec a = read_case_string(minimal, "case.toml");
   const std::string text = write_case_toml(a);
   for (const char* key : {"[simulation]",
+                          "engine = \"soft_sphere\"",
                           "dimension = 3",
                           "end_time = 1.0",
                           "time_step = \"auto\"",
@@ -292,13 +307,36 @@ TEST(CaseWriter, DefaultsAndEveryKeyWritten) {
                           "characteristic_velocity = \"auto\"",
                           "max_overlap = 0.1",
                           "[neighbour]",
-                          "skin = \"auto\""})
+                          "skin = \"auto\"",
+                          "[hardsphere]",
+                          "tc_time = 1e-06",
+                          "max_events_per_particle = 1000.0"})
     EXPECT_NE(text.find(key), std::string::npos) << "missing '" << key << "' in:\n" << text;
   // Keys that do not apply are left out (the reader would reject them).
   EXPECT_EQ(text.find("stiffness ="), std::string::npos) << text; // hertz: no stiffness
   EXPECT_EQ(text.find("file ="), std::string::npos) << text;      // random: no file
   EXPECT_EQ(text.find("[walls."), std::string::npos) << text;     // all faces alike
   expect_same(a, read_case_string(text, "case.toml"));
+}
+
+TEST(CaseWriter, RoundTripEachEngine) {
+  const std::string minimal = "[simulation]\nend_time = 1\n"
+                              "[domain]\nlo = [0, 0, 0]\nhi = [1, 1, 1]\n"
+                              "[[species]]\nname = \"s\"\ndiameter = 0.1\ndensity = 1\n"
+                              "[[insert]]\nspecies = \"s\"\ncount = 1\n";
+  CaseSpec a = read_case_string(minimal, "case.toml");
+  for (const Engine e : {Engine::SoftSphere, Engine::HardSphere}) {
+    SCOPED_TRACE(to_string(e));
+    a.simulation.engine = e;
+    a.hardsphere.tc_time = e == Engine::HardSphere ? 0.0 : 0.1 + 0.2;
+    a.hardsphere.max_events_per_particle = e == Engine::HardSphere ? 1.0 : 1e9 + 0.5;
+    const std::string text = write_case_toml(a);
+    EXPECT_NE(text.find(std::string("engine = \"") + to_string(e) + "\""), std::string::npos)
+        << text;
+    const CaseSpec b = read_case_string(text, "resolved.toml");
+    expect_same(a, b);
+    EXPECT_EQ(write_case_toml(b), text);
+  }
 }
 
 TEST(CaseWriter, InsertFileWrittenAbsolute) {
