@@ -23,6 +23,17 @@ void print_report(const CaseSpec& spec, const CaseReport& r) {
   fmt::print("case               {}\n", spec.source_file);
   fmt::print("dimension          {} ({})\n", spec.simulation.dimension,
              spec.simulation.dimension == 2 ? "discs in the x-z plane" : "spheres");
+  fmt::print("particle engine    {}\n", to_string(spec.simulation.engine));
+  if (spec.simulation.engine == Engine::HardSphere) {
+    fmt::print("collisions         event-driven, e_n / mu / beta_0 per material [Deen07 eq. "
+               "17-21]; TC model tc_time = {:.3g} s\n",
+               spec.hardsphere.tc_time);
+    fmt::print("particles          {}\n", r.particle_count);
+    fmt::print("total mass         {:.6g} kg\n", r.total_mass);
+    fmt::print("flow time step DT  {:.4g} s\n", r.chosen_time_step);
+    fmt::print("steps              {:.0f}\n", spec.simulation.end_time / r.chosen_time_step);
+    return;
+  }
   fmt::print("contact model      normal {}, tangential {}, rolling {}\n",
              to_string(spec.contact.normal), to_string(spec.contact.tangential),
              to_string(spec.contact.rolling));
@@ -112,6 +123,9 @@ int run_cli(int argc, char** argv) {
                "({} builds), output {:.3f} s\n",
                s.seconds_contacts, s.seconds_integration, s.seconds_neighbour, s.neighbour_builds,
                s.seconds_output);
+    if (s.collisions > 0)
+      fmt::print("{} collisions, {:.4g} collisions per second of wall time\n", s.collisions,
+                 static_cast<double>(s.collisions) / std::max(s.wall_seconds, 1e-9));
     fmt::print("memory {} bytes per particle; energy balance drift {:.3g} (relative)\n",
                s.bytes_per_particle, s.energy_drift);
     fmt::print("results: {}/particles.h5 (+ particles.xmf for ParaView), {}/series.csv\n", out_dir,

@@ -7,6 +7,7 @@
 
 #include "contact/hertz_damping.hpp"
 #include "contact/kernels/normal_force.hpp"
+#include "core/material_mixing.hpp"
 #include "particles/particle_store.hpp"
 
 namespace fluidem {
@@ -55,11 +56,11 @@ ContactTable::ContactTable(const CaseSpec& spec)
 
   auto make = [&](const MaterialSpec& a, const MaterialSpec& b, bool wall, const std::string& key) {
     PairParams p;
-    const double e = wall ? b.restitution : 0.5 * (a.restitution + b.restitution);
-    const double beta0 = wall ? b.tangential_restitution
-                              : 0.5 * (a.tangential_restitution + b.tangential_restitution);
-    p.mu = wall ? b.friction : 0.5 * (a.friction + b.friction);
-    p.mu_r = wall ? b.rolling_friction : 0.5 * (a.rolling_friction + b.rolling_friction);
+    const MixedCoefficients mixed = wall ? wall_coefficients(b) : mix_pair(a, b);
+    const double e = mixed.restitution;
+    const double beta0 = mixed.tangential_restitution;
+    p.mu = mixed.friction;
+    p.mu_r = mixed.rolling_friction;
     p.restitution = e;
     p.e_star = 1.0 / (inv_e_part(a) + inv_e_part(b));
     p.tangential_damping = kernels::restitution_damping_factor(beta0);

@@ -72,7 +72,8 @@ double expected_overlap_ratio(const CaseSpec& spec, const ParticleStore& p, cons
 } // namespace
 
 Simulation::Simulation(CaseSpec spec) : spec_(std::move(spec)) {
-  table_ = std::make_unique<ContactTable>(spec_);
+  const bool hard = spec_.simulation.engine == Engine::HardSphere;
+  if (!hard) table_ = std::make_unique<ContactTable>(spec_);
   insert_particles(spec_, p_);
 
   double dmax = 0.0, mass = 0.0;
@@ -82,6 +83,22 @@ Simulation::Simulation(CaseSpec spec) : spec_(std::move(spec)) {
   }
   for (const auto& s : spec_.species) dmax = std::max(dmax, s.diameter);
   const double skin = spec_.neighbour.skin ? *spec_.neighbour.skin : 0.2 * dmax;
+
+  report_.particle_count = p_.size();
+  report_.total_mass = mass;
+  report_.skin = skin;
+  if (hard) {
+    // The flow time step DT of the collision sequence [Hoomans96 Fig. 3]; "auto" = 1e-4 s
+    // [Hoomans96 Table 2]. Collisions are events, so there is no contact-time limit.
+    const auto& sim = spec_.simulation;
+    dt_ = sim.time_step ? *sim.time_step : 1.0e-4;
+    if (!sim.time_step && sim.end_time > 0.0) dt_ = sim.end_time / std::ceil(sim.end_time / dt_);
+    spec_.simulation.time_step = dt_;
+    report_.chosen_time_step = dt_;
+    nl_ = std::make_unique<NeighbourList>(box_from(spec_), skin, 0);
+    hard_ = std::make_unique<HardSphereEngine>(spec_, box_from(spec_));
+    return;
+  }
 
   // Time step from the contact duration [Deen07 eq. 41-42].
   const double tc = table_->shortest_contact_duration();
@@ -100,15 +117,12 @@ Simulation::Simulation(CaseSpec spec) : spec_(std::move(spec)) {
   }
   spec_.simulation.time_step = dt_; // the resolved case reproduces this run
 
-  report_.particle_count = p_.size();
-  report_.total_mass = mass;
   report_.durations = table_->durations();
   report_.characteristic_velocity = table_->characteristic_velocity();
   report_.stable_time_step = dt_limit;
   report_.chosen_time_step = dt_;
   report_.time_step_forced = dt_ > dt_limit;
   report_.expected_overlap_ratio = expected_overlap_ratio(spec_, p_, *table_);
-  report_.skin = skin;
 
   nl_ = std::make_unique<NeighbourList>(box_from(spec_), skin, contact_history_width(*table_));
   nl_->build(p_);
@@ -126,6 +140,15 @@ void Simulation::compute_forces() {
 }
 
 void Simulation::step() {
+  if (hard_) {
+    const auto t0 = Clock::now();
+    hard_->advance(p_, time_, dt_, spec_.simulation.gravity);
+    e_dsp_ = hard_->stats().dissipated;
+    t_contacts_ += seconds_since(t0);
+    ++step_;
+    time_ = static_cast<double>(step_) * dt_;
+    return;
+  }
   const std::size_t n = p_.size();
   const double h = 0.5 * dt_;
   const double gx = spec_.simulation.gravity[0], gy = spec_.simulation.gravity[1],
@@ -227,9 +250,23 @@ RunSummary Simulation::run(const std::string& out_dir,
   H5mdBox hbox{spec_.domain.lo, spec_.domain.hi, spec_.domain.periodic};
   H5mdWriter h5((fs::path(out_dir) / "particles.h5").string(), p_.size(),
                 spec_.simulation.dimension, kVersion, hbox);
-  SeriesWriter series((fs::path(out_dir) / "series.csv").string(),
-                      {"time", "e_kin", "e_rot", "e_pot", "e_el", "e_dsp", "e_total", "n_contacts",
-                       "max_overlap_ratio", "neighbour_builds"});
+  std::vector<std::string> columns{"time",
+                                   "e_kin",
+                                   "e_rot",
+                                   "e_pot",
+                                   "e_el",
+                                   "e_dsp",
+                                   "e_total",
+                                   "n_contacts",
+                                   "max_overlap_ratio",
+                                   "neighbour_builds"};
+  if (hard_) {
+    // n_contacts is then the number of collisions in the last flow step; n_collisions is
+    // cumulative; n_tc_elastic counts collisions the TC model made elastic and e_tc_kept the
+    // energy they would have dissipated.
+    columns.insert(columns.end(), {"n_collisions", "n_tc_elastic", "e_tc_kept"});
+  }
+  SeriesWriter series((fs::path(out_dir) / "series.csv").string(), columns);
   std::vector<double> frame_times;
   const std::string xmf = (fs::path(out_dir) / "particles.xmf").string();
 
@@ -254,9 +291,24 @@ RunSummary Simulation::run(const std::string& out_dir,
         e0 = tot;
         escale = std::max(std::abs(tot), 1e-300);
       }
-      series.write_row({time_, e.kinetic, e.rotational, e.potential, stats_.elastic_energy, e_dsp_,
-                        tot, static_cast<double>(stats_.n_contacts), stats_.max_overlap_ratio,
-                        static_cast<double>(nl_->builds())});
+      std::vector<double> row{time_,
+                              e.kinetic,
+                              e.rotational,
+                              e.potential,
+                              stats_.elastic_energy,
+                              e_dsp_,
+                              tot,
+                              static_cast<double>(stats_.n_contacts),
+                              stats_.max_overlap_ratio,
+                              static_cast<double>(nl_->builds())};
+      if (hard_) {
+        const auto& h = hard_->stats();
+        row[7] = static_cast<double>(h.events_last_step);
+        row[9] = static_cast<double>(step_); // the hard-sphere list is rebuilt every flow step
+        row.insert(row.end(), {static_cast<double>(h.collisions), static_cast<double>(h.tc_elastic),
+                               h.tc_energy_kept});
+      }
+      series.write_row(row);
     }
     if (time_ >= next_frame - eps || step_ == total) {
       while (next_frame <= time_ + eps) next_frame += frame_dt;
@@ -297,7 +349,12 @@ RunSummary Simulation::run(const std::string& out_dir,
   s.seconds_integration = t_integration_;
   s.seconds_neighbour = t_neighbour_;
   s.seconds_output = seconds_output;
-  s.bytes_per_particle = p_.size() ? (p_.bytes() + nl_->bytes()) / p_.size() : 0;
+  s.bytes_per_particle =
+      p_.size() ? (p_.bytes() + nl_->bytes() + (hard_ ? hard_->bytes() : 0)) / p_.size() : 0;
+  if (hard_) {
+    s.collisions = hard_->stats().collisions;
+    s.neighbour_builds = s.steps;
+  }
   const Energies e = energies();
   s.energy_drift =
       (e.kinetic + e.rotational + e.potential + stats_.elastic_energy + e_dsp_ - e0) / escale;

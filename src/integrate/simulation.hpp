@@ -14,6 +14,7 @@
 #include "contact/contact_forces.hpp"
 #include "contact/contact_table.hpp"
 #include "core/case_spec.hpp"
+#include "hardsphere/hard_sphere_engine.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "particles/particle_store.hpp"
 
@@ -49,6 +50,7 @@ struct RunSummary {
          seconds_output = 0.0;
   std::size_t bytes_per_particle = 0;
   double energy_drift = 0.0; ///< (E_total(end) - E_total(0)) / E_scale
+  long collisions = 0;       ///< hard-sphere engine: collisions processed
 };
 
 class Simulation {
@@ -77,6 +79,8 @@ public:
   /// Current energies and contact statistics.
   Energies energies() const { return particle_energies(p_, spec_.simulation.gravity); }
   const ContactStats& contact_stats() const { return stats_; }
+  /// The hard-sphere engine, or nullptr for the soft-sphere DEM.
+  const HardSphereEngine* hard_sphere() const { return hard_.get(); }
   double dissipated_energy() const { return e_dsp_; }
 
 private:
@@ -88,6 +92,7 @@ private:
   ParticleStore p_;
   std::unique_ptr<ContactTable> table_;
   std::unique_ptr<NeighbourList> nl_;
+  std::unique_ptr<HardSphereEngine> hard_; ///< set when engine = "hard_sphere"
   CaseReport report_;
   ContactStats stats_;
   NonconservativeForces nc_;

@@ -51,6 +51,8 @@ public:
 
   int history_width() const { return hw_; }
   double skin() const { return skin_; }
+  /// Change the skin for the next build (the hard-sphere engine sizes it per flow step).
+  void set_skin(double skin) { skin_ = skin; }
   long builds() const { return builds_; }
   std::size_t bytes() const;
 
