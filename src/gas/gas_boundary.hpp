@@ -1,0 +1,53 @@
+// Boundary cells of the gas grid [Hoomans96 Table 1, §3.5], assigned by geometry: every ghost
+// cell on a domain face gets the type of the face, or of the last region of that face whose
+// rectangle contains the ghost cell's face centre. Corner ghost cells take no part.
+#pragma once
+#include "gas/gas_grid.hpp"
+#include "gas/gas_settings.hpp"
+#include <vector>
+
+namespace fluidem::gas {
+
+/// What one boundary (ghost) cell is.
+struct BoundaryPatch {
+  BoundaryType type = BoundaryType::wall_no_slip;
+  InflowProfile inflow;       ///< inflow only: superficial velocity into the domain, m/s
+  double porosity = 0.4;      ///< inflow only: ghost-cell porosity
+  double pressure = 101325.0; ///< pressure only: value on the boundary face, Pa
+};
+
+class BoundaryMap {
+public:
+  BoundaryMap() = default;
+  BoundaryMap(const GasSettings& s, const GasGrid& g);
+
+  /// Patch of the ghost cell next to interior cell (i, j, k) across side `side`
+  /// (0 left, 1 right, 2 front, 3 back, 4 bottom, 5 top); the tangential indices of (i, j, k)
+  /// are used, the normal one is ignored.
+  const BoundaryPatch& at(int side, int i, int j, int k) const {
+    const int axis = side / 2;
+    const int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
+    const int c[3] = {i, j, k};
+    return patches_[index_[side][c[a1] + grid_.padded[a1] * c[a2]]];
+  }
+  bool periodic(int axis) const { return periodic_[axis]; }
+  /// True if any boundary cell has a prescribed pressure.
+  bool any_pressure() const { return any_pressure_; }
+  bool any_outflow() const { return any_outflow_; }
+
+  /// Ghost velocity factor for a tangential velocity component: ghost = factor * interior
+  /// (-1: zero on the boundary plane; +1: zero normal gradient).
+  static double tangential_factor(BoundaryType t) {
+    return (t == BoundaryType::wall_no_slip || t == BoundaryType::inflow) ? -1.0 : 1.0;
+  }
+
+private:
+  GasGrid grid_;
+  std::vector<BoundaryPatch> patches_;
+  std::array<std::vector<int>, 6> index_;
+  std::array<bool, 3> periodic_{false, false, false};
+  bool any_pressure_ = false;
+  bool any_outflow_ = false;
+};
+
+} // namespace fluidem::gas

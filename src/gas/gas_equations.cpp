@@ -1,0 +1,272 @@
+// The discretised gas-phase equations (docs/gas.md):
+//  continuity [Deen07 eq. 7, Hoomans96 eq. 42], per cell P, backward Euler:
+//    V ((eps rho)_P - (eps rho)_P^old) / dt + sum_faces A eps_up rho_up u = 0
+//  momentum [Deen07 eq. 8, Zhu07 eq. 5 (A) / eq. 7 (B)], per face, control volume V around it:
+//    V ((eps rho)_f u - (eps rho)_f^old u^old) / dt + upwind convection
+//      = -c_p A (p_+ - p_-) + div(eps mu grad u) + V (eps rho)_f g + V (K_us - K u + f)
+//    with c_p = eps_f (Model A) or 1 (Model B); the viscous term is the Laplacian part of
+//    div(eps tau) of [Deen07 eq. 9] (see docs/gas.md for what is neglected);
+//  SIMPLEC pressure correction: u' = d (p'_- - p'_+), d = c_p A / (a_P - sum a_nb), and
+//    psi eps_P V / dt p'_P + sum_f (eps rho)_up A d (p'_P - p'_nb) = -(mass residual of P).
+#include "gas/gas_solver.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace fluidem::gas {
+
+namespace {
+std::vector<double>& slot(StencilSystem& s, int e, int side) {
+  switch (2 * e + side) {
+  case 0: return s.xm;
+  case 1: return s.xp;
+  case 2: return s.ym;
+  case 3: return s.yp;
+  case 4: return s.zm;
+  default: return s.zp;
+  }
+}
+void clear(StencilSystem& s) {
+  for (auto* v : {&s.diag, &s.xm, &s.xp, &s.ym, &s.yp, &s.zm, &s.zp, &s.rhs})
+    std::fill(v->begin(), v->end(), 0.0);
+}
+} // namespace
+
+void GasSolver::compute_mass_fluxes() {
+  for (int d = 0; d < 3; ++d) {
+    std::vector<double>& F = F_[d];
+    const std::vector<double>& u = u_[d];
+    const double A = g_.face_area(d);
+    const long sd = g_.stride[d];
+    for (std::size_t q = 0; q < F.size(); ++q) {
+      if (role_[d][q] == none) {
+        F[q] = 0.0;
+        continue;
+      }
+      const long up = u[q] >= 0.0 ? static_cast<long>(q) : static_cast<long>(q) + sd;
+      F[q] = A * eps_[up] * rho_[up] * u[q];
+    }
+    fill_periodic(F);
+  }
+}
+
+double GasSolver::mass_residual(double dt, double& out_rate) const {
+  const double V = g_.cell_volume();
+  double sum_abs = 0.0, mass = 0.0;
+  for (int k = 1; k <= g_.n[2]; ++k)
+    for (int j = 1; j <= g_.n[1]; ++j)
+      for (int i = 1; i <= g_.n[0]; ++i) {
+        const long q = g_.idx(i, j, k);
+        double R = V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
+        for (int e = 0; e < 3; ++e) R += F_[e][q] - F_[e][q - g_.stride[e]];
+        sum_abs += std::abs(R);
+        mass += eps_[q] * rho_[q] * V;
+      }
+  out_rate = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    if (bc_.periodic(d)) continue;
+    for (std::size_t q = 0; q < F_[d].size(); ++q) {
+      if (role_[d][q] == none) continue;
+      const long id = (static_cast<long>(q) / g_.stride[d]) % g_.padded[d];
+      if (id == 0) out_rate -= F_[d][q];
+      if (id == g_.n[d]) out_rate += F_[d][q];
+    }
+  }
+  return sum_abs * dt / mass;
+}
+
+// Incompressible flow without a prescribed pressure: scale the continuous-outflow faces so the
+// net volume balance of the domain closes (otherwise the pressure correction has no solution).
+void GasSolver::balance_outflow(double dt) {
+  const double V = g_.cell_volume();
+  double net_in = 0.0, out = 0.0, cap = 0.0;
+  for (int k = 1; k <= g_.n[2]; ++k)
+    for (int j = 1; j <= g_.n[1]; ++j)
+      for (int i = 1; i <= g_.n[0]; ++i) {
+        const long q = g_.idx(i, j, k);
+        net_in -= V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
+      }
+  for (int d = 0; d < 3; ++d) {
+    if (bc_.periodic(d)) continue;
+    for (std::size_t q = 0; q < F_[d].size(); ++q) {
+      if (role_[d][q] == none) continue;
+      const long id = (static_cast<long>(q) / g_.stride[d]) % g_.padded[d];
+      if (id != 0 && id != g_.n[d]) continue;
+      const double sign = id == 0 ? -1.0 : 1.0; // outward
+      if (role_[d][q] == outflow) {
+        out += sign * F_[d][q];
+        const long in = id == 0 ? static_cast<long>(q) + g_.stride[d] : static_cast<long>(q);
+        cap += eps_[in] * rho_[in] * g_.face_area(d);
+      } else {
+        net_in -= sign * F_[d][q];
+      }
+    }
+  }
+  const bool scale = std::abs(out) > 1e-12 * std::max(std::abs(net_in), 1e-300);
+  for (int d = 0; d < 3; ++d)
+    for (std::size_t q = 0; q < F_[d].size(); ++q) {
+      if (role_[d][q] != outflow) continue;
+      const long id = (static_cast<long>(q) / g_.stride[d]) % g_.padded[d];
+      if (scale) u_[d][q] *= net_in / out;
+      else u_[d][q] = (id == 0 ? -1.0 : 1.0) * net_in / cap;
+    }
+}
+
+void GasSolver::solve_momentum(int d, double dt) {
+  clear(sys_);
+  const double V = g_.cell_volume(), Ad = g_.face_area(d), mu = s_.viscosity;
+  const double alpha = s_.velocity_relaxation;
+  const long sd = g_.stride[d];
+  const int nd = g_.n[d];
+  const bool per_d = bc_.periodic(d);
+  std::vector<double>& u = u_[d];
+  for (int k = 0; k < g_.padded[2]; ++k)
+    for (int j = 0; j < g_.padded[1]; ++j)
+      for (int i = 0; i < g_.padded[0]; ++i) {
+        const long q = g_.idx(i, j, k);
+        const unsigned char r = role_[d][q];
+        if (r == none || r == periodic_copy) continue;
+        if (r == fixed || r == outflow) {
+          sys_.diag[q] = 1.0;
+          sys_.rhs[q] = u[q];
+          dcoef_[d][q] = 0.0;
+          continue;
+        }
+        int c[3] = {i, j, k};
+        const int id = c[d];
+        const long c0 = q, c1 = q + sd;
+        const double eps_f = 0.5 * (eps_[c0] + eps_[c1]);
+        const double er = 0.5 * (eps_[c0] * rho_[c0] + eps_[c1] * rho_[c1]);
+        const double er_old = 0.5 * (eps_old_[c0] * rho_old_[c0] + eps_old_[c1] * rho_old_[c1]);
+        const double cp = s_.model == PressureModel::A ? eps_f : 1.0;
+        double aP = er * V / dt + K_[d][q] * V;
+        double rhs = er_old * V / dt * u_old_[d][q] + (Kus_[d][q] + f_[d][q]) * V +
+                     er * V * s_.gravity[d] - cp * Ad * (p_[c1] - p_[c0]);
+        double sum_nb = 0.0;
+        int cb[3] = {i, j, k}; // the interior cell next to the face, for boundary lookups
+        cb[d] = std::clamp(id, 1, nd);
+        for (int e = 0; e < 3; ++e) {
+          if (g_.dimension == 2 && e == 1) continue; // no flow and free slip across y in 2-D
+          const long se = g_.stride[e];
+          const double Ae = g_.face_area(e);
+          for (int side = 0; side < 2; ++side) {
+            const int s = side == 0 ? -1 : 1;
+            double F = 0.0, D = 0.0, gfac = 0.0;
+            bool link = true;
+            if (e == d) {
+              const long cell = s < 0 ? c0 : c1;
+              double Fa = F_[d][cell - sd], Fb = F_[d][cell];
+              if (!per_d && s < 0 && id == 0) Fa = Fb;
+              if (!per_d && s > 0 && id == nd) Fb = Fa;
+              F = 0.5 * (Fa + Fb);
+              D = mu * eps_[cell] * Ad / g_.h[d];
+              if (!per_d && (id + s < 0 || id + s > nd)) {
+                link = false;
+                gfac = 1.0; // zero gradient beyond a prescribed-pressure boundary face
+              }
+            } else {
+              const long f0 = s > 0 ? c0 : c0 - se, f1 = s > 0 ? c1 : c1 - se;
+              double F0 = F_[e][f0], F1 = F_[e][f1];
+              if (!per_d && id == 0) F0 = F1;
+              if (!per_d && id == nd) F1 = F0;
+              F = 0.5 * (F0 + F1);
+              const double eps_l =
+                  0.25 * (eps_[c0] + eps_[c1] + eps_[c0 + s * se] + eps_[c1 + s * se]);
+              D = mu * eps_l * Ae / g_.h[e];
+              const int ie = c[e] + s;
+              if (!bc_.periodic(e) && (ie < 1 || ie > g_.n[e])) {
+                link = false;
+                gfac = BoundaryMap::tangential_factor(
+                    bc_.at(2 * e + side, cb[0], cb[1], cb[2]).type);
+              }
+            }
+            const double Fout = s * F;
+            const double anb = D + std::max(-Fout, 0.0);
+            aP += D + std::max(Fout, 0.0);
+            if (link) {
+              slot(sys_, e, side)[q] = -anb;
+              sum_nb += anb;
+            } else {
+              aP -= gfac * anb;
+            }
+          }
+        }
+        const double aPr = aP / alpha;
+        sys_.diag[q] = aPr;
+        sys_.rhs[q] = rhs + (1.0 - alpha) * aPr * u[q];
+        dcoef_[d][q] = cp * Ad / std::max(aPr - sum_nb, 1e-6 * aPr);
+      }
+  momentum_solver_[d]->solve(sys_, u, s_.linear_tolerance, s_.linear_max_iterations);
+  fill_periodic(u);
+  fill_periodic(dcoef_[d]);
+}
+
+void GasSolver::solve_pressure_correction(double dt) {
+  clear(sys_);
+  const double V = g_.cell_volume();
+  for (int k = 1; k <= g_.n[2]; ++k)
+    for (int j = 1; j <= g_.n[1]; ++j)
+      for (int i = 1; i <= g_.n[0]; ++i) {
+        const long q = g_.idx(i, j, k);
+        double R = V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
+        double diag = psi_ * eps_[q] * V / dt;
+        for (int e = 0; e < 3; ++e) {
+          const long se = g_.stride[e];
+          R += F_[e][q] - F_[e][q - se];
+          for (int side = 0; side < 2; ++side) {
+            const long f = side == 1 ? q : q - se;
+            const unsigned char r = role_[e][f];
+            if (r != solved && r != periodic_copy && r != pressure_face) continue;
+            const long up = u_[e][f] >= 0.0 ? f : f + se;
+            const double c = eps_[up] * rho_[up] * g_.face_area(e) * dcoef_[e][f];
+            if (r == pressure_face) {
+              diag += 2.0 * c; // p'_ghost = -p'_P: the pressure on the face is fixed
+            } else {
+              diag += c;
+              slot(sys_, e, side)[q] = -c;
+            }
+          }
+        }
+        sys_.diag[q] = diag;
+        sys_.rhs[q] = -R;
+      }
+  if (!compressible_ && !bc_.any_pressure()) {
+    // Pressure fixed up to a constant: pin the level by doubling one diagonal (the system is
+    // consistent, so its solution with p'(1,1,1) = 0 is unchanged).
+    const long q0 = g_.idx(1, 1, 1);
+    sys_.diag[q0] = sys_.diag[q0] > 0.0 ? 2.0 * sys_.diag[q0] : 1.0;
+  }
+  std::fill(pc_.begin(), pc_.end(), 0.0);
+  pressure_solver_->solve(sys_, pc_, s_.linear_tolerance, s_.linear_max_iterations);
+  // Ghost corrections: prescribed pressure -> -p'_interior, otherwise copy (unused).
+  for (int d = 0; d < 3; ++d) {
+    if (bc_.periodic(d)) continue;
+    const long sd = g_.stride[d];
+    for (int k = 1 - (d == 2 ? 1 : 0); k <= g_.n[2] + (d == 2 ? 1 : 0); ++k)
+      for (int j = 1 - (d == 1 ? 1 : 0); j <= g_.n[1] + (d == 1 ? 1 : 0); ++j)
+        for (int i = 1 - (d == 0 ? 1 : 0); i <= g_.n[0] + (d == 0 ? 1 : 0); ++i) {
+          const int c[3] = {i, j, k};
+          if (c[d] != 0 && c[d] != g_.n[d] + 1) continue;
+          const bool low = c[d] == 0;
+          const long q = g_.idx(i, j, k), in = low ? q + sd : q - sd;
+          const bool dirichlet = bc_.at(2 * d + (low ? 0 : 1), i, j, k).type ==
+                                 BoundaryType::pressure;
+          pc_[q] = dirichlet ? -pc_[in] : pc_[in];
+        }
+  }
+  fill_periodic(pc_);
+  const double ap = s_.pressure_relaxation;
+  for (int k = 1; k <= g_.n[2]; ++k)
+    for (int j = 1; j <= g_.n[1]; ++j)
+      for (int i = 1; i <= g_.n[0]; ++i) p_[g_.idx(i, j, k)] += ap * pc_[g_.idx(i, j, k)];
+  for (int d = 0; d < 3; ++d) {
+    const long sd = g_.stride[d];
+    for (std::size_t q = 0; q < u_[d].size(); ++q) {
+      const unsigned char r = role_[d][q];
+      if (r != solved && r != pressure_face) continue;
+      u_[d][q] += dcoef_[d][q] * (pc_[q] - pc_[q + sd]);
+    }
+    fill_periodic(u_[d]);
+  }
+}
+
+} // namespace fluidem::gas

@@ -1,0 +1,173 @@
+// Validation of the gas settings and the inflow time functions [Deen07 §6.1].
+#include "gas/gas_settings.hpp"
+#include "core/error.hpp"
+#include <cmath>
+#include <numbers>
+
+namespace fluidem::gas {
+
+double inflow_velocity(const InflowProfile& p, double t) {
+  switch (p.mode) {
+  case InflowMode::constant:
+    return p.velocity;
+  case InflowMode::pulse:
+    return (t >= p.start && t < p.start + p.duration) ? p.velocity : p.background;
+  case InflowMode::pulsation:
+    return p.velocity + p.amplitude * std::sin(2.0 * std::numbers::pi * p.frequency * t);
+  }
+  throw InputError("gas: inflow mode out of range");
+}
+
+namespace {
+
+[[noreturn]] void bad(const std::string& key, const std::string& what) {
+  throw InputError(key + ": " + what);
+}
+
+void check_finite(double v, const std::string& key) {
+  if (!std::isfinite(v)) bad(key, "must be a finite number");
+}
+
+void check_profile(const InflowProfile& p, const std::string& key) {
+  const int m = static_cast<int>(p.mode);
+  if (m < 0 || m > 2) bad(key + ".mode", "unknown inflow mode (constant, pulse, pulsation)");
+  check_finite(p.velocity, key + ".velocity");
+  check_finite(p.background, key + ".background");
+  check_finite(p.start, key + ".start");
+  check_finite(p.amplitude, key + ".amplitude");
+  if (!(p.duration >= 0.0) || !std::isfinite(p.duration))
+    bad(key + ".duration", "must be >= 0 s");
+  if (!(p.frequency >= 0.0) || !std::isfinite(p.frequency))
+    bad(key + ".frequency", "must be >= 0 Hz");
+}
+
+void check_type(BoundaryType t, const std::string& key) {
+  const int m = static_cast<int>(t);
+  if (m < 0 || m > 5)
+    bad(key, "unknown boundary type (wall_free_slip, wall_no_slip, inflow, pressure, outflow, "
+             "periodic)");
+}
+
+void check_pressure(double p, const std::string& key) {
+  if (!(p > 0.0) || !std::isfinite(p)) bad(key, "must be > 0 Pa");
+}
+
+void check_porosity(double e, const std::string& key) {
+  if (!(e > 0.0 && e <= 1.0)) bad(key, "must be in (0, 1]");
+}
+
+} // namespace
+
+void validate(const GasSettings& s) {
+  if (s.dimension != 2 && s.dimension != 3) bad("gas.dimension", "must be 2 or 3");
+  for (int d = 0; d < 3; ++d) {
+    if (d == 1 && s.dimension == 2) continue;
+    if (s.cells[d] < 1) bad("gas.cells", "every cell count must be >= 1");
+    if (!(s.hi[d] > s.lo[d]) || !std::isfinite(s.hi[d] - s.lo[d]))
+      bad("gas.hi", "must exceed gas.lo on every axis");
+  }
+  if (s.dimension == 2 && (!(s.depth > 0.0) || !std::isfinite(s.depth)))
+    bad("gas.depth", "must be > 0 m in 2-D");
+  if (!(s.viscosity >= 0.0) || !std::isfinite(s.viscosity))
+    bad("gas.viscosity", "must be >= 0 Pa s");
+  if (s.model != PressureModel::A && s.model != PressureModel::B)
+    bad("gas.model", "unknown model (A, B)");
+  if (s.eos == EquationOfState::ideal_gas) {
+    if (!(s.molar_mass > 0.0)) bad("gas.molar_mass", "must be > 0 kg/mol");
+    if (!(s.temperature > 0.0)) bad("gas.temperature", "must be > 0 K");
+  } else if (s.eos == EquationOfState::incompressible) {
+    if (!(s.density > 0.0) || !std::isfinite(s.density)) bad("gas.density", "must be > 0 kg/m^3");
+  } else {
+    bad("gas.eos", "unknown equation of state (ideal_gas, incompressible)");
+  }
+  for (int d = 0; d < 3; ++d) check_finite(s.gravity[d], "gas.gravity");
+  for (int d = 0; d < 3; ++d) check_finite(s.initial_velocity[d], "gas.initial_velocity");
+  check_pressure(s.initial_pressure, "gas.initial_pressure");
+
+  for (int f = 0; f < 6; ++f) {
+    const GasBoundary& b = s.boundary[f];
+    const std::string key = std::string("gas.boundary.") + side_names[f];
+    if (s.dimension == 2 && (f == front || f == back)) continue;
+    check_type(b.type, key + ".type");
+    const GasBoundary& other = s.boundary[f ^ 1];
+    if ((b.type == BoundaryType::periodic) != (other.type == BoundaryType::periodic))
+      bad(key + ".type", std::string("periodic must be set on both ") + side_names[f & ~1] +
+                             " and " + side_names[f | 1]);
+    check_profile(b.inflow, key);
+    check_porosity(b.porosity, key + ".porosity");
+    check_pressure(b.pressure, key + ".pressure");
+    for (std::size_t r = 0; r < b.regions.size(); ++r) {
+      const BoundaryRegion& g = b.regions[r];
+      const std::string rk = key + ".regions[" + std::to_string(r) + "]";
+      check_type(g.type, rk + ".type");
+      if (g.type == BoundaryType::periodic) bad(rk + ".type", "a region cannot be periodic");
+      if (b.type == BoundaryType::periodic) bad(rk, "a periodic face cannot have regions");
+      for (int a = 0; a < 2; ++a)
+        if (!(g.hi[a] > g.lo[a]) || !std::isfinite(g.hi[a] - g.lo[a]))
+          bad(rk + ".hi", "must exceed .lo in both tangential coordinates");
+      check_profile(g.inflow, rk);
+      check_porosity(g.porosity, rk + ".porosity");
+      check_pressure(g.pressure, rk + ".pressure");
+    }
+  }
+  if (!(s.tolerance > 0.0)) bad("gas.solver.tolerance", "must be > 0");
+  if (!(s.velocity_tolerance > 0.0)) bad("gas.solver.velocity_tolerance", "must be > 0 m/s");
+  if (s.max_iterations < 1) bad("gas.solver.max_iterations", "must be >= 1");
+  if (!(s.velocity_relaxation > 0.0 && s.velocity_relaxation <= 1.0))
+    bad("gas.solver.velocity_relaxation", "must be in (0, 1]");
+  if (!(s.pressure_relaxation > 0.0 && s.pressure_relaxation <= 1.0))
+    bad("gas.solver.pressure_relaxation", "must be in (0, 1]");
+  if (!(s.linear_tolerance > 0.0 && s.linear_tolerance < 1.0))
+    bad("gas.solver.linear_tolerance", "must be in (0, 1)");
+  if (s.linear_max_iterations < 1) bad("gas.solver.linear_max_iterations", "must be >= 1");
+}
+
+std::string to_string(BoundaryType t) {
+  switch (t) {
+  case BoundaryType::wall_free_slip: return "wall_free_slip";
+  case BoundaryType::wall_no_slip: return "wall_no_slip";
+  case BoundaryType::inflow: return "inflow";
+  case BoundaryType::pressure: return "pressure";
+  case BoundaryType::outflow: return "outflow";
+  case BoundaryType::periodic: return "periodic";
+  }
+  return "?";
+}
+
+std::string to_string(InflowMode m) {
+  switch (m) {
+  case InflowMode::constant: return "constant";
+  case InflowMode::pulse: return "pulse";
+  case InflowMode::pulsation: return "pulsation";
+  }
+  return "?";
+}
+
+BoundaryType boundary_type_from_string(const std::string& name, const std::string& key) {
+  for (BoundaryType t :
+       {BoundaryType::wall_free_slip, BoundaryType::wall_no_slip, BoundaryType::inflow,
+        BoundaryType::pressure, BoundaryType::outflow, BoundaryType::periodic})
+    if (to_string(t) == name) return t;
+  bad(key, "unknown boundary type '" + name +
+               "' (wall_free_slip, wall_no_slip, inflow, pressure, outflow, periodic)");
+}
+
+InflowMode inflow_mode_from_string(const std::string& name, const std::string& key) {
+  for (InflowMode m : {InflowMode::constant, InflowMode::pulse, InflowMode::pulsation})
+    if (to_string(m) == name) return m;
+  bad(key, "unknown inflow mode '" + name + "' (constant, pulse, pulsation)");
+}
+
+PressureModel pressure_model_from_string(const std::string& name, const std::string& key) {
+  if (name == "A") return PressureModel::A;
+  if (name == "B") return PressureModel::B;
+  bad(key, "unknown model '" + name + "' (A, B)");
+}
+
+EquationOfState eos_from_string(const std::string& name, const std::string& key) {
+  if (name == "ideal_gas") return EquationOfState::ideal_gas;
+  if (name == "incompressible") return EquationOfState::incompressible;
+  bad(key, "unknown equation of state '" + name + "' (ideal_gas, incompressible)");
+}
+
+} // namespace fluidem::gas

@@ -1,0 +1,291 @@
+// Gas solver: set-up, boundary (ghost) values, the pressure-correction loop of one flow step,
+// interpolation and bookkeeping. The discretised equations are in gas_equations.cpp.
+#include "gas/gas_solver.hpp"
+#include "core/error.hpp"
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace fluidem::gas {
+
+namespace {
+GasGrid make_grid(const GasSettings& s) {
+  std::array<int, 3> n = s.cells;
+  std::array<double, 3> lo{s.lo.x, s.lo.y, s.lo.z}, hi{s.hi.x, s.hi.y, s.hi.z};
+  if (s.dimension == 2) {
+    n[1] = 1;
+    hi[1] = lo[1] + s.depth;
+  }
+  return GasGrid(s.dimension, n, lo, hi);
+}
+} // namespace
+
+GasSolver::GasSolver(const GasSettings& settings) : s_(settings) {
+  validate(s_);
+  g_ = make_grid(s_);
+  bc_ = BoundaryMap(s_, g_);
+  compressible_ = s_.eos == EquationOfState::ideal_gas;
+  psi_ = compressible_ ? s_.molar_mass / (gas_constant * s_.temperature) : 0.0;
+  const std::size_t n = g_.size();
+  eps_.assign(n, 1.0);
+  eps_old_.assign(n, 1.0);
+  p_.assign(n, s_.initial_pressure);
+  pc_.assign(n, 0.0);
+  rho_.assign(n, 0.0);
+  for (int d = 0; d < 3; ++d) {
+    for (auto* a : {&u_[d], &u_old_[d], &u_iter_[d], &K_[d], &Kus_[d], &f_[d], &F_[d], &dcoef_[d]})
+      a->assign(n, 0.0);
+  }
+  sys_.resize(n);
+  init_roles();
+  for (int d = 0; d < 3; ++d)
+    for (std::size_t q = 0; q < n; ++q)
+      if (role_[d][q] == solved || role_[d][q] == pressure_face || role_[d][q] == periodic_copy)
+        u_[d][q] = s_.initial_velocity[d];
+  apply_scalar_bcs();
+  update_density();
+  apply_velocity_bcs(0.0, true);
+
+  // Linear solvers: cells 1..n (pressure correction), faces of component d along d from 0
+  // (non-periodic: the boundary faces are rows too) or 1 (periodic) to n_d.
+  std::array<bool, 3> per{bc_.periodic(0), bc_.periodic(1), bc_.periodic(2)};
+  const std::array<int, 3> one{1, 1, 1};
+  pressure_solver_ = std::make_unique<StructLinearSolver>(g_.padded, one, g_.n, per, true);
+  for (int d = 0; d < 3; ++d) {
+    if (g_.dimension == 2 && d == 1) continue;
+    std::array<int, 3> lo = one;
+    lo[d] = per[d] ? 1 : 0;
+    momentum_solver_[d] = std::make_unique<StructLinearSolver>(g_.padded, lo, g_.n, per, false);
+  }
+}
+
+GasSolver::~GasSolver() = default;
+
+void GasSolver::sync_old_porosity() {
+  apply_scalar_bcs();
+  eps_old_ = eps_;
+}
+
+double GasSolver::rho_of_p(double p) const { return compressible_ ? psi_ * p : s_.density; }
+
+void GasSolver::update_density() {
+  for (std::size_t q = 0; q < rho_.size(); ++q) rho_[q] = rho_of_p(p_[q]);
+}
+
+void GasSolver::init_roles() {
+  for (int d = 0; d < 3; ++d) {
+    role_[d].assign(g_.size(), none);
+    const int nd = g_.n[d];
+    for (int k = 0; k < g_.padded[2]; ++k)
+      for (int j = 0; j < g_.padded[1]; ++j)
+        for (int i = 0; i < g_.padded[0]; ++i) {
+          const int c[3] = {i, j, k};
+          bool inside = c[d] <= nd;
+          for (int e = 0; e < 3; ++e)
+            if (e != d) inside = inside && c[e] >= 1 && c[e] <= g_.n[e];
+          if (!inside) continue;
+          unsigned char r = solved;
+          if (g_.dimension == 2 && d == 1) {
+            r = fixed;
+          } else if (bc_.periodic(d)) {
+            r = c[d] == 0 ? periodic_copy : solved;
+          } else if (c[d] == 0 || c[d] == nd) {
+            switch (bc_.at(2 * d + (c[d] == 0 ? 0 : 1), i, j, k).type) {
+            case BoundaryType::pressure: r = pressure_face; break;
+            case BoundaryType::outflow: r = outflow; break;
+            default: r = fixed; break;
+            }
+          }
+          role_[d][g_.idx(i, j, k)] = r;
+        }
+  }
+}
+
+void GasSolver::fill_periodic(std::vector<double>& a) const {
+  for (int d = 0; d < 3; ++d) {
+    if (!bc_.periodic(d)) continue;
+    const long sd = g_.stride[d], nd = g_.n[d];
+    for (int k = 0; k < g_.padded[2]; ++k)
+      for (int j = 0; j < g_.padded[1]; ++j)
+        for (int i = 0; i < g_.padded[0]; ++i) {
+          const int c[3] = {i, j, k};
+          if (c[d] != 0) continue;
+          const long q = g_.idx(i, j, k);
+          a[q] = a[q + nd * sd];
+          a[q + (nd + 1) * sd] = a[q + sd];
+        }
+  }
+}
+
+// Ghost porosity and pressure [Hoomans96 §3.5]: inflow cells take the distributor porosity,
+// other cells copy the adjacent interior porosity; prescribed-pressure cells hold
+// 2 p_b - p_interior (p_b on the boundary face), the others copy the interior pressure.
+void GasSolver::apply_scalar_bcs() {
+  for (int d = 0; d < 3; ++d) {
+    if (bc_.periodic(d)) continue;
+    const long sd = g_.stride[d];
+    for (int k = 0; k < g_.padded[2]; ++k)
+      for (int j = 0; j < g_.padded[1]; ++j)
+        for (int i = 0; i < g_.padded[0]; ++i) {
+          const int c[3] = {i, j, k};
+          if (c[d] != 0 && c[d] != g_.n[d] + 1) continue;
+          const bool low = c[d] == 0;
+          const long q = g_.idx(i, j, k), in = low ? q + sd : q - sd;
+          const BoundaryPatch& b = bc_.at(2 * d + (low ? 0 : 1), i, j, k);
+          eps_[q] = b.type == BoundaryType::inflow ? b.porosity : eps_[in];
+          p_[q] = b.type == BoundaryType::pressure ? 2.0 * b.pressure - p_[in] : p_[in];
+        }
+  }
+  fill_periodic(eps_);
+  fill_periodic(p_);
+}
+
+void GasSolver::apply_velocity_bcs(double t_new, bool set_inflow) {
+  for (int d = 0; d < 3; ++d) {
+    std::vector<double>& u = u_[d];
+    const long sd = g_.stride[d];
+    for (int k = 1; k <= g_.n[2]; ++k)
+      for (int j = 1; j <= g_.n[1]; ++j)
+        for (int i = 0; i <= g_.n[0]; ++i) {
+          const long q = g_.idx(i, j, k);
+          const unsigned char r = role_[d][q];
+          if (r != fixed && r != outflow) continue;
+          const int c[3] = {i, j, k};
+          const bool low = c[d] == 0;
+          if (r == outflow) {
+            if (g_.n[d] > 1) u[q] = low ? u[q + sd] : u[q - sd];
+            continue;
+          }
+          if (!set_inflow) continue;
+          u[q] = 0.0;
+          if (g_.dimension == 2 && d == 1) continue;
+          const BoundaryPatch& b = bc_.at(2 * d + (low ? 0 : 1), i, j, k);
+          if (b.type == BoundaryType::inflow)
+            u[q] = (low ? 1.0 : -1.0) * inflow_velocity(b.inflow, t_new) / b.porosity;
+        }
+    // Tangential ghost velocities (used only by interpolation): factor * interior.
+    for (int e = 0; e < 3; ++e) {
+      if (e == d || bc_.periodic(e)) continue;
+      const long se = g_.stride[e];
+      for (int k = 0; k < g_.padded[2]; ++k)
+        for (int j = 0; j < g_.padded[1]; ++j)
+          for (int i = 0; i < g_.padded[0]; ++i) {
+            const int c[3] = {i, j, k};
+            if (c[e] != 0 && c[e] != g_.n[e] + 1) continue;
+            const bool low = c[e] == 0;
+            const long q = g_.idx(i, j, k);
+            const BoundaryPatch& b = bc_.at(2 * e + (low ? 0 : 1), i, j, k);
+            u[q] = BoundaryMap::tangential_factor(b.type) * u[low ? q + se : q - se];
+          }
+    }
+    fill_periodic(u);
+  }
+}
+
+void GasSolver::step(double time, double dt) {
+  if (!(dt > 0.0) || !std::isfinite(dt) || !std::isfinite(time))
+    throw InputError("gas: flow time step dt must be > 0 s (got " + std::to_string(dt) + ")");
+  const double t_new = time + dt;
+  u_old_ = u_;
+  apply_scalar_bcs();
+  update_density();
+  rho_old_ = rho_;
+  apply_velocity_bcs(t_new, true);
+  const bool scale_outflow = !compressible_ && !bc_.any_pressure() && bc_.any_outflow();
+
+  double res = 0.0, dv = 0.0, out_rate = 0.0;
+  int it = 0;
+  bool converged = false;
+  while (it < s_.max_iterations && !converged) {
+    ++it;
+    u_iter_ = u_;
+    compute_mass_fluxes();
+    for (int d = 0; d < 3; ++d)
+      if (momentum_solver_[d]) solve_momentum(d, dt);
+    apply_velocity_bcs(t_new, false);
+    compute_mass_fluxes();
+    if (scale_outflow) {
+      balance_outflow(dt);
+      compute_mass_fluxes();
+    }
+    solve_pressure_correction(dt);
+    apply_scalar_bcs();
+    update_density();
+    apply_velocity_bcs(t_new, false);
+    compute_mass_fluxes();
+    res = mass_residual(dt, out_rate);
+    dv = 0.0;
+    for (int d = 0; d < 3; ++d)
+      for (std::size_t q = 0; q < u_[d].size(); ++q)
+        if (role_[d][q] != none) dv = std::max(dv, std::abs(u_[d][q] - u_iter_[d][q]));
+    if (!std::isfinite(res) || !std::isfinite(dv)) {
+      std::ostringstream m;
+      m << "gas: NaN in the flow solution in the step from t = " << time << " s to " << t_new
+        << " s (iteration " << it << ")";
+      throw InstabilityError(m.str());
+    }
+    converged = res < s_.tolerance && dv < s_.velocity_tolerance;
+  }
+  last_iterations_ = it;
+  last_mass_residual_ = res;
+  last_velocity_change_ = dv;
+  boundary_outflow_ = out_rate;
+  if (!converged) {
+    std::ostringstream m;
+    m << "gas: pressure-correction iterations did not converge in the step from t = " << time
+      << " s to " << t_new << " s: after " << it << " iterations (gas.solver.max_iterations) "
+      << "mass residual " << res << " (gas.solver.tolerance " << s_.tolerance
+      << "), velocity change " << dv << " m/s (gas.solver.velocity_tolerance "
+      << s_.velocity_tolerance << ")";
+    throw InstabilityError(m.str());
+  }
+  eps_old_ = eps_;
+}
+
+std::vector<double> GasSolver::applied_source(int d) const {
+  std::vector<double> s(g_.size(), 0.0);
+  for (std::size_t q = 0; q < s.size(); ++q)
+    if (role_[d][q] == solved || role_[d][q] == pressure_face)
+      s[q] = Kus_[d][q] - K_[d][q] * u_[d][q] + f_[d][q];
+  return s;
+}
+
+double GasSolver::gas_mass() const {
+  double m = 0.0;
+  for (int k = 1; k <= g_.n[2]; ++k)
+    for (int j = 1; j <= g_.n[1]; ++j)
+      for (int i = 1; i <= g_.n[0]; ++i) {
+        const long q = g_.idx(i, j, k);
+        m += eps_[q] * rho_[q];
+      }
+  return m * g_.cell_volume();
+}
+
+double GasSolver::pressure_at(const Vec3& x) const {
+  // Cell-centre lattice including the ghost centres: position in units of cells from the
+  // centre of ghost cell 0, clamped to [0, n + 1].
+  int i0[3];
+  double w[3];
+  for (int d = 0; d < 3; ++d) {
+    if (g_.dimension == 2 && d == 1) {
+      i0[d] = 1;
+      w[d] = 0.0;
+      continue;
+    }
+    double s = (x[d] - g_.lo[d]) / g_.h[d] + 0.5;
+    s = std::clamp(s, 0.0, static_cast<double>(g_.n[d] + 1));
+    int c = std::min(static_cast<int>(s), g_.n[d]);
+    i0[d] = c;
+    w[d] = s - c;
+  }
+  double v = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    const int a = c & 1, b = (c >> 1) & 1, e = (c >> 2) & 1;
+    const double wt = (a ? w[0] : 1.0 - w[0]) * (b ? w[1] : 1.0 - w[1]) * (e ? w[2] : 1.0 - w[2]);
+    if (wt == 0.0) continue;
+    v += wt * p_[g_.idx(i0[0] + a, i0[1] + b, i0[2] + e)];
+  }
+  return v;
+}
+
+} // namespace fluidem::gas

@@ -1,0 +1,118 @@
+// Volume-averaged Navier-Stokes solver for the gas phase [Deen07 eq. 7-9], Model A or B
+// [Zhu07 eq. 4-7], ideal gas [Hoomans96 eq. 42-44] or incompressible, on the staggered grid of
+// gas_grid.hpp. Backward Euler in time, first-order upwind convection, SIMPLEC pressure-
+// correction iterations per flow step, semi-implicit particle drag (docs/gas.md).
+//
+// Coupling interface (all arrays in the padded layout of GasGrid, face arrays per component
+// d = 0, 1, 2 = x, y, z, value at idx(i, j, k) = high face of cell (i, j, k)):
+//  - porosity(): new-time gas volume fraction at cell centres, set by the caller before step();
+//    the solver keeps the previous step's field for d(eps rho)/dt.
+//  - drag_coefficient(d) K >= 0 [kg m^-3 s^-1], drag_velocity_term(d) K_us = K u_s
+//    [kg m^-2 s^-2 = N m^-3], explicit_source(d) f [N m^-3]: the particle momentum source ON
+//    THE GAS per unit volume, S = K_us - K u_new + f (positive along +axis), set per step.
+//  - applied_source(d): S actually applied with the converged u_new, per face, N m^-3.
+// The gas module knows nothing about particles.
+#pragma once
+#include "core/vec3.hpp"
+#include "gas/gas_boundary.hpp"
+#include "gas/gas_grid.hpp"
+#include "gas/gas_settings.hpp"
+#include "gas/pressure_solver.hpp"
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace fluidem::gas {
+
+class GasSolver {
+public:
+  /// Validates the settings (InputError naming the key) and sets the initial state:
+  /// porosity 1, pressure initial_pressure, velocity initial_velocity on non-boundary faces.
+  explicit GasSolver(const GasSettings& settings);
+  ~GasSolver();
+  GasSolver(const GasSolver&) = delete;
+  GasSolver& operator=(const GasSolver&) = delete;
+
+  const GasSettings& settings() const { return s_; }
+  const GasGrid& grid() const { return g_; }
+  const BoundaryMap& boundary() const { return bc_; }
+
+  /// Gas volume fraction at cell centres (interior cells; ghosts are set by the solver).
+  std::vector<double>& porosity() { return eps_; }
+  const std::vector<double>& porosity() const { return eps_; }
+  const std::vector<double>& porosity_old() const { return eps_old_; }
+  /// Makes the old porosity equal to the current one (after setting the initial field).
+  void sync_old_porosity();
+
+  std::vector<double>& drag_coefficient(int d) { return K_[d]; }
+  std::vector<double>& drag_velocity_term(int d) { return Kus_[d]; }
+  std::vector<double>& explicit_source(int d) { return f_[d]; }
+  /// K_us - K u + f on every face with the current u, N m^-3 (0 on faces not solved).
+  std::vector<double> applied_source(int d) const;
+
+  /// Interstitial gas velocity component d on its faces, m/s.
+  const std::vector<double>& velocity(int d) const { return u_[d]; }
+  std::vector<double>& velocity(int d) { return u_[d]; }
+  /// Pressure at cell centres (ghosts included), Pa. Mutable for initial conditions.
+  const std::vector<double>& pressure() const { return p_; }
+  std::vector<double>& pressure() { return p_; }
+  /// Gas density at cell centres, kg/m^3 (recomputed from p in step()).
+  const std::vector<double>& density() const { return rho_; }
+
+  /// Advances from `time` to `time + dt` (inflow velocities taken at time + dt). Throws
+  /// InstabilityError when the pressure-correction iterations do not converge or give NaN.
+  void step(double time, double dt);
+
+  /// Trilinear interpolation of the cell-centre pressure (ghost values at the boundary), Pa.
+  double pressure_at(const Vec3& x) const;
+
+  int last_iterations() const { return last_iterations_; }
+  /// sum over cells |mass imbalance of the step| / gas mass in the domain (dimensionless).
+  double last_mass_residual() const { return last_mass_residual_; }
+  /// Largest velocity change in the last pressure-correction iteration, m/s.
+  double last_velocity_change() const { return last_velocity_change_; }
+  /// Gas mass in the domain, sum eps rho V over interior cells, kg.
+  double gas_mass() const;
+  /// Net mass flow out through the domain boundary in the last step (the fluxes of the
+  /// discrete continuity equation), kg/s.
+  double boundary_outflow() const { return boundary_outflow_; }
+
+  /// Face roles (internal, exposed for tests and coupling): solved, fixed, ...
+  enum FaceRole : unsigned char { none = 0, solved, fixed, outflow, pressure_face, periodic_copy };
+  const std::vector<unsigned char>& face_role(int d) const { return role_[d]; }
+
+private:
+  // gas_solver.cpp
+  void init_roles();
+  void apply_scalar_bcs();
+  void apply_velocity_bcs(double t_new, bool set_inflow);
+  void fill_periodic(std::vector<double>& a) const;
+  void update_density();
+  double rho_of_p(double p) const;
+  // gas_equations.cpp
+  void compute_mass_fluxes();
+  void balance_outflow(double dt);
+  void solve_momentum(int d, double dt);
+  void solve_pressure_correction(double dt);
+  double mass_residual(double dt, double& out_rate) const;
+
+  GasSettings s_;
+  GasGrid g_;
+  BoundaryMap bc_;
+  bool compressible_ = true;
+  double psi_ = 0.0; ///< d rho / d p, s^2/m^2 (ideal gas M/(R T); 0 incompressible)
+
+  std::vector<double> eps_, eps_old_, p_, rho_, rho_old_, pc_;
+  std::array<std::vector<double>, 3> u_, u_old_, u_iter_, K_, Kus_, f_, F_, dcoef_;
+  std::array<std::vector<unsigned char>, 3> role_;
+  StencilSystem sys_;
+  std::array<std::unique_ptr<StructLinearSolver>, 3> momentum_solver_;
+  std::unique_ptr<StructLinearSolver> pressure_solver_;
+
+  int last_iterations_ = 0;
+  double last_mass_residual_ = 0.0;
+  double last_velocity_change_ = 0.0;
+  double boundary_outflow_ = 0.0;
+};
+
+} // namespace fluidem::gas
