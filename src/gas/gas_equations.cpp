@@ -11,6 +11,8 @@
 #include "gas/gas_solver.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace fluidem::gas {
 
@@ -195,7 +197,7 @@ void GasSolver::solve_momentum(int d, double dt) {
         sys_.rhs[q] = rhs + (1.0 - alpha) * aPr * u[q];
         dcoef_[d][q] = cp * Ad / std::max(aPr - sum_nb, 1e-6 * aPr);
       }
-  momentum_solver_[d]->solve(sys_, u, s_.linear_tolerance, s_.linear_max_iterations);
+  { auto st = momentum_solver_[d]->solve(sys_, u, s_.linear_tolerance, s_.linear_max_iterations); if (getenv("GASDBG")) fprintf(stderr, "mom %d it %d res %g\n", d, st.iterations, st.relative_residual); }
   fill_periodic(u);
   fill_periodic(dcoef_[d]);
 }
@@ -236,7 +238,7 @@ void GasSolver::solve_pressure_correction(double dt) {
     sys_.diag[q0] = sys_.diag[q0] > 0.0 ? 2.0 * sys_.diag[q0] : 1.0;
   }
   std::fill(pc_.begin(), pc_.end(), 0.0);
-  pressure_solver_->solve(sys_, pc_, s_.linear_tolerance, s_.linear_max_iterations);
+  { auto st = pressure_solver_->solve(sys_, pc_, s_.linear_tolerance, s_.linear_max_iterations); if (getenv("GASDBG")) fprintf(stderr, "pc it %d res %g\n", st.iterations, st.relative_residual); }
   // Ghost corrections: prescribed pressure -> -p'_interior, otherwise copy (unused).
   for (int d = 0; d < 3; ++d) {
     if (bc_.periodic(d)) continue;

@@ -7,6 +7,7 @@
 #include <HYPRE_struct_ls.h>
 #include <cstdlib>
 #include <mpi.h>
+#include <algorithm>
 #include <mutex>
 
 namespace fluidem::gas {
@@ -45,8 +46,10 @@ void ensure_mpi_initialised() {
 
 struct StructLinearSolver::Impl {
   std::array<int, 3> padded{}, lo{}, hi{};
-  std::array<bool, 3> periodic{};
+  std::array<bool, 3> periodic{}; ///< periodic in hypre (period >= 3)
+  std::array<int, 3> fold{};       ///< periodic with period 1 or 2: folded here
   bool symmetric = false;
+  int max_levels = 0; ///< PFMG levels (0: hypre's default)
   HYPRE_StructGrid grid = nullptr;
   HYPRE_StructStencil stencil = nullptr;
   std::vector<double> values, buf_b, buf_x;
@@ -61,12 +64,25 @@ StructLinearSolver::StructLinearSolver(std::array<int, 3> padded, std::array<int
   m.padded = padded;
   m.lo = lo;
   m.hi = hi;
-  m.periodic = periodic;
   m.symmetric = symmetric;
+  // hypre's periodic Struct grids misbehave when a period (on any PFMG level) is below 3: the
+  // two neighbours along the axis coincide. Periods 1 and 2 are folded into the stencil here;
+  // for the others PFMG coarsening is limited so the coarsest period stays >= 3.
+  int min_period = 1 << 30;
+  for (int d = 0; d < 3; ++d) {
+    const int period = hi[d] - lo[d] + 1;
+    m.periodic[d] = periodic[d] && period >= 3;
+    m.fold[d] = periodic[d] && period < 3 ? period : 0;
+    if (m.periodic[d]) min_period = std::min(min_period, period);
+  }
+  if (min_period < (1 << 30)) {
+    m.max_levels = 1;
+    for (int p = min_period; p / 2 >= 3; p /= 2) ++m.max_levels;
+  }
   HYPRE_StructGridCreate(MPI_COMM_WORLD, 3, &m.grid);
   HYPRE_StructGridSetExtents(m.grid, m.lo.data(), m.hi.data());
   std::array<int, 3> period{};
-  for (int d = 0; d < 3; ++d) period[d] = periodic[d] ? hi[d] - lo[d] + 1 : 0;
+  for (int d = 0; d < 3; ++d) period[d] = m.periodic[d] ? hi[d] - lo[d] + 1 : 0;
   HYPRE_StructGridSetPeriodic(m.grid, period.data());
   HYPRE_StructGridAssemble(m.grid);
   HYPRE_StructStencilCreate(3, 7, &m.stencil);
@@ -96,7 +112,20 @@ LinearSolveStats StructLinearSolver::solve(const StencilSystem& sys, std::vector
     for (int j = m.lo[1]; j <= m.hi[1]; ++j)
       for (int i = m.lo[0]; i <= m.hi[0]; ++i, ++q) {
         const long p = i * sx + j * sy + k * sz;
-        for (int e = 0; e < 7; ++e) m.values[7 * q + e] = (*a[e])[p];
+        double* v = &m.values[7 * q];
+        for (int e = 0; e < 7; ++e) v[e] = (*a[e])[p];
+        // Periods 1 and 2: both neighbours are the point itself (1) or the other point (2).
+        const int c[3] = {i, j, k};
+        for (int d = 0; d < 3; ++d) {
+          if (m.fold[d] == 1) {
+            v[0] += v[1 + 2 * d] + v[2 + 2 * d];
+            v[1 + 2 * d] = v[2 + 2 * d] = 0.0;
+          } else if (m.fold[d] == 2) {
+            const bool first = c[d] == m.lo[d];
+            v[first ? 2 + 2 * d : 1 + 2 * d] += v[first ? 1 + 2 * d : 2 + 2 * d];
+            v[first ? 1 + 2 * d : 2 + 2 * d] = 0.0;
+          }
+        }
         // Links leaving the box along a non-periodic axis are dropped (documented as 0).
         if (!m.periodic[0] && i == m.lo[0]) m.values[7 * q + 1] = 0.0;
         if (!m.periodic[0] && i == m.hi[0]) m.values[7 * q + 2] = 0.0;
@@ -131,6 +160,7 @@ LinearSolveStats StructLinearSolver::solve(const StencilSystem& sys, std::vector
   HYPRE_StructPFMGSetRelaxType(precond, m.symmetric ? 2 : 3); // red-black Gauss-Seidel
   HYPRE_StructPFMGSetNumPreRelax(precond, 1);
   HYPRE_StructPFMGSetNumPostRelax(precond, 1);
+  if (m.max_levels > 0) HYPRE_StructPFMGSetMaxLevels(precond, m.max_levels);
 
   LinearSolveStats stats;
   if (m.symmetric) {
