@@ -144,8 +144,8 @@ void GasSolver::apply_velocity_bcs(double t_new, bool set_inflow) {
   for (int d = 0; d < 3; ++d) {
     std::vector<double>& u = u_[d];
     const long sd = g_.stride[d];
-    for (int k = 1; k <= g_.n[2]; ++k)
-      for (int j = 1; j <= g_.n[1]; ++j)
+    for (int k = 0; k <= g_.n[2]; ++k)
+      for (int j = 0; j <= g_.n[1]; ++j)
         for (int i = 0; i <= g_.n[0]; ++i) {
           const long q = g_.idx(i, j, k);
           const unsigned char r = role_[d][q];
