@@ -8,8 +8,8 @@ BoundaryMap::BoundaryMap(const GasSettings& s, const GasGrid& g) : grid_(g) {
     const int axis = side / 2;
     const int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
     GasBoundary b = s.boundary[side];
-    if (s.dimension == 2 && axis == 1) b = GasBoundary{BoundaryType::wall_free_slip, {}, 0.4,
-                                                       s.initial_pressure, {}};
+    if (s.dimension == 2 && axis == 1)
+      b = GasBoundary{BoundaryType::wall_free_slip, {}, 0.4, s.initial_pressure, {}};
     if (b.type == BoundaryType::periodic) periodic_[axis] = true;
     const int base = static_cast<int>(patches_.size());
     patches_.push_back({b.type, b.inflow, b.porosity, b.pressure});

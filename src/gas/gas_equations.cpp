@@ -11,20 +11,24 @@
 #include "gas/gas_solver.hpp"
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 namespace fluidem::gas {
 
 namespace {
 std::vector<double>& slot(StencilSystem& s, int e, int side) {
   switch (2 * e + side) {
-  case 0: return s.xm;
-  case 1: return s.xp;
-  case 2: return s.ym;
-  case 3: return s.yp;
-  case 4: return s.zm;
-  default: return s.zp;
+  case 0:
+    return s.xm;
+  case 1:
+    return s.xp;
+  case 2:
+    return s.ym;
+  case 3:
+    return s.yp;
+  case 4:
+    return s.zm;
+  default:
+    return s.zp;
   }
 }
 void clear(StencilSystem& s) {
@@ -108,8 +112,10 @@ void GasSolver::balance_outflow(double dt) {
     for (std::size_t q = 0; q < F_[d].size(); ++q) {
       if (role_[d][q] != outflow) continue;
       const long id = (static_cast<long>(q) / g_.stride[d]) % g_.padded[d];
-      if (scale) u_[d][q] *= net_in / out;
-      else u_[d][q] = (id == 0 ? -1.0 : 1.0) * net_in / cap;
+      if (scale)
+        u_[d][q] *= net_in / out;
+      else
+        u_[d][q] = (id == 0 ? -1.0 : 1.0) * net_in / cap;
     }
 }
 
@@ -177,8 +183,8 @@ void GasSolver::solve_momentum(int d, double dt) {
               const int ie = c[e] + s;
               if (!bc_.periodic(e) && (ie < 1 || ie > g_.n[e])) {
                 link = false;
-                gfac = BoundaryMap::tangential_factor(
-                    bc_.at(2 * e + side, cb[0], cb[1], cb[2]).type);
+                gfac =
+                    BoundaryMap::tangential_factor(bc_.at(2 * e + side, cb[0], cb[1], cb[2]).type);
               }
             }
             const double Fout = s * F;
@@ -197,7 +203,7 @@ void GasSolver::solve_momentum(int d, double dt) {
         sys_.rhs[q] = rhs + (1.0 - alpha) * aPr * u[q];
         dcoef_[d][q] = cp * Ad / std::max(aPr - sum_nb, 1e-6 * aPr);
       }
-  { auto st = momentum_solver_[d]->solve(sys_, u, s_.linear_tolerance, s_.linear_max_iterations); if (getenv("GASDBG")) fprintf(stderr, "mom %d it %d res %g\n", d, st.iterations, st.relative_residual); }
+  momentum_solver_[d]->solve(sys_, u, s_.linear_tolerance, s_.linear_max_iterations);
   fill_periodic(u);
   fill_periodic(dcoef_[d]);
 }
@@ -238,7 +244,7 @@ void GasSolver::solve_pressure_correction(double dt) {
     sys_.diag[q0] = sys_.diag[q0] > 0.0 ? 2.0 * sys_.diag[q0] : 1.0;
   }
   std::fill(pc_.begin(), pc_.end(), 0.0);
-  { auto st = pressure_solver_->solve(sys_, pc_, s_.linear_tolerance, s_.linear_max_iterations); if (getenv("GASDBG")) fprintf(stderr, "pc it %d res %g\n", st.iterations, st.relative_residual); }
+  pressure_solver_->solve(sys_, pc_, s_.linear_tolerance, s_.linear_max_iterations);
   // Ghost corrections: prescribed pressure -> -p'_interior, otherwise copy (unused).
   for (int d = 0; d < 3; ++d) {
     if (bc_.periodic(d)) continue;
@@ -250,8 +256,8 @@ void GasSolver::solve_pressure_correction(double dt) {
           if (c[d] != 0 && c[d] != g_.n[d] + 1) continue;
           const bool low = c[d] == 0;
           const long q = g_.idx(i, j, k), in = low ? q + sd : q - sd;
-          const bool dirichlet = bc_.at(2 * d + (low ? 0 : 1), i, j, k).type ==
-                                 BoundaryType::pressure;
+          const bool dirichlet =
+              bc_.at(2 * d + (low ? 0 : 1), i, j, k).type == BoundaryType::pressure;
           pc_[q] = dirichlet ? -pc_[in] : pc_[in];
         }
   }

@@ -35,9 +35,7 @@ struct GasGrid {
     stride = {1, padded[0], static_cast<long>(padded[0]) * padded[1]};
   }
 
-  std::size_t size() const {
-    return static_cast<std::size_t>(padded[0]) * padded[1] * padded[2];
-  }
+  std::size_t size() const { return static_cast<std::size_t>(padded[0]) * padded[1] * padded[2]; }
   long idx(int i, int j, int k) const { return i + stride[1] * j + stride[2] * k; }
   double cell_volume() const { return h[0] * h[1] * h[2]; }
   /// Area of a face normal to axis d, m^2.

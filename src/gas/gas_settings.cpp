@@ -35,8 +35,7 @@ void check_profile(const InflowProfile& p, const std::string& key) {
   check_finite(p.background, key + ".background");
   check_finite(p.start, key + ".start");
   check_finite(p.amplitude, key + ".amplitude");
-  if (!(p.duration >= 0.0) || !std::isfinite(p.duration))
-    bad(key + ".duration", "must be >= 0 s");
+  if (!(p.duration >= 0.0) || !std::isfinite(p.duration)) bad(key + ".duration", "must be >= 0 s");
   if (!(p.frequency >= 0.0) || !std::isfinite(p.frequency))
     bad(key + ".frequency", "must be >= 0 Hz");
 }
@@ -95,7 +94,7 @@ void validate(const GasSettings& s) {
                              " and " + side_names[f | 1]);
     check_profile(b.inflow, key);
     check_porosity(b.porosity, key + ".porosity");
-    check_pressure(b.pressure, key + ".pressure");
+    if (b.type == BoundaryType::pressure) check_pressure(b.pressure, key + ".pressure");
     for (std::size_t r = 0; r < b.regions.size(); ++r) {
       const BoundaryRegion& g = b.regions[r];
       const std::string rk = key + ".regions[" + std::to_string(r) + "]";
@@ -107,7 +106,7 @@ void validate(const GasSettings& s) {
           bad(rk + ".hi", "must exceed .lo in both tangential coordinates");
       check_profile(g.inflow, rk);
       check_porosity(g.porosity, rk + ".porosity");
-      check_pressure(g.pressure, rk + ".pressure");
+      if (g.type == BoundaryType::pressure) check_pressure(g.pressure, rk + ".pressure");
     }
   }
   if (!(s.tolerance > 0.0)) bad("gas.solver.tolerance", "must be > 0");
@@ -124,21 +123,30 @@ void validate(const GasSettings& s) {
 
 std::string to_string(BoundaryType t) {
   switch (t) {
-  case BoundaryType::wall_free_slip: return "wall_free_slip";
-  case BoundaryType::wall_no_slip: return "wall_no_slip";
-  case BoundaryType::inflow: return "inflow";
-  case BoundaryType::pressure: return "pressure";
-  case BoundaryType::outflow: return "outflow";
-  case BoundaryType::periodic: return "periodic";
+  case BoundaryType::wall_free_slip:
+    return "wall_free_slip";
+  case BoundaryType::wall_no_slip:
+    return "wall_no_slip";
+  case BoundaryType::inflow:
+    return "inflow";
+  case BoundaryType::pressure:
+    return "pressure";
+  case BoundaryType::outflow:
+    return "outflow";
+  case BoundaryType::periodic:
+    return "periodic";
   }
   return "?";
 }
 
 std::string to_string(InflowMode m) {
   switch (m) {
-  case InflowMode::constant: return "constant";
-  case InflowMode::pulse: return "pulse";
-  case InflowMode::pulsation: return "pulsation";
+  case InflowMode::constant:
+    return "constant";
+  case InflowMode::pulse:
+    return "pulse";
+  case InflowMode::pulsation:
+    return "pulsation";
   }
   return "?";
 }

@@ -63,7 +63,7 @@ struct BoundaryRegion {
   std::array<double, 2> lo{0.0, 0.0};       ///< `.lo`, m: lower corner (tangential coords)
   std::array<double, 2> hi{0.0, 0.0};       ///< `.hi`, m: upper corner
   InflowProfile inflow;                     ///< `.velocity`, `.mode`, ...: type inflow only
-  double porosity = 0.4; ///< `.porosity`: ghost porosity of inflow cells [Hoomans96 §3.5]
+  double porosity = 0.4;      ///< `.porosity`: ghost porosity of inflow cells [Hoomans96 §3.5]
   double pressure = 101325.0; ///< `.pressure`, Pa: type pressure only
 };
 
@@ -78,25 +78,25 @@ struct GasBoundary {
 
 /// Domain faces, in the order of GasSettings::boundary; the name is the case-file key.
 enum Side { left = 0, right, front, back, bottom, top };
-inline constexpr std::array<const char*, 6> side_names{"left",  "right", "front",
+inline constexpr std::array<const char*, 6> side_names{"left", "right",  "front",
                                                        "back", "bottom", "top"};
 
 struct GasSettings {
-  int dimension = 3;                   ///< `gas.dimension`: 2 (x-z plane) or 3
-  std::array<int, 3> cells{8, 8, 8};  ///< `gas.cells`: nx, ny, nz (ny ignored = 1 in 2-D)
-  Vec3 lo{0.0, 0.0, 0.0};              ///< `gas.lo`, m: lower domain corner
-  Vec3 hi{0.1, 0.1, 0.1};              ///< `gas.hi`, m: upper corner (hi.y ignored in 2-D)
-  double depth = 0.01;                 ///< `gas.depth`, m: 2-D only, thickness in y
-  double viscosity = 1.8e-5;           ///< `gas.viscosity`, Pa s (kg m^-1 s^-1)
-  PressureModel model = PressureModel::A;            ///< `gas.model`: "A" | "B"
-  EquationOfState eos = EquationOfState::ideal_gas;  ///< `gas.eos`: "ideal_gas" | "incompressible"
-  double molar_mass = 28.8e-3;         ///< `gas.molar_mass`, kg/mol [Hoomans96 §3.2.1]
-  double temperature = 293.0;          ///< `gas.temperature`, K
-  double density = 1.2;                ///< `gas.density`, kg/m^3: incompressible only
-  Vec3 gravity{0.0, 0.0, -9.81};       ///< `gas.gravity`, m/s^2
-  std::array<GasBoundary, 6> boundary; ///< `gas.boundary.<left|right|front|back|bottom|top>`;
-                                       ///< in 2-D front/back are free-slip walls, whatever set
-  double initial_pressure = 101325.0;  ///< `gas.initial_pressure`, Pa (also the reference)
+  int dimension = 3;                      ///< `gas.dimension`: 2 (x-z plane) or 3
+  std::array<int, 3> cells{8, 8, 8};      ///< `gas.cells`: nx, ny, nz (ny ignored = 1 in 2-D)
+  Vec3 lo{0.0, 0.0, 0.0};                 ///< `gas.lo`, m: lower domain corner
+  Vec3 hi{0.1, 0.1, 0.1};                 ///< `gas.hi`, m: upper corner (hi.y ignored in 2-D)
+  double depth = 0.01;                    ///< `gas.depth`, m: 2-D only, thickness in y
+  double viscosity = 1.8e-5;              ///< `gas.viscosity`, Pa s (kg m^-1 s^-1)
+  PressureModel model = PressureModel::A; ///< `gas.model`: "A" | "B"
+  EquationOfState eos = EquationOfState::ideal_gas; ///< `gas.eos`: "ideal_gas" | "incompressible"
+  double molar_mass = 28.8e-3;          ///< `gas.molar_mass`, kg/mol [Hoomans96 §3.2.1]
+  double temperature = 293.0;           ///< `gas.temperature`, K
+  double density = 1.2;                 ///< `gas.density`, kg/m^3: incompressible only
+  Vec3 gravity{0.0, 0.0, -9.81};        ///< `gas.gravity`, m/s^2
+  std::array<GasBoundary, 6> boundary;  ///< `gas.boundary.<left|right|front|back|bottom|top>`;
+                                        ///< in 2-D front/back are free-slip walls, whatever set
+  double initial_pressure = 101325.0;   ///< `gas.initial_pressure`, Pa (also the reference)
   Vec3 initial_velocity{0.0, 0.0, 0.0}; ///< `gas.initial_velocity`, m/s (interstitial)
 
   // Pressure-correction iterations per flow step (`gas.solver.*`).

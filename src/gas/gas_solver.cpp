@@ -66,7 +66,9 @@ void GasSolver::sync_old_porosity() {
   eps_old_ = eps_;
 }
 
-double GasSolver::rho_of_p(double p) const { return compressible_ ? psi_ * p : s_.density; }
+double GasSolver::rho_of_p(double p) const {
+  return compressible_ ? psi_ * p : s_.density;
+}
 
 void GasSolver::update_density() {
   for (std::size_t q = 0; q < rho_.size(); ++q) rho_[q] = rho_of_p(p_[q]);
@@ -91,9 +93,15 @@ void GasSolver::init_roles() {
             r = c[d] == 0 ? periodic_copy : solved;
           } else if (c[d] == 0 || c[d] == nd) {
             switch (bc_.at(2 * d + (c[d] == 0 ? 0 : 1), i, j, k).type) {
-            case BoundaryType::pressure: r = pressure_face; break;
-            case BoundaryType::outflow: r = outflow; break;
-            default: r = fixed; break;
+            case BoundaryType::pressure:
+              r = pressure_face;
+              break;
+            case BoundaryType::outflow:
+              r = outflow;
+              break;
+            default:
+              r = fixed;
+              break;
             }
           }
           role_[d][g_.idx(i, j, k)] = r;

@@ -5,9 +5,9 @@
 #include "gas/pressure_solver.hpp"
 #include "core/error.hpp"
 #include <HYPRE_struct_ls.h>
+#include <algorithm>
 #include <cstdlib>
 #include <mpi.h>
-#include <algorithm>
 #include <mutex>
 
 namespace fluidem::gas {
@@ -22,7 +22,9 @@ void finalize_mpi() {
   MPI_Finalized(&finalized);
   if (!finalized) MPI_Finalize();
 }
-void finalize_hypre() { HYPRE_Finalize(); }
+void finalize_hypre() {
+  HYPRE_Finalize();
+}
 } // namespace
 
 void ensure_mpi_initialised() {
@@ -47,7 +49,7 @@ void ensure_mpi_initialised() {
 struct StructLinearSolver::Impl {
   std::array<int, 3> padded{}, lo{}, hi{};
   std::array<bool, 3> periodic{}; ///< periodic in hypre (period >= 3)
-  std::array<int, 3> fold{};       ///< periodic with period 1 or 2: folded here
+  std::array<int, 3> fold{};      ///< periodic with period 1 or 2: folded here
   bool symmetric = false;
   int max_levels = 0; ///< PFMG levels (0: hypre's default)
   HYPRE_StructGrid grid = nullptr;
@@ -86,8 +88,8 @@ StructLinearSolver::StructLinearSolver(std::array<int, 3> padded, std::array<int
   HYPRE_StructGridSetPeriodic(m.grid, period.data());
   HYPRE_StructGridAssemble(m.grid);
   HYPRE_StructStencilCreate(3, 7, &m.stencil);
-  int offsets[7][3] = {{0, 0, 0},  {-1, 0, 0}, {1, 0, 0}, {0, -1, 0},
-                       {0, 1, 0},  {0, 0, -1}, {0, 0, 1}};
+  int offsets[7][3] = {{0, 0, 0}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0},
+                       {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
   for (int e = 0; e < 7; ++e) HYPRE_StructStencilSetElement(m.stencil, e, offsets[e]);
   std::size_t n = 1;
   for (int d = 0; d < 3; ++d) n *= static_cast<std::size_t>(hi[d] - lo[d] + 1);

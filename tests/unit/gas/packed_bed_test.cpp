@@ -69,5 +69,9 @@ void run(PressureModel model) {
 }
 } // namespace
 
-TEST(PackedBed, ModelASteadyPressureGradient) { run(PressureModel::A); }
-TEST(PackedBed, ModelBSteadyPressureGradient) { run(PressureModel::B); }
+TEST(PackedBed, ModelASteadyPressureGradient) {
+  run(PressureModel::A);
+}
+TEST(PackedBed, ModelBSteadyPressureGradient) {
+  run(PressureModel::B);
+}

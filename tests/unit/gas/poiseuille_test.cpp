@@ -59,8 +59,12 @@ void run_body_force(int dim) {
 }
 } // namespace
 
-TEST(Poiseuille, BodyForcePeriodic2D) { run_body_force(2); }
-TEST(Poiseuille, BodyForcePeriodic3D) { run_body_force(3); }
+TEST(Poiseuille, BodyForcePeriodic2D) {
+  run_body_force(2);
+}
+TEST(Poiseuille, BodyForcePeriodic3D) {
+  run_body_force(3);
+}
 
 // Pressure-driven: prescribed pressure at the bottom and top faces (values on the faces).
 TEST(Poiseuille, PressureDriven2D) {
