@@ -44,7 +44,10 @@ inline Vec3 contact_velocity(const Body& a, const Body& b, const Vec3& n) {
 inline CollisionResult collide(Body& a, Body& b, const Vec3& n, const CollisionLaw& law) {
   CollisionResult res;
   const Vec3 v0 = contact_velocity(a, b, n);
-  const double vn = dot(v0, n);
+  // The spins add nothing to the normal component ((w x n) . n = 0); taking it from the linear
+  // velocities alone keeps round-off in the spin term from flipping the sign of a grazing
+  // approach, so the event scheduler and the operator always agree on it.
+  const double vn = dot(a.v - b.v, n);
   if (vn >= 0.0) return res; // separating
   res.approaching = true;
   const double inv_mn = a.inv_m + b.inv_m;

@@ -60,25 +60,32 @@ void HardSphereEngine::push(const Event& ev) {
 void HardSphereEngine::schedule(const ParticleStore& p, std::uint32_t i, double now) {
   const auto n = static_cast<std::uint32_t>(p.size());
   const double ai = now - clock_[i];
-  const Vec3 xi{p.x[i] + p.vx[i] * ai, p.y[i] + p.vy[i] * ai, p.z[i] + p.vz[i] * ai};
-  const Vec3 vi = p.velocity(i);
+  const Vec3 xi{p.x[i] + (p.vx[i] + 0.5 * g_.x * ai) * ai,
+                p.y[i] + (p.vy[i] + 0.5 * g_.y * ai) * ai,
+                p.z[i] + (p.vz[i] + 0.5 * g_.z * ai) * ai};
+  const Vec3 vi = p.velocity(i) + g_ * ai;
   double best = t_end_;
   std::uint32_t partner = std::numeric_limits<std::uint32_t>::max();
-  // Pairs: [Deen07 eq. 45], written as c / (-b + sqrt(b^2 - v^2 c)) to avoid cancellation.
+  // Pairs: both fall with the same g, so their relative motion is a straight line and the
+  // collision time is [Deen07 eq. 45], written as c / (-b + sqrt(b^2 - v^2 c)) to avoid
+  // cancellation.
   for (std::uint32_t k = full_offset_[i]; k < full_offset_[i + 1]; ++k) {
     const std::uint32_t j = full_partner_[k];
     const double aj = now - clock_[j];
-    const Vec3 r{nl_.min_image(xi.x - (p.x[j] + p.vx[j] * aj), 0),
-                 nl_.min_image(xi.y - (p.y[j] + p.vy[j] * aj), 1),
-                 nl_.min_image(xi.z - (p.z[j] + p.vz[j] * aj), 2)};
-    const Vec3 v = vi - p.velocity(j);
+    const Vec3 r{nl_.min_image(xi.x - (p.x[j] + (p.vx[j] + 0.5 * g_.x * aj) * aj), 0),
+                 nl_.min_image(xi.y - (p.y[j] + (p.vy[j] + 0.5 * g_.y * aj) * aj), 1),
+                 nl_.min_image(xi.z - (p.z[j] + (p.vz[j] + 0.5 * g_.z * aj) * aj), 2)};
+    const Vec3 v = vi - (p.velocity(j) + g_ * aj);
     const double b = dot(r, v);
     if (b >= 0.0) continue; // moving apart
     const double sigma = p.radius[i] + p.radius[j];
     const double c = norm2(r) - sigma * sigma;
     double dt;
     if (c <= 0.0) {
-      dt = 0.0; // touching (round-off) and approaching: collide now
+      // Touching (round-off): collide now if approaching along the normal, judged with the
+      // same arithmetic as the collision operator so that both agree.
+      if (dot(v, r / norm(r)) >= 0.0) continue;
+      dt = 0.0;
     } else {
       const double disc = b * b - norm2(v) * c;
       if (disc < 0.0) continue; // miss
@@ -86,25 +93,41 @@ void HardSphereEngine::schedule(const ParticleStore& p, std::uint32_t i, double 
     }
     if (now + dt < best) best = now + dt, partner = j;
   }
-  // Walls [Hoomans96 eq. 31].
+  // Walls [Hoomans96 eq. 31], on the parabola: the gap d(t) = d0 + u t + g_n t^2 / 2 along the
+  // wall's inward normal (u, g_n: velocity and gravity towards the wall).
   const auto& box = nl_.box();
   for (int f = 0; f < 6; ++f) {
     if (!box.wall[f]) continue;
     const int a = f / 2;
-    const double va = vi[a];
-    double dt;
-    if (f % 2 == 0) {
-      if (va >= 0.0) continue;
-      dt = (xi[a] - box.lo[a] - p.radius[i]) / -va;
-    } else {
-      if (va <= 0.0) continue;
-      dt = (box.hi[a] - p.radius[i] - xi[a]) / va;
-    }
-    dt = std::max(dt, 0.0);
+    const double sign = (f % 2 == 0) ? -1.0 : 1.0; // towards the wall
+    const double u = sign * vi[a], gn = sign * g_[a];
+    const double gap =
+        (f % 2 == 0) ? xi[a] - box.lo[a] - p.radius[i] : box.hi[a] - p.radius[i] - xi[a];
+    const double dt = wall_time(gap, u, gn);
     if (now + dt < best) best = now + dt, partner = n + static_cast<std::uint32_t>(f);
   }
   if (partner == std::numeric_limits<std::uint32_t>::max()) return;
   push({best, i, partner, counter_[i], partner < n ? counter_[partner] : 0u});
+}
+
+double HardSphereEngine::wall_time(double gap, double u, double gn) const {
+  constexpr double never = std::numeric_limits<double>::infinity();
+  if (gap <= 0.0) { // touching (round-off)
+    if (u > 0.0) return 0.0;
+    if (gn <= 0.0) return never;
+    // Moving off (or at rest) and pulled back: it returns to the wall after 2 |u| / g_n. A
+    // particle at rest on the wall is given a minimal flight, so that it reaches the wall
+    // approaching (penetration g_n t^2 / 2, far below round-off of the position).
+    return std::max(-2.0 * u / gn, std::max(1e-3 * opts_.tc_time, 1e-9 * step_dt_));
+  }
+  // First root of gap - u t - g_n t^2 / 2 = 0 (distance s(t) = u t + g_n t^2/2 covered).
+  if (gn == 0.0) return u > 0.0 ? gap / u : never;
+  const double disc = u * u + 2.0 * gn * gap;
+  if (disc < 0.0) return never; // decelerates and turns before reaching it
+  // Stable form of (-u + sqrt(disc)) / g_n.
+  const double root = u + std::sqrt(disc);
+  if (root <= 0.0) return never; // moving away and pushed away
+  return 2.0 * gap / root;
 }
 
 void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
@@ -112,8 +135,7 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
   const std::uint32_t a = ev.a, b = ev.b;
   const bool wall = b >= n;
   auto move_to = [&](std::uint32_t i) {
-    const double dt = ev.t - clock_[i];
-    p.x[i] += p.vx[i] * dt, p.y[i] += p.vy[i] * dt, p.z[i] += p.vz[i] * dt;
+    advance_particle(p, i, ev.t - clock_[i]);
     clock_[i] = ev.t;
   };
   auto body = [&](std::uint32_t i) {
@@ -142,10 +164,20 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
     law = wall_law_[p.species[a] * 6 + f];
   }
   const double e_before = kinetic(ba, a) + (wall ? 0.0 : kinetic(bb, b));
-  hardsphere::CollisionLaw used = law;
-  if (recent && law.e_n < 1.0) used.e_n = 1.0; // TC model
+  // TC model [Luding & McNamara 1998]: a collision within tc_time of a partner's previous one
+  // dissipates nothing (e_n = 1 and smooth, so friction cannot drain the energy either), and
+  // neither does one slower than elastic_below along the normal (McNamara & Falcon 2005);
+  // the energy the real law would have taken is booked in tc_energy_kept.
+  const bool dissipative = law.e_n < 1.0 || law.mu > 0.0;
+  const bool slow = std::abs(dot(ba.v - bb.v, normal)) < elastic_below_;
+  const bool tc = dissipative && (recent || slow);
+  const hardsphere::CollisionLaw used = tc ? hardsphere::CollisionLaw{1.0, 0.0, 0.0} : law;
+  hardsphere::Body ra = ba, rb = bb; // for the energy the real law would have dissipated
   const auto res = hardsphere::collide(ba, bb, normal, used);
-  if (!res.approaching) { // grazing after round-off: nothing to do, look again
+  if (!res.approaching) {
+    // Grazing after round-off: nothing to do. Count it toward the stall guard, so that a
+    // disagreement between scheduler and operator can never loop forever, and look again.
+    ++stats_.events_last_step;
     schedule(p, a, ev.t);
     return;
   }
@@ -157,13 +189,10 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
   if (!wall) store(b, bb);
   const double e_after = kinetic(ba, a) + (wall ? 0.0 : kinetic(bb, b));
   stats_.dissipated += e_before - e_after;
-  if (used.e_n != law.e_n) {
-    ++stats_.tc_elastic;
-    // What the inelastic collision would have removed: (1 - e^2) of the normal relative energy.
-    const double inv_mn = ba.inv_m + bb.inv_m;
-    const double jn = dot(res.impulse, normal); // = 2 m_n |v_n| for e_n = 1
-    const double vn = 0.5 * jn * inv_mn;
-    stats_.tc_energy_kept += 0.5 / inv_mn * vn * vn * (1.0 - law.e_n * law.e_n);
+  if (tc) {
+    ++(recent ? stats_.tc_elastic : stats_.slow_elastic);
+    hardsphere::collide(ra, rb, normal, law);
+    stats_.tc_energy_kept += e_before - kinetic(ra, a) - (wall ? 0.0 : kinetic(rb, b));
   }
   ++stats_.collisions;
   ++stats_.events_last_step;
@@ -197,28 +226,52 @@ void HardSphereEngine::check_no_overlap(const ParticleStore& p, double time) con
     }
 }
 
-void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
-                               const std::array<double, 3>& accel) {
+void HardSphereEngine::advance_particle(ParticleStore& p, std::uint32_t i, double a) const {
+  p.x[i] += (p.vx[i] + 0.5 * g_.x * a) * a;
+  p.y[i] += (p.vy[i] + 0.5 * g_.y * a) * a;
+  p.z[i] += (p.vz[i] + 0.5 * g_.z * a) * a;
+  p.vx[i] += g_.x * a, p.vy[i] += g_.y * a, p.vz[i] += g_.z * a;
+}
+
+void HardSphereEngine::update_neighbour_list(const ParticleStore& p, double dt) {
+  // The list must hold every pair that can meet before the end of the step: a particle moves
+  // at most s = 1.5 (v_max + |g| DT) DT in one step [Deen07 eq. 44] (the 1.5 allows for
+  // collisions speeding it up), so the list built with skin `skin` stays valid while the
+  // largest displacement since the build plus s is below skin / 2. It is rebuilt, with a skin
+  // of 8 s (valid for about four steps), only when that fails.
   const std::size_t n = p.size();
-  const double h = 0.5 * dt;
-  auto kick = [&]() {
-    for (std::size_t i = 0; i < n; ++i) {
-      p.vx[i] += h * accel[0];
-      p.vy[i] += h * accel[1];
-      p.vz[i] += h * accel[2];
-    }
-  };
-  kick();
-  // Neighbour list bounded by [Deen07 eq. 44] with a 1.5 safety factor on the velocity term
-  // (collisions can speed a particle up within the step).
-  double vmax = 0.0, rmin = std::numeric_limits<double>::infinity();
+  double vmax = 0.0, rmin = std::numeric_limits<double>::infinity(), moved2 = 0.0;
+  const bool have = built_x_.size() == n;
   for (std::size_t i = 0; i < n; ++i) {
     vmax = std::max(vmax, std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]));
     rmin = std::min(rmin, p.radius[i]);
+    if (have) {
+      const double dx = nl_.min_image(p.x[i] - built_x_[i], 0);
+      const double dy = nl_.min_image(p.y[i] - built_y_[i], 1);
+      const double dz = nl_.min_image(p.z[i] - built_z_[i], 2);
+      moved2 = std::max(moved2, dx * dx + dy * dy + dz * dz);
+    }
   }
-  nl_.set_skin(3.0 * vmax * dt + 1e-3 * rmin);
+  rmin_ = rmin;
+  const double step = 1.5 * (vmax + norm(g_) * dt) * dt;
+  if (have && std::sqrt(moved2) + step <= 0.5 * nl_.skin()) return;
+  nl_.set_skin(std::max(8.0 * step, 1e-3 * rmin));
   nl_.build(p);
   build_full_list(p);
+  built_x_ = p.x, built_y_ = p.y, built_z_ = p.z;
+  ++list_builds_;
+}
+
+void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
+                               const std::array<double, 3>& accel) {
+  const std::size_t n = p.size();
+  g_ = Vec3{accel[0], accel[1], accel[2]};
+  step_dt_ = dt;
+  update_neighbour_list(p, dt);
+  // Default: the impact speed after a fall through a thousandth of the smallest diameter,
+  // sqrt(2 |g| 1e-3 d_min): a bed whose gaps are below that is at rest for every purpose.
+  elastic_below_ =
+      opts_.elastic_below ? *opts_.elastic_below : std::sqrt(2.0 * norm(g_) * 1e-3 * 2.0 * rmin_);
 
   clock_.assign(n, time);
   counter_.resize(n, 0);
@@ -242,28 +295,27 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
     if (stats_.events_last_step > limit) {
       throw InstabilityError(fmt::format(
           "hard-sphere run stalled at t = {:.9g} s: more than {} collisions per particle in one "
-          "flow step (inelastic collapse); raise hardsphere.tc_time or reduce the time step",
+          "flow step (inelastic collapse); raise hardsphere.tc_time or hardsphere.elastic_below",
           ev.t, opts_.max_events_per_particle));
     }
   }
-  // Everybody to the end of the step; periodic axes wrapped.
+  // Everybody to the end of the step; periodic axes wrapped (the list's reference positions
+  // with them, so that displacements stay minimum-image).
   const auto& box = nl_.box();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double a = t_end_ - clock_[i];
-    p.x[i] += p.vx[i] * a, p.y[i] += p.vy[i] * a, p.z[i] += p.vz[i] * a;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    advance_particle(p, i, t_end_ - clock_[i]);
     double* q[3] = {&p.x[i], &p.y[i], &p.z[i]};
     for (int ax = 0; ax < 3; ++ax)
       if (box.periodic[ax])
         *q[ax] -= box.length(ax) * std::floor((*q[ax] - box.lo[ax]) / box.length(ax));
   }
-  kick();
   check_no_overlap(p, t_end_);
 }
 
 std::size_t HardSphereEngine::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return nl_.bytes() + b(full_offset_) + b(full_partner_) + b(clock_) + b(last_collision_) +
-         b(counter_) + b(heap_);
+         b(counter_) + b(heap_) + b(built_x_) + b(built_y_) + b(built_z_);
 }
 
 } // namespace fluidem

@@ -1,16 +1,23 @@
 // Event-driven hard-sphere engine [Hoomans96 §2-3, Fig. 3; Deen07 §2.1, §4].
-// One flow step DT: external accelerations (gravity, later drag) change the velocities in two
-// half kicks around the collision sequence (kick-drift-kick, so that free flight under gravity
-// is exact at the DT boundaries; [Hoomans96 eq. 33] applies the whole kick at once); between the
-// kicks the particles fly straight and collide pairwise, event by event:
+// One flow step DT: the particles fly on parabolas under the uniform acceleration (gravity),
+// exactly, and collide pairwise, event by event. (Hoomans96 moves them on straight lines and
+// applies gravity as one velocity update per DT [Hoomans96 eq. 33]; that changes the velocity
+// at each collision by up to g DT and, in a settled bed, pumps energy in at ~M g^2 DT per
+// second. Particle-specific forces such as drag are applied outside, once per DT, as in the
+// paper.) Pairs fall together, so their relative motion stays a straight line:
 //  - neighbour lists bounded by R_a + R_max + 2 v_max DT [Deen07 eq. 44] (here with a safety
-//    factor 1.5 on the velocity term), rebuilt from the cell grid every DT;
+//    factor 1.5 and gravity's contribution to the velocity), built from the cell grid with a
+//    skin for several steps and rebuilt when the displacements since the build need it;
 //  - pair collision times [Deen07 eq. 45] and wall collision times [Hoomans96 eq. 31];
 //  - a priority queue holding each particle's earliest event; events made stale by a collision
 //    are recognised by per-particle collision counters; lazy particle clocks move only the
 //    colliding pair [Deen07 §4];
-//  - the TC model of Luding & McNamara (1998) against inelastic collapse: a collision of a
-//    particle within tc_time of its previous one is elastic in the normal direction.
+//  - against inelastic collapse, two rules that switch dissipation off (e_n = 1, smooth): the
+//    TC model of Luding & McNamara (1998), for a collision of a particle within tc_time of its
+//    previous one, and a low impact speed (normal speed < elastic_below), since the restitution
+//    of real spheres tends to 1 at vanishing speed (McNamara & Falcon 2005). With exact gravity
+//    the second keeps a bed at rest from cooling into ever faster micro-collisions: its
+//    collision rate stays near g / elastic_below per contact.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -27,9 +34,10 @@ struct HardSphereStats {
   long collisions = 0;         ///< cumulative, particle-particle and particle-wall
   long wall_collisions = 0;    ///< cumulative
   long tc_elastic = 0;         ///< cumulative collisions made elastic by the TC model
+  long slow_elastic = 0;       ///< ... and by the low-impact-speed rule (elastic_below)
   long events_last_step = 0;   ///< events (valid collisions) in the last DT
   double dissipated = 0.0;     ///< cumulative kinetic energy lost in collisions, J
-  double tc_energy_kept = 0.0; ///< cumulative energy the TC model kept from being dissipated, J
+  double tc_energy_kept = 0.0; ///< cumulative energy both rules kept from being dissipated, J
 };
 
 class HardSphereEngine {
@@ -37,12 +45,14 @@ public:
   HardSphereEngine(const CaseSpec& spec, const BoxGeometry& box);
 
   /// Advance the particles over one flow step from `time` to `time + dt` under the uniform
-  /// acceleration `accel`. Throws InstabilityError when the events per particle in one step
-  /// exceed hardsphere.max_events_per_particle (a stall) or a collision was missed (overlap).
+  /// acceleration `accel` (exact parabolic flight). Throws InstabilityError when the events per
+  /// particle in one step exceed hardsphere.max_events_per_particle (a stall) or a collision was
+  /// missed (overlap).
   void advance(ParticleStore& p, double time, double dt, const std::array<double, 3>& accel);
 
   const HardSphereStats& stats() const { return stats_; }
   std::size_t bytes() const;
+  long list_builds() const { return list_builds_; }
 
 private:
   struct Event {
@@ -55,6 +65,11 @@ private:
   };
 
   void build_full_list(const ParticleStore& p);
+  void update_neighbour_list(const ParticleStore& p, double dt);
+  void advance_particle(ParticleStore& p, std::uint32_t i, double a) const;
+  /// Time until a particle at distance `gap` from a wall, moving towards it at `u` and
+  /// accelerated towards it at `gn`, touches it (infinity if never).
+  double wall_time(double gap, double u, double gn) const;
   void schedule(const ParticleStore& p, std::uint32_t i, double now);
   void process(ParticleStore& p, const Event& ev);
   void push(const Event& ev);
@@ -69,7 +84,10 @@ private:
   std::vector<double> clock_, last_collision_;
   std::vector<std::uint32_t> counter_;
   std::vector<Event> heap_;
-  double t_end_ = 0.0;
+  std::vector<double> built_x_, built_y_, built_z_; ///< positions at the last list build
+  long list_builds_ = 0;
+  Vec3 g_;
+  double t_end_ = 0.0, step_dt_ = 0.0, elastic_below_ = 0.0, rmin_ = 0.0;
   HardSphereStats stats_;
 };
 

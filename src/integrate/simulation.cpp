@@ -262,9 +262,10 @@ RunSummary Simulation::run(const std::string& out_dir,
                                    "neighbour_builds"};
   if (hard_) {
     // n_contacts is then the number of collisions in the last flow step; n_collisions is
-    // cumulative; n_tc_elastic counts collisions the TC model made elastic and e_tc_kept the
-    // energy they would have dissipated.
-    columns.insert(columns.end(), {"n_collisions", "n_tc_elastic", "e_tc_kept"});
+    // cumulative; n_tc_elastic and n_slow_elastic count collisions the TC model and the
+    // low-speed rule made elastic (cumulative), e_tc_kept the energy they would have
+    // dissipated; neighbour_builds counts the hard-sphere engine's list builds.
+    columns.insert(columns.end(), {"n_collisions", "n_tc_elastic", "n_slow_elastic", "e_tc_kept"});
   }
   SeriesWriter series((fs::path(out_dir) / "series.csv").string(), columns);
   std::vector<double> frame_times;
@@ -304,9 +305,9 @@ RunSummary Simulation::run(const std::string& out_dir,
       if (hard_) {
         const auto& h = hard_->stats();
         row[7] = static_cast<double>(h.events_last_step);
-        row[9] = static_cast<double>(step_); // the hard-sphere list is rebuilt every flow step
+        row[9] = static_cast<double>(hard_->list_builds());
         row.insert(row.end(), {static_cast<double>(h.collisions), static_cast<double>(h.tc_elastic),
-                               h.tc_energy_kept});
+                               static_cast<double>(h.slow_elastic), h.tc_energy_kept});
       }
       series.write_row(row);
     }
@@ -353,7 +354,7 @@ RunSummary Simulation::run(const std::string& out_dir,
       p_.size() ? (p_.bytes() + nl_->bytes() + (hard_ ? hard_->bytes() : 0)) / p_.size() : 0;
   if (hard_) {
     s.collisions = hard_->stats().collisions;
-    s.neighbour_builds = s.steps;
+    s.neighbour_builds = hard_->list_builds();
   }
   const Energies e = energies();
   s.energy_drift =

@@ -94,7 +94,7 @@ const Keys& neighbour_keys() {
   return k;
 }
 const Keys& hardsphere_keys() {
-  static const Keys k = {"tc_time", "max_events_per_particle"};
+  static const Keys k = {"tc_time", "elastic_below", "max_events_per_particle"};
   return k;
 }
 /// Keys of a top-level table section (species and insert are arrays of tables).
@@ -926,6 +926,7 @@ private:
   void read_hardsphere(const toml::table* t) {
     HardSphereSpec& h = spec_.hardsphere;
     opt_number(t, "hardsphere", "tc_time", {Bound::NonNegative, "s"}, h.tc_time);
+    auto_number(t, "hardsphere", "elastic_below", {Bound::NonNegative, "m/s"}, h.elastic_below);
     opt_number(t, "hardsphere", "max_events_per_particle", {Bound::AtLeastOne, ""},
                h.max_events_per_particle);
   }

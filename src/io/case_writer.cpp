@@ -177,6 +177,7 @@ std::string write_case_toml(const CaseSpec& spec) {
   const HardSphereSpec& h = spec.hardsphere;
   os << "\n[hardsphere]\n"
      << "tc_time = " << format_double(h.tc_time) << "  # s\n"
+     << "elastic_below = " << auto_or(h.elastic_below) << "  # m/s\n"
      << "max_events_per_particle = " << format_double(h.max_events_per_particle) << "\n";
   return os.str();
 }

@@ -8,24 +8,14 @@
 //     losing 1/2 m_ab (1 - e^2) (v_a - v_b)^2 [Hoomans96 eq. 23 with v_t = 0]. The collision
 //     time is read back from the positions at the end of the step (x = x0 + v t* + v' (T - t*)).
 //     Tolerances: t* within 1e-12 s (1e-8 DT), velocities 1e-12 relative, energy 1e-10.
-// (b) A sphere dropped from rest onto the floor under gravity, DT = 1e-4 s. The engine's flow
-//     step is kick-drift-kick: v += g DT/2; straight flight with exact collision events;
-//     v += g DT/2. Free flight is then exact at the step ends, so the apex height
-//     H = z - R + v_z^2 / (2g) of a flight is constant (to round-off, 1e-10 relative over a
-//     flight of ~1400 steps) and measurable at any step end. A bounce inside a step is not exact:
-//     with the half-kicked velocity v_h and the event at a fraction s of the step (derived here),
-//     the energy after the bounce step differs from e^2 times the energy before by g v_h e (1 + e)
-//     (s - DT/2) + O(g^2 DT^2), i.e. relatively
-//       |H_{k+1} / (e^2 H_k) - 1| <= (1 + e) g DT / (e v_imp),   v_imp = sqrt(2 g H_k)   (*)
-//     - first order in DT, 1.4e-3 for e = 1 and a 10 cm drop.
-//     e = 1: the kick-drift-kick step with an elastic reflection is time-reversible, and every
-//     apex falls exactly on a step end (the bounce step turns v_h = -g (k + 1/2) DT into
-//     v = +g k DT), so the flight after apex j+1 mirrors the one before it: H_{j+2} = H_j. The
-//     apex heights alternate between H_0 (exactly, tested to 1e-9 relative over 100 bounces:
-//     no drift) and H_1 (within (*)). A 1e-6 energy tolerance per bounce is NOT attainable
-//     with this scheme at DT = 1e-4 (see the printed deviation).
-//     e = 0.8: every ratio H_{k+1}/H_k within (*) of e^2, and within 1% of e^2 for the first 8
-//     bounces of a 20 cm drop (where (*) < 0.7%).
+// (b) A sphere dropped from rest onto the floor under gravity, DT = 1e-4 s. The engine flies
+//     particles on exact parabolas and finds the wall contact as the root of the gap's
+//     quadratic, so each bounce happens at the true instant with the true impact velocity:
+//     the apex height H = z - R + v_z^2 / (2g) after bounce k is e^(2k) H_0 exactly (Newton:
+//     v' = -e v at the floor, energy conserved in flight). Tolerances: e = 1, 100 bounces
+//     (~29 s simulated): every apex within 1e-9 relative of H_0 (round-off of ~3e5 steps);
+//     e = 0.8: every ratio H_{k+1} / H_k = e^2 within 1e-9 relative; within a flight H is
+//     constant to 1e-10.
 // (c) An elastic, frictionless (e = 1, mu = 0) 3-D hard-sphere gas, 2000 spheres at packing 0.2
 //     in a fully periodic box, no gravity: every collision conserves kinetic energy and linear
 //     momentum exactly in exact arithmetic, so after 100 flow steps the kinetic energy is
@@ -38,14 +28,16 @@
 //     random-sequential positions, within 5% (the counting noise of ~3500 events is 1.7%; a
 //     missed event would also show up as an overlap).
 // (d) Settled dense beds, e = 0.9, mu = 0.3 (particles and walls): 300 discs (2-D) and 1000
-//     spheres (3-D) poured from rest and settled (e_kin < 1e-5 e_pot), then run for 0.2 s. The
-//     run must finish (no InstabilityError: no overlap, no stall beyond
-//     max_events_per_particle) and the collision rate must stay below 2e6 per particle per
-//     second of simulated time (derivation at kRateBound; measured values printed). Also
-//     printed: how fast e_dsp grows in the settled bed. A resting particle meets its support at
-//     the start of each step (s = 0 in (*)), so every step the bounce error injects
-//     ~e (1 + e) g^2 DT^2 / 4 per unit mass, which the collisions then dissipate: e_dsp grows at
-//     ~e (1 + e) g^2 DT / 4 = 4-5e-3 W/kg while the bed is at rest.
+//     spheres (3-D) poured from rest and settled, then run for 1 s. The run must finish (no
+//     InstabilityError: no overlap, no stall beyond max_events_per_particle) and the
+//     collision rate must stay below 2e6 per particle per second of simulated time
+//     (derivation at kRateBound; measured values printed). Settled means e_kin below 1e-3 of
+//     the bed's potential energy: with exact gravity a bed never comes to rest in a
+//     hard-sphere model; it rattles with impact speeds near hardsphere.elastic_below
+//     (8.9 mm/s here), below which collisions are elastic, i.e. e_kin ~ N m v^2 / 2 ~ 2e-4
+//     e_pot for these beds. The 2-D container is 16.5 diameters wide: a width of exactly 16
+//     lets a row of discs span it with zero slack, a rigid jam in which hard spheres collide
+//     infinitely often (the stall guard then stops the run).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -227,21 +219,16 @@ TEST(HardSphereEngine, ElasticBounceKeepsTheApexHeight) {
   ASSERT_EQ(b.apex.size(), 101u);
   const double h0 = b.apex[0];
   EXPECT_NEAR(h0, 0.1, 1e-15);
-  const double bound = 2.0 * kG * kDT / std::sqrt(2.0 * kG * h0); // (*) with e = 1
-  double even = 0.0, odd = 0.0;
+  double worst = 0.0;
   for (std::size_t k = 1; k < b.apex.size(); ++k) {
     const double dev = b.apex[k] / h0 - 1.0;
-    (k % 2 == 0 ? even : odd) = std::max(k % 2 == 0 ? even : odd, std::abs(dev));
-    if (k % 2 == 0) {
-      EXPECT_NEAR(dev, 0.0, 1e-9) << "apex " << k << ": time reversibility (no drift)";
-    }
-    EXPECT_LE(std::abs(dev), bound) << "apex " << k << ": first-order bounce error (*)";
+    worst = std::max(worst, std::abs(dev));
+    EXPECT_NEAR(dev, 0.0, 1e-9) << "apex " << k;
   }
-  std::cout << fmt::format("elastic bounce, 100 bounces from {} m: apex deviation even flights "
-                           "{:.3e}, odd flights {:.3e} (bound (*) {:.3e}); within a flight "
-                           "{:.3e}\n",
-                           h0, even, odd, bound, b.max_drift_in_flight);
-  EXPECT_LE(b.max_drift_in_flight, 1e-10) << "free flight is exact at the step ends";
+  std::cout << fmt::format("elastic bounce, 100 bounces from {} m: largest apex deviation "
+                           "{:.3e}; within a flight {:.3e}\n",
+                           h0, worst, b.max_drift_in_flight);
+  EXPECT_LE(b.max_drift_in_flight, 1e-10) << "free flight is exact";
 }
 
 TEST(HardSphereEngine, InelasticBounceApexRatioIsESquared) {
@@ -251,11 +238,8 @@ TEST(HardSphereEngine, InelasticBounceApexRatioIsESquared) {
   std::string line;
   for (std::size_t k = 0; k + 1 < b.apex.size(); ++k) {
     const double ratio = b.apex[k + 1] / b.apex[k];
-    const double v_imp = std::sqrt(2.0 * kG * b.apex[k]);
-    const double bound = 1.01 * (1.0 + e) * kG * kDT / (e * v_imp); // (*), 1% for O(DT^2)
-    line += fmt::format(" {:.5f}", ratio / (e * e));
-    EXPECT_NEAR(ratio / (e * e), 1.0, bound) << "bounce " << k << ": (*)";
-    EXPECT_NEAR(ratio, e * e, 0.01 * e * e) << "bounce " << k;
+    line += fmt::format(" {:.12f}", ratio / (e * e));
+    EXPECT_NEAR(ratio / (e * e), 1.0, 1e-9) << "bounce " << k;
   }
   std::cout << "inelastic bounce e = 0.8: H_{k+1} / (e^2 H_k) =" << line << "\n";
   EXPECT_LE(b.max_drift_in_flight, 1e-10);
@@ -338,14 +322,14 @@ TEST(HardSphereEngine, ElasticGasConservesEnergyAndMomentum) {
 
 struct BedRun {
   double rate = 0.0;                   // collisions per particle per second of simulated time
-  double tc_fraction = 0.0;            // share of those made elastic by the TC model
-  double seconds = 0.0;                // wall-clock time of the measured 0.2 s
+  double tc_fraction = 0.0;            // share made elastic (TC model or low impact speed)
+  double seconds = 0.0;                // wall-clock time of the measured 1 s
   double kinetic_over_potential = 0.0; // e_kin / e_pot (above z = 0) at the end of settling
-  double heating = 0.0;                // d(e_dsp)/dt per unit mass over the measured 0.2 s, W/kg
+  double heating = 0.0;                // d(e_dsp)/dt per unit mass over the measured 1 s, W/kg
 };
 
 /// Pour `count` particles from rest (random positions below z_fill), let them settle for
-/// `settle` s, then run 0.2 s and measure.
+/// `settle` s, then run 1 s and measure.
 BedRun bed(int dimension, long count, const std::array<double, 3>& hi, double z_fill,
            double settle) {
   const std::string text =
@@ -361,56 +345,52 @@ BedRun bed(int dimension, long count, const std::array<double, 3>& hi, double z_
   EXPECT_NO_THROW(sim.advance(std::lround(settle / kDT))) << "settling";
   r.kinetic_over_potential = sim.energies().kinetic / sim.energies().potential;
   const auto& st = sim.hard_sphere()->stats();
-  const long c0 = st.collisions, tc0 = st.tc_elastic;
+  const long c0 = st.collisions, tc0 = st.tc_elastic + st.slow_elastic;
   const double d0 = st.dissipated;
   const auto t0 = std::chrono::steady_clock::now();
-  EXPECT_NO_THROW(sim.advance(std::lround(0.2 / kDT))) << "measured 0.2 s";
+  EXPECT_NO_THROW(sim.advance(std::lround(1.0 / kDT))) << "measured 1 s";
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.rate = static_cast<double>(st.collisions - c0) / (0.2 * static_cast<double>(count));
-  r.tc_fraction =
-      static_cast<double>(st.tc_elastic - tc0) / static_cast<double>(st.collisions - c0);
-  r.heating = (st.dissipated - d0) / (0.2 * mass);
-  EXPECT_NEAR(sim.time(), settle + 0.2, 1e-9);
+  r.rate = static_cast<double>(st.collisions - c0) / static_cast<double>(count);
+  r.tc_fraction = static_cast<double>(st.tc_elastic + st.slow_elastic - tc0) /
+                  static_cast<double>(st.collisions - c0);
+  r.heating = (st.dissipated - d0) / mass;
+  EXPECT_NEAR(sim.time(), settle + 1.0, 1e-9);
   return r;
 }
 
 void report_bed(const std::string& name, const BedRun& r) {
   std::cout << fmt::format("settled bed {}: e_kin/e_pot at the end of settling {:.2e}; {:.4g} "
                            "collisions per particle per second ({:.3g} per particle per step, "
-                           "{:.1f}% made elastic by the TC model); e_dsp grows by {:.3g} W/kg "
-                           "(kick-drift-kick estimate e(1+e) g^2 DT / 4 = {:.3g}-{:.3g}); "
-                           "{:.1f} s wall-clock for 0.2 s\n",
+                           "{:.1f}% made elastic by the TC model or the low-speed rule); e_dsp "
+                           "grows by {:.3g} W/kg; {:.1f} s wall-clock for 1 s\n",
                            name, r.kinetic_over_potential, r.rate, r.rate * kDT,
-                           100.0 * r.tc_fraction, r.heating, 0.9 * 1.9 * kG * kG * kDT / 4.0,
-                           2.0 * kG * kG * kDT / 4.0, r.seconds);
+                           100.0 * r.tc_fraction, r.heating, r.seconds);
 }
 
-// Bound on the collision rate. In the event-driven scheme a bed at rest is not at rest: every
-// half kick pushes each particle into its supports (g DT / 2 = 5e-4 m/s), the bottom layer
-// bounces off the floor and the momentum cascades up through the bed and back, mostly by
-// collisions the TC model makes elastic. Measured (DT = 1e-4 s): ~50 collisions per particle
-// per step in the 18-layer 2-D bed, ~100 in the ~9-layer 3-D bed, i.e. 5e5 and 1e6 per particle
-// per second. The bound, 2e6 per particle per second = 200 per particle per step, is a fifth of
-// the stall guard (max_events_per_particle = 1000 per step): it fails on about a doubling of
-// the measured rate (e.g. repeated zero-time events), long before the run would stall.
-// Settled: e_kin below 1e-5 of the bed's potential energy at the end of settling.
+// Bound on the collision rate. A bed "at rest" still rattles: its particles hop on their
+// supports with impact speeds near elastic_below (v = 8.9 mm/s here), a contact being hit about
+// g / v ~ 1e3 times per second. Measured (DT = 1e-4 s): see the printed rates (~2e4 per particle
+// per second in the 2-D bed, ~4e4 in the 3-D bed). The bound, 2e6 per particle per second = 200
+// per particle per step, is a fifth of the stall guard (max_events_per_particle = 1000 per
+// step): it fails on a fifty-fold rise of the rate (e.g. repeated zero-time events), long
+// before the run would stall.
+// Settled: e_kin below 1e-3 of the bed's potential energy at the end of settling (see (d)).
 constexpr double kRateBound = 2.0e6;
 
 TEST(HardSphereEngine, Settled2DBedRunsWithABoundedCollisionRate) {
-  // 300 discs in a 16 d wide container (Hoomans96 §5.1 set-up, smaller): ~18 layers.
-  const BedRun r = bed(2, 300, {0.064, kD, 0.2}, 0.2, 0.6);
+  // 300 discs in a 16.5 d wide container (Hoomans96 §5.1 set-up, smaller): ~18 layers.
+  const BedRun r = bed(2, 300, {0.066, kD, 0.2}, 0.2, 0.6);
   report_bed("2-D, 300 discs", r);
-  EXPECT_LT(r.kinetic_over_potential, 1e-5) << "not settled";
+  EXPECT_LT(r.kinetic_over_potential, 1e-3) << "not settled";
   EXPECT_GT(r.rate, 0.0);
   EXPECT_LT(r.rate, kRateBound);
 }
 
 TEST(HardSphereEngine, Settled3DBedRunsWithABoundedCollisionRate) {
   // 1000 spheres on a 10 d x 10 d floor: ~9 layers. Poured from below 8 cm to shorten the fall.
-  // Slow (~3-4 minutes): ~1e5 events per flow step once settled.
   const BedRun r = bed(3, 1000, {0.04, 0.04, 0.2}, 0.08, 0.5);
   report_bed("3-D, 1000 spheres", r);
-  EXPECT_LT(r.kinetic_over_potential, 1e-5) << "not settled";
+  EXPECT_LT(r.kinetic_over_potential, 1e-3) << "not settled";
   EXPECT_GT(r.rate, 0.0);
   EXPECT_LT(r.rate, kRateBound);
 }
