@@ -1,8 +1,8 @@
 // Joint Ergun / Wen-Yu correlation of [Chang08 §2.1, the equations between eq. 2.7 and 2.8]
 // (the report's numbering of these lines is lost in the extraction).
 //
-// Chang08 writes both correlations for Q = beta d^2 eps / ((1 - eps) mu), Re_p = eps rho |u-v| d/mu,
-// with Wen-Yu's exponent -2.7 (C_d' = C_d eps^-4.7 on the superficial velocity):
+// Chang08 writes both correlations for Q = beta d^2 eps / ((1 - eps) mu), Re_p = eps rho |u-v|
+// d/mu, with Wen-Yu's exponent -2.7 (C_d' = C_d eps^-4.7 on the superficial velocity):
 //   Ergun [Hoomans96 eq. 45]:  Q = 150 (1 - eps)          + 1.75 Re_p
 //   Wen-Yu (Re_p < 1000):      Q = 18 eps^-1.7            + 2.7 Re_p^0.687 eps^-1.7
 //   Wen-Yu (Re_p >= 1000):     Q = 0                      + 0.33 Re_p eps^-1.7

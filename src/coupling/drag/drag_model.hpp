@@ -45,27 +45,38 @@ enum class DragModel {
 
 /// All models, in the order of the enum (for listings and tests).
 inline constexpr std::array<DragModel, 11> all_drag_models = {
-    DragModel::ergun,          DragModel::wen_yu,           DragModel::wen_yu_single,
-    DragModel::ergun_wen_yu,   DragModel::ergun_wen_yu_min, DragModel::hill_koch_ladd,
-    DragModel::beetstra,       DragModel::beetstra_poly,    DragModel::di_felice,
-    DragModel::koch_hill,      DragModel::chang_joint};
+    DragModel::ergun,        DragModel::wen_yu,           DragModel::wen_yu_single,
+    DragModel::ergun_wen_yu, DragModel::ergun_wen_yu_min, DragModel::hill_koch_ladd,
+    DragModel::beetstra,     DragModel::beetstra_poly,    DragModel::di_felice,
+    DragModel::koch_hill,    DragModel::chang_joint};
 
 /// Calls f(Closure{}) with the closure type of m; returns what f returns. The switch runs once;
 /// inside f the closure's functions are known at compile time.
 template <class F>
 decltype(auto) with_drag_closure(DragModel m, F&& f) {
   switch (m) {
-  case DragModel::ergun: return f(Ergun{});
-  case DragModel::wen_yu: return f(WenYu{});
-  case DragModel::wen_yu_single: return f(WenYuSingle{});
-  case DragModel::ergun_wen_yu: return f(ErgunWenYuSwitch{});
-  case DragModel::ergun_wen_yu_min: return f(ErgunWenYuMin{});
-  case DragModel::hill_koch_ladd: return f(HillKochLadd{});
-  case DragModel::beetstra: return f(Beetstra{});
-  case DragModel::beetstra_poly: return f(BeetstraPoly{});
-  case DragModel::di_felice: return f(DiFelice{});
-  case DragModel::koch_hill: return f(KochHill{});
-  case DragModel::chang_joint: return f(ChangJoint{});
+  case DragModel::ergun:
+    return f(Ergun{});
+  case DragModel::wen_yu:
+    return f(WenYu{});
+  case DragModel::wen_yu_single:
+    return f(WenYuSingle{});
+  case DragModel::ergun_wen_yu:
+    return f(ErgunWenYuSwitch{});
+  case DragModel::ergun_wen_yu_min:
+    return f(ErgunWenYuMin{});
+  case DragModel::hill_koch_ladd:
+    return f(HillKochLadd{});
+  case DragModel::beetstra:
+    return f(Beetstra{});
+  case DragModel::beetstra_poly:
+    return f(BeetstraPoly{});
+  case DragModel::di_felice:
+    return f(DiFelice{});
+  case DragModel::koch_hill:
+    return f(KochHill{});
+  case DragModel::chang_joint:
+    return f(ChangJoint{});
   }
   return f(Ergun{}); // unreachable: every enumerator is handled above
 }

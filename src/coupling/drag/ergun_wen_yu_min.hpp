@@ -7,8 +7,8 @@
 //
 // Single-particle limit: NONE at low Re_p. As eps -> 1, K_Ergun -> 1.75 rho |u - v| / d while
 // K_WenYu -> 18 mu / d^2 (1 + 0.15 Re^0.687), so Ergun is the smaller one whenever
-// 1.75 Re_p < 18 (1 + 0.15 Re_p^0.687), i.e. for Re_p below about 24 (23.97): there min -> Ergun and
-// F -> 1.75 Re_p / 18 -> 0, not 1. It is a closure for beds, not for isolated particles.
+// 1.75 Re_p < 18 (1 + 0.15 Re_p^0.687), i.e. for Re_p below about 24 (23.97): there min -> Ergun
+// and F -> 1.75 Re_p / 18 -> 0, not 1. It is a closure for beds, not for isolated particles.
 #pragma once
 #include <algorithm>
 

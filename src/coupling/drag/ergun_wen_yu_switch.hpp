@@ -18,9 +18,7 @@ struct ErgunWenYuSwitch {
   static constexpr double eps_switch = 0.8; ///< [Hoomans96 §3.2.2]
   static void validate(const DragInput& in) { validate_drag_input(in, name); }
 
-  static double k(const DragInput& in) {
-    return in.eps < eps_switch ? Ergun::k(in) : WenYu::k(in);
-  }
+  static double k(const DragInput& in) { return in.eps < eps_switch ? Ergun::k(in) : WenYu::k(in); }
   static double beta(const DragInput& in) { return beta_from_k(k(in), in.eps); }
 };
 

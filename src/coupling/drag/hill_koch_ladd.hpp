@@ -38,8 +38,7 @@ struct HillKochLadd {
   /// Koch & Hill's Stokes-flow drag of a random array, phi = solids fraction (< 0.4 branch).
   static double f0_dilute(double phi) {
     const double phi_ln_phi = phi > 0.0 ? phi * std::log(phi) : 0.0;
-    return (1.0 + 3.0 / std::sqrt(2.0) * std::sqrt(phi) + 135.0 / 64.0 * phi_ln_phi +
-            16.14 * phi) /
+    return (1.0 + 3.0 / std::sqrt(2.0) * std::sqrt(phi) + 135.0 / 64.0 * phi_ln_phi + 16.14 * phi) /
            (1.0 + 0.681 * phi - 8.48 * phi * phi + 8.16 * phi * phi * phi);
   }
 

@@ -74,8 +74,10 @@ inline TerminalVelocity terminal_velocity(const TerminalVelocityInput& in) {
   for (int it = 0; it < 1100; ++it) {
     const double mid = 0.5 * (lo + hi);
     if (!(mid > lo && mid < hi)) break; // bracket is one ulp wide
-    if (schiller_naumann_drag(in, mid) < w) lo = mid;
-    else hi = mid;
+    if (schiller_naumann_drag(in, mid) < w)
+      lo = mid;
+    else
+      hi = mid;
   }
   // The end whose residual is smaller.
   const double r_lo = schiller_naumann_drag(in, lo) - w;

@@ -55,9 +55,8 @@ TEST(PouringHard, Hoomans96EnergyHousekeepingAndSettledBed) {
       "slow-elastic); area fraction {:.4f} (published 0.832 +- 0.010); energy sum drift "
       "{:+.3e} of E0 (limit 5e-5); e_kin(end)/e_pot(0) = {:.3e}; e_dsp/e_pot(0) = {:.4f}; "
       "energy kept by TC/slow rules {:.3e} of e_pot(0)\n",
-      steps, sim.time_step(), st.collisions, st.wall_collisions, st.tc_elastic,
-      st.slow_elastic, phi, drift, settled, sim.dissipated_energy() / epot0,
-      st.tc_energy_kept / epot0);
+      steps, sim.time_step(), st.collisions, st.wall_collisions, st.tc_elastic, st.slow_elastic,
+      phi, drift, settled, sim.dissipated_energy() / epot0, st.tc_energy_kept / epot0);
   RecordProperty("area_fraction", fmt::format("{:.5f}", phi));
   RecordProperty("energy_drift", fmt::format("{:.4e}", drift));
   RecordProperty("collisions", std::to_string(st.collisions));

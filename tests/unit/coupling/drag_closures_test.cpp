@@ -198,9 +198,8 @@ const std::vector<double>& eps_grid() {
 }
 
 const std::vector<double>& re_grid() {
-  static const std::vector<double> g = {0.0,   1e-6,  0.01, 0.1,   1.0,    5.0,    20.0,
-                                        39.9, 40.1, 100.0, 500.0, 999.0, 1000.0, 1001.0,
-                                        3000.0, 1e4};
+  static const std::vector<double> g = {0.0,  1e-6,  0.01,  0.1,   1.0,    5.0,    20.0,   39.9,
+                                        40.1, 100.0, 500.0, 999.0, 1000.0, 1001.0, 3000.0, 1e4};
   return g;
 }
 
