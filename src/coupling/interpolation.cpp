@@ -1,0 +1,101 @@
+#include "coupling/interpolation.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace fluidem::coupling {
+
+namespace {
+/// Lower index and weight of the upper node along one axis: nodes at lo + (i + shift) h,
+/// i in [imin, imax + 1].
+void axis(double x, double lo, double h, double shift, int imin, int imax, int& i0, double& t) {
+  const double s = (x - lo) / h - shift;
+  i0 = std::clamp(static_cast<int>(std::floor(s)), imin, imax);
+  t = std::clamp(s - i0, 0.0, 1.0);
+}
+
+Stencil tensor(const gas::GasGrid& g, const std::array<int, 3>& i0, const std::array<double, 3>& t,
+               const std::array<bool, 3>& active) {
+  Stencil s;
+  for (int m = 0; m < 8; ++m) {
+    std::array<int, 3> ijk{};
+    double w = 1.0;
+    bool skip = false;
+    for (int d = 0; d < 3; ++d) {
+      const int up = (m >> d) & 1;
+      if (!active[d]) {
+        if (up) skip = true;
+        ijk[d] = i0[d];
+        continue;
+      }
+      ijk[d] = i0[d] + up;
+      w *= up ? t[d] : 1.0 - t[d];
+    }
+    if (skip) continue;
+    s.q[static_cast<std::size_t>(s.n)] = g.idx(ijk[0], ijk[1], ijk[2]);
+    s.w[static_cast<std::size_t>(s.n)] = w;
+    ++s.n;
+  }
+  return s;
+}
+} // namespace
+
+Stencil face_stencil(const gas::GasGrid& g, int d, const Vec3& x) {
+  const bool two_d = g.dimension == 2;
+  if (two_d && d == 1) return {};
+  std::array<int, 3> i0{1, 1, 1};
+  std::array<double, 3> t{0.0, 0.0, 0.0};
+  std::array<bool, 3> active{true, true, true};
+  for (int e = 0; e < 3; ++e) {
+    if (two_d && e == 1) {
+      active[e] = false; // one cell across y
+      continue;
+    }
+    if (e == d)
+      axis(x[e], g.lo[e], g.h[e], 0.0, 0, g.n[e] - 1, i0[e], t[e]);
+    else
+      axis(x[e], g.lo[e], g.h[e], -0.5, 0, g.n[e], i0[e], t[e]); // ghost centres included
+  }
+  return tensor(g, i0, t, active);
+}
+
+Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x) {
+  std::array<int, 3> i0{1, 1, 1};
+  std::array<double, 3> t{0.0, 0.0, 0.0};
+  std::array<bool, 3> active{true, true, true};
+  for (int e = 0; e < 3; ++e) {
+    if (g.n[e] < 2) {
+      active[e] = false;
+      continue;
+    }
+    axis(x[e], g.lo[e], g.h[e], -0.5, 1, g.n[e] - 1, i0[e], t[e]);
+  }
+  return tensor(g, i0, t, active);
+}
+
+Vec3 gas_velocity_at(const gas::GasSolver& gs, const Vec3& x) {
+  Vec3 u{0.0, 0.0, 0.0};
+  for (int d = 0; d < 3; ++d) u[d] = interpolate(face_stencil(gs.grid(), d, x), gs.velocity(d));
+  return u;
+}
+
+Vec3 pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x) {
+  const gas::GasGrid& g = gs.grid();
+  const std::vector<double>& p = gs.pressure();
+  Vec3 gp{0.0, 0.0, 0.0};
+  for (int d = 0; d < 3; ++d) {
+    const Stencil s = face_stencil(g, d, x);
+    double v = 0.0;
+    for (int m = 0; m < s.n; ++m) {
+      const auto q = static_cast<std::size_t>(s.q[static_cast<std::size_t>(m)]);
+      v += s.w[static_cast<std::size_t>(m)] * (p[q + static_cast<std::size_t>(g.stride[d])] - p[q]);
+    }
+    gp[d] = v / g.h[d];
+  }
+  return gp;
+}
+
+double porosity_at(const gas::GasSolver& gs, const Vec3& x) {
+  return interpolate(cell_stencil(gs.grid(), x), gs.porosity());
+}
+
+} // namespace fluidem::coupling

@@ -1,0 +1,46 @@
+// Gas -> particle interpolation on the staggered grid by area (2-D) / volume (3-D) weighting
+// [Hoomans96 eq. 40-41]: bilinear/trilinear between the 4/8 nearest faces of velocity component
+// d (face positions x_d = lo + i h_d, cell-centre coordinates across), using the ghost (boundary)
+// values the gas solver keeps. The same stencil distributes the particle forces back to the
+// faces (exchange.hpp), which is what makes the exchange conserve momentum [Zhu07 §3.2].
+// Cell-centre scalars (porosity, density) use the trilinear stencil of the interior cell
+// centres, constant (zero gradient) within half a cell of the boundary.
+#pragma once
+#include "core/vec3.hpp"
+#include "gas/gas_grid.hpp"
+#include "gas/gas_solver.hpp"
+#include <array>
+#include <vector>
+
+namespace fluidem::coupling {
+
+/// Up to 8 (index, weight) pairs; weights >= 0, sum 1 (n = 0: no stencil, e.g. v_y in 2-D).
+struct Stencil {
+  std::array<long, 8> q{};
+  std::array<double, 8> w{};
+  int n = 0;
+};
+
+/// Stencil of velocity component d (faces normal to d) at point x. Points outside the domain
+/// are clamped onto it.
+Stencil face_stencil(const gas::GasGrid& g, int d, const Vec3& x);
+/// Stencil of the interior cell centres at point x (clamped, zero gradient at the boundary).
+Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x);
+
+inline double interpolate(const Stencil& s, const std::vector<double>& a) {
+  double v = 0.0;
+  for (int m = 0; m < s.n; ++m)
+    v += s.w[static_cast<std::size_t>(m)] *
+         a[static_cast<std::size_t>(s.q[static_cast<std::size_t>(m)])];
+  return v;
+}
+
+/// Interstitial gas velocity at x, m/s [Hoomans96 eq. 40-41].
+Vec3 gas_velocity_at(const gas::GasSolver& gs, const Vec3& x);
+/// Pressure gradient at x, Pa/m: the face gradients (p_+ - p_-)/h_d (ghost pressures at the
+/// boundary) interpolated with the stencil of component d.
+Vec3 pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x);
+/// Porosity at x (cell-centre stencil).
+double porosity_at(const gas::GasSolver& gs, const Vec3& x);
+
+} // namespace fluidem::coupling
