@@ -62,8 +62,12 @@ void run(drag::DragModel model) {
 }
 } // namespace
 
-TEST(NewtonThirdLaw, Scheme3ErgunWenYu) { run(drag::DragModel::ergun_wen_yu); }
-TEST(NewtonThirdLaw, Scheme3Beetstra) { run(drag::DragModel::beetstra); }
+TEST(NewtonThirdLaw, Scheme3ErgunWenYu) {
+  run(drag::DragModel::ergun_wen_yu);
+}
+TEST(NewtonThirdLaw, Scheme3Beetstra) {
+  run(drag::DragModel::beetstra);
+}
 
 TEST(NewtonThirdLaw, UnimplementedOptionsAreInputErrors) {
   gas::GasSettings s;

@@ -63,8 +63,8 @@ void run(PorosityMethod method, double U) {
     for (int j = 1; j <= 2; ++j)
       for (int i = 1; i <= 2; ++i, ++m) {
         const auto q = static_cast<std::size_t>(g.idx(i, j, k));
-        grad += (gs.pressure()[q + static_cast<std::size_t>(g.stride[2])] - gs.pressure()[q]) /
-                g.h[2];
+        grad +=
+            (gs.pressure()[q + static_cast<std::size_t>(g.stride[2])] - gs.pressure()[q]) / g.h[2];
         eps += gs.porosity()[q];
       }
   grad /= m;
