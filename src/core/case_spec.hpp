@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "core/coupling_settings.hpp"
 #include "core/error.hpp"
+#include "core/gas_settings.hpp"
 
 namespace fluidem {
 
@@ -102,9 +104,16 @@ struct HardSphereSpec {
   double max_events_per_particle = 1000.0;
 };
 
+/// A named point where the gas pressure is recorded (`[[output.probe]]`, probes.csv).
+struct ProbeSpec {
+  std::string name;                 ///< column name in probes.csv
+  std::array<double, 3> position{}; ///< m; inside the gas domain
+};
+
 struct OutputSpec {
-  double frame_interval = 0.01;   ///< s between particle frames (particles.h5)
-  double series_interval = 0.001; ///< s between rows of series.csv
+  double frame_interval = 0.01;   ///< s between particle (and gas field) frames
+  double series_interval = 0.001; ///< s between rows of series.csv (and probes.csv)
+  std::vector<ProbeSpec> probes;  ///< pressure probes (coupled runs only)
 };
 
 struct NeighbourSpec {
@@ -122,6 +131,10 @@ struct CaseSpec {
   ContactSpec contact;
   NeighbourSpec neighbour;
   HardSphereSpec hardsphere;
+  /// The gas phase (`[gas]`); empty = a purely granular run.
+  std::optional<gas::GasSettings> gas;
+  /// Particle-gas coupling (`[coupling]`); used when `gas` is set.
+  coupling::CouplingSettings coupling;
 
   /// Dotted key path -> location, e.g. "contact.stiffness", "species[1].restitution",
   /// "insert[0].count", "walls.z_lo.friction". Filled by the reader for every key it saw.

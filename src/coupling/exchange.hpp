@@ -25,18 +25,6 @@
 
 namespace fluidem::coupling {
 
-/// [Zhu07 §3.2]: scheme 1 (local-average force on the gas), 2 (cell force distributed to the
-/// particles, [Chang08 eq. 2.11] by surface area), 3 (per-particle forces summed; default).
-/// Only scheme 3 is implemented: the others are rejected by validate().
-enum class ExchangeScheme { scheme1, scheme2, scheme3 };
-
-struct CouplingSettings {
-  drag::DragModel drag = drag::DragModel::ergun_wen_yu;
-  PorositySettings porosity;
-  ExchangeScheme scheme = ExchangeScheme::scheme3;
-  double d_mean = 0.0; ///< Sauter mean diameter, m (polydisperse closures only)
-};
-
 /// InputError for: scheme 1 or 2 (not implemented), gas Model B (not implemented: only the
 /// Model A particle force is), a bad cube factor, a polydisperse closure without d_mean.
 void validate(const CouplingSettings& c, const gas::GasSettings& gas);

@@ -11,6 +11,7 @@
 //    disc area pi d^2/4, then [Hoomans96 eq. 49].
 // Solid outside the domain (cell method: a sphere overlapping a wall) is not counted.
 #pragma once
+#include "core/coupling_settings.hpp"
 #include "core/vec3.hpp"
 #include "gas/gas_grid.hpp"
 #include "particles/particle_store.hpp"
@@ -18,16 +19,6 @@
 #include <vector>
 
 namespace fluidem::coupling {
-
-enum class PorosityMethod {
-  cell,       ///< exact sphere (disc) volume (area) per cell [Deen07 eq. 33]
-  porous_cube ///< porous cube of side a d [Deen07 eq. 34-37]
-};
-
-struct PorositySettings {
-  PorosityMethod method = PorosityMethod::cell;
-  double cube_factor = 3.0; ///< a of [Deen07 eq. 34], >= (pi/6)^(1/3); porous_cube only
-};
 
 /// InputError if cube_factor < (pi/6)^(1/3) (porous cube) or not finite.
 void validate(const PorositySettings& s);

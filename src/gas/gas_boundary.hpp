@@ -3,7 +3,7 @@
 // rectangle contains the ghost cell's face centre. Corner ghost cells take no part.
 #pragma once
 #include "gas/gas_grid.hpp"
-#include "gas/gas_settings.hpp"
+#include "core/gas_settings.hpp"
 #include <vector>
 
 namespace fluidem::gas {

@@ -16,7 +16,7 @@
 #include "core/vec3.hpp"
 #include "gas/gas_boundary.hpp"
 #include "gas/gas_grid.hpp"
-#include "gas/gas_settings.hpp"
+#include "core/gas_settings.hpp"
 #include "gas/pressure_solver.hpp"
 #include <array>
 #include <memory>

@@ -3,26 +3,6 @@
 
 namespace fluidem::coupling::drag {
 
-std::string_view to_string(DragModel m) {
-  return with_drag_closure(m, [](auto c) { return std::string_view(decltype(c)::name); });
-}
-
-std::string drag_model_names() {
-  std::string s;
-  for (DragModel m : all_drag_models) {
-    if (!s.empty()) s += ", ";
-    s += to_string(m);
-  }
-  return s;
-}
-
-DragModel drag_model_from_string(std::string_view name) {
-  for (DragModel m : all_drag_models)
-    if (to_string(m) == name) return m;
-  throw InputError("unknown drag model '" + std::string(name) + "' (valid: " + drag_model_names() +
-                   ")");
-}
-
 void validate(DragModel m, const DragInput& in) {
   with_drag_closure(m, [&](auto c) { decltype(c)::validate(in); });
 }

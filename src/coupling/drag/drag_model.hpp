@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/coupling_settings.hpp"
 #include "coupling/drag/beetstra.hpp"
 #include "coupling/drag/chang_joint.hpp"
 #include "coupling/drag/di_felice.hpp"
@@ -28,27 +29,6 @@
 #include "coupling/drag/wen_yu_single.hpp"
 
 namespace fluidem::coupling::drag {
-
-enum class DragModel {
-  ergun,
-  wen_yu,
-  wen_yu_single,
-  ergun_wen_yu,
-  ergun_wen_yu_min,
-  hill_koch_ladd,
-  beetstra,
-  beetstra_poly,
-  di_felice,
-  koch_hill,
-  chang_joint,
-};
-
-/// All models, in the order of the enum (for listings and tests).
-inline constexpr std::array<DragModel, 11> all_drag_models = {
-    DragModel::ergun,        DragModel::wen_yu,           DragModel::wen_yu_single,
-    DragModel::ergun_wen_yu, DragModel::ergun_wen_yu_min, DragModel::hill_koch_ladd,
-    DragModel::beetstra,     DragModel::beetstra_poly,    DragModel::di_felice,
-    DragModel::koch_hill,    DragModel::chang_joint};
 
 /// Calls f(Closure{}) with the closure type of m; returns what f returns. The switch runs once;
 /// inside f the closure's functions are known at compile time.
@@ -80,15 +60,6 @@ decltype(auto) with_drag_closure(DragModel m, F&& f) {
   }
   return f(Ergun{}); // unreachable: every enumerator is handled above
 }
-
-/// The case-file name of m ("ergun", "wen_yu", ...).
-std::string_view to_string(DragModel m);
-
-/// Comma-separated list of the valid names, for error messages and docs.
-std::string drag_model_names();
-
-/// The model named `name`; InputError listing the valid names if there is none.
-DragModel drag_model_from_string(std::string_view name);
 
 /// Set-up check of one representative input for model m (InputError naming the quantity).
 void validate(DragModel m, const DragInput& in);

@@ -362,7 +362,11 @@ TEST(DragConversions, ForceAndNormalisedDragAreConsistent) {
 
 // Registry: names round-trip; an unknown name is an InputError listing every valid name.
 TEST(DragRegistry, NamesRoundTripAndUnknownNameListsTheValidOnes) {
-  for (DragModel m : all_drag_models) EXPECT_EQ(drag_model_from_string(to_string(m)), m);
+  for (DragModel m : all_drag_models) {
+    EXPECT_EQ(drag_model_from_string(to_string(m)), m);
+    // The case-file name table (core/coupling_settings.hpp) matches each closure's own name.
+    with_drag_closure(m, [&](auto c) { EXPECT_EQ(to_string(m), decltype(c)::name); });
+  }
   try {
     drag_model_from_string("gidaspow");
     FAIL() << "no InputError";

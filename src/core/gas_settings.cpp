@@ -1,5 +1,5 @@
 // Validation of the gas settings and the inflow time functions [Deen07 §6.1].
-#include "gas/gas_settings.hpp"
+#include "core/gas_settings.hpp"
 #include "core/error.hpp"
 #include <cmath>
 #include <numbers>
