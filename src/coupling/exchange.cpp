@@ -108,6 +108,30 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
   }
 }
 
+void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
+                            ParticleGasForces& f) {
+  const std::size_t n = p.size();
+  const bool model_a = gs.settings().model == gas::PressureModel::A;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 x = p.position(i);
+    const Vec3 u = gas_velocity_at(gs, x);
+    f.ux[i] = u[0];
+    f.uy[i] = u[1];
+    f.uz[i] = u[2];
+    f.drag_x[i] = f.coeff[i] * (u[0] - p.vx[i]);
+    f.drag_y[i] = f.coeff[i] * (u[1] - p.vy[i]);
+    f.drag_z[i] = f.coeff[i] * (u[2] - p.vz[i]);
+    if (model_a) {
+      const double d = 2.0 * p.radius[i];
+      const double vol = pi * d * d * d / 6.0;
+      const Vec3 gp = pressure_gradient_at(gs, x);
+      f.pres_x[i] = -vol * gp[0];
+      f.pres_y[i] = -vol * gp[1];
+      f.pres_z[i] = -vol * gp[2];
+    }
+  }
+}
+
 void add_forces(ParticleStore& p, const ParticleGasForces& f) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     p.fx[i] += f.drag_x[i] + f.pres_x[i];

@@ -53,6 +53,12 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
 void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
                              const ParticleGasForces& f);
 
+/// After the gas step: drag_i = c_i (u_i - v_i) with the coefficients c_i that
+/// deposit_momentum_source gave the gas, the NEW gas velocity u_i and the same particle
+/// velocities v_i (so that the impulse the particles receive is minus the one the gas received,
+/// [Zhu07 §3.2] scheme 3), and the Model A pressure force with the new pressure.
+void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p, ParticleGasForces& f);
+
 /// p.fx/fy/fz += drag + pressure force.
 void add_forces(ParticleStore& p, const ParticleGasForces& f);
 
