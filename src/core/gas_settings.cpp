@@ -67,6 +67,8 @@ void validate(const GasSettings& s) {
   }
   if (s.dimension == 2 && (!(s.depth > 0.0) || !std::isfinite(s.depth)))
     bad("gas.depth", "must be > 0 m in 2-D");
+  if (!(s.time_step >= 0.0) || !std::isfinite(s.time_step))
+    bad("gas.time_step", "must be > 0 s (or \"auto\")");
   if (!(s.viscosity >= 0.0) || !std::isfinite(s.viscosity))
     bad("gas.viscosity", "must be >= 0 Pa s");
   if (s.model != PressureModel::A && s.model != PressureModel::B)

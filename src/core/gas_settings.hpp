@@ -87,6 +87,9 @@ struct GasSettings {
   Vec3 lo{0.0, 0.0, 0.0};                 ///< `gas.lo`, m: lower domain corner
   Vec3 hi{0.1, 0.1, 0.1};                 ///< `gas.hi`, m: upper corner (hi.y ignored in 2-D)
   double depth = 0.01;                    ///< `gas.depth`, m: 2-D only, thickness in y
+  double time_step = 0.0; ///< `gas.time_step`, s: flow time step DT of a soft-sphere run (the
+                          ///< DEM sub-steps inside it); 0 = "auto" = 1e-4 s [Hoomans96 §5.3].
+                          ///< Hard-sphere runs: DT is simulation.time_step and this must be 0.
   double viscosity = 1.8e-5;              ///< `gas.viscosity`, Pa s (kg m^-1 s^-1)
   PressureModel model = PressureModel::A; ///< `gas.model`: "A" | "B"
   EquationOfState eos = EquationOfState::ideal_gas; ///< `gas.eos`: "ideal_gas" | "incompressible"
