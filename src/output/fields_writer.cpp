@@ -1,0 +1,434 @@
+#include "output/fields_writer.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+// H5Pset_file_locking exists from 1.10.7 on the 1.10 branch and from 1.12.1 on.
+#if H5_VERS_MAJOR > 1 || (H5_VERS_MAJOR == 1 && H5_VERS_MINOR >= 13) ||                            \
+    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 12 && H5_VERS_RELEASE >= 1) ||                         \
+    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7)
+#define FLUIDEM_HAVE_H5P_FILE_LOCKING 1
+#endif
+
+namespace fluidem {
+
+namespace {
+
+// Largest chunk of a field dataset. A whole frame up to this size is one chunk, written straight
+// to disk (it is larger than HDF5's default 1 MiB chunk cache) without compression.
+constexpr std::size_t kChunkCapBytes = std::size_t{16} << 20;
+constexpr hsize_t kStepChunk = 512; // step/time: 4 KiB chunks
+
+// The innermost message of the HDF5 error stack (e.g. "unable to open file: ... errno = 2 ...").
+std::string hdf5_error_detail() {
+  std::string detail;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned, const H5E_error2_t* e, void* data) -> herr_t {
+        auto* s = static_cast<std::string*>(data);
+        if (s->empty() && e != nullptr && e->desc != nullptr && e->desc[0] != '\0') *s = e->desc;
+        return 0;
+      },
+      &detail);
+  H5Eclear2(H5E_DEFAULT);
+  return detail;
+}
+
+[[noreturn]] void fail(const std::string& path, const char* op, const std::string& object) {
+  std::string msg = "HDF5 error in '" + path + "': cannot " + op;
+  if (!object.empty()) msg += " '" + object + "'";
+  const std::string detail = hdf5_error_detail();
+  if (!detail.empty()) msg += " (" + detail + ")";
+  throw std::runtime_error(msg);
+}
+
+hid_t check_id(hid_t id, const std::string& path, const char* op, const std::string& object = {}) {
+  if (id < 0) fail(path, op, object);
+  return id;
+}
+
+void check(herr_t status, const std::string& path, const char* op, const std::string& object = {}) {
+  if (status < 0) fail(path, op, object);
+}
+
+// Owns one HDF5 identifier and closes it with the matching H5?close.
+class Handle {
+public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), closer_(o.closer_) {}
+  Handle& operator=(Handle&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = std::exchange(o.id_, H5I_INVALID_HID);
+      closer_ = o.closer_;
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { reset(); }
+
+  hid_t get() const { return id_; }
+  /// Close now; returns the HDF5 status (0 when nothing was open).
+  herr_t reset() {
+    herr_t status = 0;
+    if (id_ >= 0 && closer_ != nullptr) status = closer_(id_);
+    id_ = H5I_INVALID_HID;
+    return status;
+  }
+
+private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer closer_ = nullptr;
+};
+
+// Small helpers that create one object and throw on failure.
+struct Builder {
+  const std::string& path;
+
+  Handle group(hid_t parent, const char* name) const {
+    return {check_id(H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), path,
+                     "create group", name),
+            H5Gclose};
+  }
+
+  Handle simple_space(int rank, const hsize_t* dims, const hsize_t* maxdims = nullptr) const {
+    return {check_id(H5Screate_simple(rank, dims, maxdims), path, "create dataspace"), H5Sclose};
+  }
+
+  Handle string_type(std::size_t length) const {
+    Handle t{check_id(H5Tcopy(H5T_C_S1), path, "copy string type"), H5Tclose};
+    check(H5Tset_size(t.get(), std::max<std::size_t>(length, 1)), path, "set string size");
+    check(H5Tset_strpad(t.get(), H5T_STR_NULLTERM), path, "set string padding");
+    return t;
+  }
+
+  void string_attr(hid_t obj, const char* name, const std::string& value) const {
+    Handle type = string_type(value.size() + 1);
+    Handle space{check_id(H5Screate(H5S_SCALAR), path, "create dataspace"), H5Sclose};
+    Handle attr{check_id(H5Acreate2(obj, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                         path, "create attribute", name),
+                H5Aclose};
+    check(H5Awrite(attr.get(), type.get(), value.c_str()), path, "write attribute", name);
+  }
+
+  void string_array_attr(hid_t obj, const char* name,
+                         const std::vector<std::string>& values) const {
+    std::size_t width = 1;
+    for (const auto& v : values) width = std::max(width, v.size() + 1);
+    std::vector<char> buffer(width * values.size(), '\0');
+    for (std::size_t i = 0; i < values.size(); ++i)
+      std::copy(values[i].begin(), values[i].end(), buffer.begin() + static_cast<long>(i * width));
+    Handle type = string_type(width);
+    const hsize_t dims[1] = {values.size()};
+    Handle space = simple_space(1, dims);
+    Handle attr{check_id(H5Acreate2(obj, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                         path, "create attribute", name),
+                H5Aclose};
+    check(H5Awrite(attr.get(), type.get(), buffer.data()), path, "write attribute", name);
+  }
+
+  Handle scalar_attr(hid_t obj, const char* name, hid_t file_type, hid_t mem_type,
+                     const void* value) const {
+    Handle space{check_id(H5Screate(H5S_SCALAR), path, "create dataspace"), H5Sclose};
+    Handle attr{check_id(H5Acreate2(obj, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                         path, "create attribute", name),
+                H5Aclose};
+    check(H5Awrite(attr.get(), mem_type, value), path, "write attribute", name);
+    return attr;
+  }
+
+  void fixed_dataset(hid_t parent, const char* name, hid_t file_type, hid_t mem_type, hsize_t n,
+                     const void* data) const {
+    const hsize_t dims[1] = {n};
+    Handle space = simple_space(1, dims);
+    Handle dset{check_id(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                                    H5P_DEFAULT),
+                         path, "create dataset", name),
+                H5Dclose};
+    check(H5Dwrite(dset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), path,
+          "write dataset", name);
+  }
+
+  // A chunked dataset of shape [0, inner...] (rank <= 5) with an unlimited first dimension.
+  Handle extendible(hid_t parent, const char* name, hid_t file_type, int rank, const hsize_t* inner,
+                    const hsize_t* chunk) const {
+    hsize_t dims[5] = {0, 0, 0, 0, 0};
+    hsize_t maxdims[5] = {H5S_UNLIMITED, 0, 0, 0, 0};
+    for (int d = 1; d < rank; ++d) dims[d] = maxdims[d] = inner[d - 1];
+    Handle space = simple_space(rank, dims, maxdims);
+    Handle dcpl{check_id(H5Pcreate(H5P_DATASET_CREATE), path, "create property list"), H5Pclose};
+    check(H5Pset_chunk(dcpl.get(), rank, chunk), path, "set chunking of", name);
+    return {check_id(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, dcpl.get(),
+                                H5P_DEFAULT),
+                     path, "create dataset", name),
+            H5Dclose};
+  }
+};
+
+// Extend the [F][...] dataset `dset` to frame + 1 frames and write `data` (selected by
+// `mem_space`) as frame `frame`.
+void append(hid_t dset, int rank, const hsize_t* inner, hsize_t frame, hid_t mem_type,
+            hid_t mem_space, const void* data, const std::string& path, const std::string& name) {
+  hsize_t dims[5] = {frame + 1, 0, 0, 0, 0};
+  hsize_t start[5] = {frame, 0, 0, 0, 0};
+  hsize_t count[5] = {1, 0, 0, 0, 0};
+  for (int d = 1; d < rank; ++d) dims[d] = count[d] = inner[d - 1];
+  check(H5Dset_extent(dset, dims), path, "extend dataset", name);
+  Handle space{check_id(H5Dget_space(dset), path, "get dataspace of", name), H5Sclose};
+  check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr), path,
+        "select frame in", name);
+  check(H5Dwrite(dset, mem_type, mem_space, space.get(), H5P_DEFAULT, data), path, "write frame to",
+        name);
+}
+
+} // namespace
+
+void check_field_grid(const FieldGrid& g, const std::string& who) {
+  static const char* const axis = "xyz";
+  for (int d = 0; d < 3; ++d) {
+    const std::string a(1, axis[d]);
+    if (g.cells[d] < 1)
+      throw std::invalid_argument(who + ": the grid needs at least one cell along " + a + ", not " +
+                                  std::to_string(g.cells[d]));
+    if (!std::isfinite(g.lo[d]))
+      throw std::invalid_argument(who + ": the grid's lower corner along " + a + " is not finite");
+    if (!std::isfinite(g.spacing[d]) || !(g.spacing[d] > 0.0))
+      throw std::invalid_argument(who + ": the grid spacing along " + a +
+                                  " must be finite and > 0");
+  }
+}
+
+void check_field_names(const std::vector<std::string>& scalar_names,
+                       const std::vector<std::string>& vector_names, const std::string& who) {
+  std::set<std::string> seen;
+  for (const auto* names : {&scalar_names, &vector_names}) {
+    for (const std::string& name : *names) {
+      if (name.empty()) throw std::invalid_argument(who + ": empty field name");
+      if (name == "step" || name == "time" || name == "." || name == "..")
+        throw std::invalid_argument(who + ": '" + name + "' cannot be a field name");
+      for (const char c : name) {
+        if (c == '/' || c == ':' || c == '|' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+          throw std::invalid_argument(who + ": field name '" + name +
+                                      "' contains '/', ':', '|' or a control character");
+      }
+      if (!seen.insert(name).second)
+        throw std::invalid_argument(who + ": field name '" + name + "' given twice");
+    }
+  }
+}
+
+struct FieldsWriter::Impl {
+  std::string path;
+  FieldGrid grid;
+  std::vector<std::string> scalar_names;
+  std::vector<std::string> vector_names;
+  std::size_t frames = 0;
+  bool closed = false;
+  hsize_t inner_scalar[3] = {0, 0, 0}; // nz, ny, nx
+  hsize_t inner_vector[4] = {0, 0, 0, 3};
+  // Declaration order = reverse close order: the file is closed last.
+  Handle file;
+  Handle frames_attr;
+  Handle step;
+  Handle time;
+  std::vector<Handle> scalars;
+  std::vector<Handle> vectors;
+  Handle mem_scalar;          // [1][nz][ny][nx]
+  Handle mem_vector;          // [1][nz][ny][nx][3]
+  Handle mem_one;             // [1]
+  std::vector<double> buffer; // interleaved xyz, reused every frame
+
+  herr_t close_all() {
+    herr_t status = 0;
+    for (Handle* h : {&mem_one, &mem_vector, &mem_scalar}) status = std::min(status, h->reset());
+    for (auto& v : vectors) status = std::min(status, v.reset());
+    for (auto& s : scalars) status = std::min(status, s.reset());
+    for (Handle* h : {&time, &step, &frames_attr, &file}) status = std::min(status, h->reset());
+    closed = true;
+    return status;
+  }
+  ~Impl() { close_all(); }
+};
+
+FieldsWriter::FieldsWriter(const std::string& path, const FieldGrid& grid,
+                           std::vector<std::string> scalar_names,
+                           std::vector<std::string> vector_names,
+                           const std::string& program_version)
+    : impl_(std::make_unique<Impl>()) {
+  const std::string who = "FieldsWriter('" + path + "')";
+  check_field_grid(grid, who);
+  check_field_names(scalar_names, vector_names, who);
+  // Errors are reported by exceptions; keep HDF5 from dumping its stack on stderr.
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+
+  Impl& m = *impl_;
+  m.path = path;
+  m.grid = grid;
+  m.scalar_names = std::move(scalar_names);
+  m.vector_names = std::move(vector_names);
+  const hsize_t nx = static_cast<hsize_t>(grid.cells[0]);
+  const hsize_t ny = static_cast<hsize_t>(grid.cells[1]);
+  const hsize_t nz = static_cast<hsize_t>(grid.cells[2]);
+  const hsize_t n = nx * ny * nz;
+  m.inner_scalar[0] = m.inner_vector[0] = nz;
+  m.inner_scalar[1] = m.inner_vector[1] = ny;
+  m.inner_scalar[2] = m.inner_vector[2] = nx;
+  const Builder b{m.path};
+
+  Handle fapl{check_id(H5Pcreate(H5P_FILE_ACCESS), path, "create property list"), H5Pclose};
+#ifdef FLUIDEM_HAVE_H5P_FILE_LOCKING
+  // No lock: a viewer may open the file while the run appends frames; every frame is flushed.
+  check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
+#endif
+  m.file = Handle{check_id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), path,
+                           "create file"),
+                  H5Fclose};
+  const hid_t f = m.file.get();
+  b.string_attr(f, "creator", "fluidem");
+  b.string_attr(f, "version", program_version);
+
+  { // /grid
+    Handle g = b.group(f, "grid");
+    const std::int32_t cells[3] = {grid.cells[0], grid.cells[1], grid.cells[2]};
+    b.fixed_dataset(g.get(), "cells", H5T_STD_I32LE, H5T_NATIVE_INT32, 3, cells);
+    b.fixed_dataset(g.get(), "lo", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, grid.lo.data());
+    b.fixed_dataset(g.get(), "spacing", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, grid.spacing.data());
+  }
+
+  Handle fields = b.group(f, "fields");
+  const std::int64_t zero = 0;
+  m.frames_attr = b.scalar_attr(fields.get(), "frames", H5T_STD_I64LE, H5T_NATIVE_INT64, &zero);
+  if (!m.scalar_names.empty()) b.string_array_attr(fields.get(), "scalars", m.scalar_names);
+  if (!m.vector_names.empty()) b.string_array_attr(fields.get(), "vectors", m.vector_names);
+  {
+    const hsize_t chunk[1] = {kStepChunk};
+    m.step = b.extendible(fields.get(), "step", H5T_STD_I64LE, 1, nullptr, chunk);
+    m.time = b.extendible(fields.get(), "time", H5T_IEEE_F64LE, 1, nullptr, chunk);
+    b.string_attr(m.time.get(), "unit", "s");
+  }
+  // Chunk: one frame, or as many whole x-y planes of it as fit in kChunkCapBytes.
+  const auto planes = [&](hsize_t components) {
+    const hsize_t plane_bytes = nx * ny * components * sizeof(double);
+    return std::clamp<hsize_t>(kChunkCapBytes / plane_bytes, 1, nz);
+  };
+  for (const std::string& name : m.scalar_names) {
+    const hsize_t chunk[4] = {1, planes(1), ny, nx};
+    m.scalars.push_back(
+        b.extendible(fields.get(), name.c_str(), H5T_IEEE_F64LE, 4, m.inner_scalar, chunk));
+  }
+  for (const std::string& name : m.vector_names) {
+    const hsize_t chunk[5] = {1, planes(3), ny, nx, 3};
+    m.vectors.push_back(
+        b.extendible(fields.get(), name.c_str(), H5T_IEEE_F64LE, 5, m.inner_vector, chunk));
+  }
+
+  // Memory spaces of the frame's own shape: HDF5 then copies whole rows, not element by element.
+  const hsize_t scalar_dims[4] = {1, nz, ny, nx};
+  const hsize_t vector_dims[5] = {1, nz, ny, nx, 3};
+  const hsize_t one_dims[1] = {1};
+  m.mem_scalar = b.simple_space(4, scalar_dims);
+  m.mem_vector = b.simple_space(5, vector_dims);
+  m.mem_one = b.simple_space(1, one_dims);
+  if (!m.vector_names.empty()) m.buffer.resize(3 * n);
+  flush();
+}
+
+FieldsWriter::~FieldsWriter() = default;
+FieldsWriter::FieldsWriter(FieldsWriter&&) noexcept = default;
+FieldsWriter& FieldsWriter::operator=(FieldsWriter&&) noexcept = default;
+
+void FieldsWriter::write_frame(long step, double time, const std::vector<const double*>& scalars,
+                               const std::vector<std::array<const double*, 3>>& vectors) {
+  if (!impl_ || impl_->closed) throw std::logic_error("FieldsWriter: write_frame after close");
+  Impl& m = *impl_;
+  const std::string who = "FieldsWriter('" + m.path + "')";
+  if (scalars.size() != m.scalar_names.size())
+    throw std::invalid_argument(who + ": " + std::to_string(scalars.size()) +
+                                " scalar fields given, the file holds " +
+                                std::to_string(m.scalar_names.size()));
+  if (vectors.size() != m.vector_names.size())
+    throw std::invalid_argument(who + ": " + std::to_string(vectors.size()) +
+                                " vector fields given, the file holds " +
+                                std::to_string(m.vector_names.size()));
+  for (std::size_t s = 0; s < scalars.size(); ++s)
+    if (scalars[s] == nullptr)
+      throw std::invalid_argument(who + ": null data for scalar field '" + m.scalar_names[s] + "'");
+  for (std::size_t v = 0; v < vectors.size(); ++v)
+    for (const double* c : vectors[v])
+      if (c == nullptr)
+        throw std::invalid_argument(who + ": null data for vector field '" + m.vector_names[v] +
+                                    "'");
+
+  // Fields first, step and time last: a failed frame leaves F unchanged, and the next call
+  // overwrites it.
+  const hsize_t frame = m.frames;
+  for (std::size_t s = 0; s < scalars.size(); ++s)
+    append(m.scalars[s].get(), 4, m.inner_scalar, frame, H5T_NATIVE_DOUBLE, m.mem_scalar.get(),
+           scalars[s], m.path, "/fields/" + m.scalar_names[s]);
+  const std::size_t n = m.grid.size();
+  for (std::size_t v = 0; v < vectors.size(); ++v) {
+    const double* const x = vectors[v][0];
+    const double* const y = vectors[v][1];
+    const double* const z = vectors[v][2];
+    double* const out = m.buffer.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      out[3 * i] = x[i];
+      out[3 * i + 1] = y[i];
+      out[3 * i + 2] = z[i];
+    }
+    append(m.vectors[v].get(), 5, m.inner_vector, frame, H5T_NATIVE_DOUBLE, m.mem_vector.get(), out,
+           m.path, "/fields/" + m.vector_names[v]);
+  }
+  const std::int64_t step64 = step;
+  append(m.step.get(), 1, nullptr, frame, H5T_NATIVE_INT64, m.mem_one.get(), &step64, m.path,
+         "/fields/step");
+  append(m.time.get(), 1, nullptr, frame, H5T_NATIVE_DOUBLE, m.mem_one.get(), &time, m.path,
+         "/fields/time");
+
+  ++m.frames;
+  const std::int64_t frames64 = static_cast<std::int64_t>(m.frames);
+  check(H5Awrite(m.frames_attr.get(), H5T_NATIVE_INT64, &frames64), m.path, "write attribute",
+        "/fields frames");
+  flush();
+}
+
+void FieldsWriter::flush() {
+  if (!impl_ || impl_->closed) return;
+  check(H5Fflush(impl_->file.get(), H5F_SCOPE_GLOBAL), impl_->path, "flush file");
+}
+
+void FieldsWriter::close() {
+  if (!impl_ || impl_->closed) return;
+  if (impl_->close_all() < 0) fail(impl_->path, "close file", {});
+}
+
+std::size_t FieldsWriter::frames() const {
+  return impl_ ? impl_->frames : 0;
+}
+const FieldGrid& FieldsWriter::grid() const {
+  static const FieldGrid empty;
+  return impl_ ? impl_->grid : empty;
+}
+const std::vector<std::string>& FieldsWriter::scalar_names() const {
+  static const std::vector<std::string> empty;
+  return impl_ ? impl_->scalar_names : empty;
+}
+const std::vector<std::string>& FieldsWriter::vector_names() const {
+  static const std::vector<std::string> empty;
+  return impl_ ? impl_->vector_names : empty;
+}
+const std::string& FieldsWriter::path() const {
+  static const std::string empty;
+  return impl_ ? impl_->path : empty;
+}
+
+} // namespace fluidem
