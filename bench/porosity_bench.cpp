@@ -1,6 +1,6 @@
 // Google Benchmark kernels: the exact sphere-cell intersection volumes behind porosity by cell
-// [Deen07 eq. 33]. A sphere cut by one plane uses the closed-form cap; one cut by planes on two
-// or three axes (near a cell edge or corner) integrates the disc-quadrant area numerically.
+// [Deen07 eq. 33]. All cases are closed forms: a sphere cut by one plane is a cap, one cut by
+// planes on two or three axes (near a cell edge or corner) a wedge or corner volume (atan2).
 // Run: build/bench/fluidem_bench --benchmark_filter=Sphere
 #include <benchmark/benchmark.h>
 

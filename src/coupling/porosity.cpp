@@ -3,53 +3,96 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace fluidem::coupling {
 
 namespace {
 constexpr double pi = 3.14159265358979323846;
 
-/// Nodes and weights of tanh-sinh quadrature on [-1, 1] (step 1/16, |t| <= 3.2), with the
-/// distance of each node to its nearer end stored separately (no cancellation near the ends).
-struct TanhSinh {
-  static constexpr int half = 51; // t = k h, k = -half..half
-  std::array<double, 2 * half + 1> gap{}, sign{}, w{};
-  TanhSinh() {
-    const double h = 1.0 / 16.0;
-    for (int k = -half; k <= half; ++k) {
-      const double t = k * h;
-      const double u = 0.5 * pi * std::sinh(t);
-      const double c = std::cosh(u);
-      const std::size_t n = static_cast<std::size_t>(k + half);
-      gap[n] = 1.0 / (std::exp(2.0 * std::abs(u)) + 1.0) * 2.0; // 1 - |tanh u|
-      sign[n] = k < 0 ? -1.0 : 1.0;
-      w[n] = h * 0.5 * pi * std::cosh(t) / (c * c);
-    }
-  }
-};
-const TanhSinh& tanh_sinh() {
-  static const TanhSinh q;
-  return q;
+/// Volume of the unit ball with x > a, a >= 0: spherical cap of height h = 1 - a.
+double unit_cap(double a) {
+  if (a >= 1.0) return 0.0;
+  const double h = 1.0 - a;
+  return pi / 3.0 * h * h * (2.0 + a);
 }
 
-/// Integral of f over [a, b] by tanh-sinh (endpoint algebraic singularities are harmless).
-template <class F>
-double integrate(F&& f, double a, double b) {
-  if (!(b > a)) return 0.0;
-  const TanhSinh& q = tanh_sinh();
-  const double hw = 0.5 * (b - a);
-  double s = 0.0;
-  for (std::size_t n = 0; n < q.w.size(); ++n) {
-    const double x = q.sign[n] < 0.0 ? a + hw * q.gap[n] : b - hw * q.gap[n];
-    s += q.w[n] * f(x);
-  }
-  return s * hw;
+/// Volume of the unit ball with x > a, y > b, a, b >= 0: unit_corner(a, b, 0) doubled, i.e.
+///   V = 2/3 (al + a b z) - a (3 - a^2)/3 atan2(z, b) - b (3 - b^2)/3 atan2(z, a),
+/// z = sqrt(1 - a^2 - b^2) the half length of the edge inside the ball, al = atan2(z, a b) the
+/// angle between the two spherical arcs at its end. Identical to the sum of the two "regularized
+/// spherical wedges" of [Strobl16] on either side of the plane through the centre and the edge
+/// (their two angles atan2(b z, a), atan2(a z, b) add up to al).
+/// [Strobl16] S. Strobl, A. Formella, T. Poeschel, Exact calculation of the overlap volume of
+/// spheres and mesh elements, J. Comput. Phys. 311 (2016) 158-172, doi:10.1016/j.jcp.2016.02.003.
+double unit_wedge(double a, double b) {
+  if (a > b) std::swap(a, b); // b largest: (1 - b)(1 + b) below is then accurate
+  const double z2 = (1.0 - b) * (1.0 + b) - a * a;
+  if (!(z2 > 0.0)) return 0.0;
+  const double z = std::sqrt(z2);
+  const double v = 2.0 / 3.0 * (std::atan2(z, a * b) + a * b * z) -
+                   a * (3.0 - a * a) / 3.0 * std::atan2(z, b) -
+                   b * (3.0 - b * b) / 3.0 * std::atan2(z, a);
+  return std::max(v, 0.0);
 }
 
-/// Volume of the ball of radius R with x < X (spherical cap or its complement).
-double ball_below(double R, double X) {
-  X = std::clamp(X, -R, R);
-  return pi * (R * R * (X + R) - (X * X * X + R * R * R) / 3.0);
+/// Volume of the unit ball with x > a, y > b, z > c, a, b, c >= 0 (empty unless
+/// a^2 + b^2 + c^2 < 1). Derived here (checked against quadrature and 40-digit values in
+/// tests/unit/coupling/porosity_test.cpp):
+///  - divergence theorem with the field r/3 (r.n = 1 on the sphere, -a on the face x = a):
+///    V = (S - a A_a - b A_b - c A_c)/3, S the area of the spherical triangle cut from the unit
+///    sphere, A_a the area of the face on x = a (disc of radius sqrt(1 - a^2) in {y > b, z > c}):
+///    A_a = (1 - a^2) th_a / 2 - (b z_ab + c y_ca)/2 + b c (circular sector minus two triangles),
+///    th_a the angle of the face's arc seen from the axis x; the triangle's vertices are
+///    (a, b, z_ab), (x_bc, b, c), (a, y_ca, c) with z_ab = sqrt(1 - a^2 - b^2) etc.;
+///  - Gauss-Bonnet on the unit sphere: S = (al_ab + al_bc + al_ca - pi) - (a th_a + b th_b +
+///    c th_c), al_ab = atan2(z_ab, a b) the interior angle at (a, b, z_ab) (cos al_ab = a b /
+///    sqrt((1 - a^2)(1 - b^2))), a / sqrt(1 - a^2) the geodesic curvature of the circle x = a
+///    and sqrt(1 - a^2) th_a its arc length. Together:
+///   V = (al_ab + al_bc + al_ca - pi)/3 - [a (3 - a^2) th_a + b (3 - b^2) th_b +
+///       c (3 - c^2) th_c]/6 + (a b z_ab + b c x_bc + c a y_ca)/3 - a b c.
+/// With c = 0 it is unit_wedge / 2, with b = c = 0 unit_cap / 4, with a = b = c = 0 pi/6.
+/// Numerics: all angles are atan2 of vertex coordinates (no acos/asin near +-1), and V is
+/// stationary in each vertex coordinate (dV/dz_ab = -a b z_ab^2 / (3 (1 - a^2)(1 - b^2))), so
+/// the rounding of the square roots near tangency (z_ab -> 0) does not propagate: the error is
+/// ~1e-16 absolute (the terms are O(1) and cancel for tiny corners: no relative accuracy there).
+double unit_corner(double a, double b, double c) {
+  if (a > b) std::swap(a, b); // c largest: (1 - c)(1 + c) below is then accurate
+  if (b > c) std::swap(b, c);
+  if (a > b) std::swap(a, b);
+  const double t = (1.0 - c) * (1.0 + c) - a * a - b * b; // 1 - |corner|^2
+  if (!(t > 0.0)) return 0.0;
+  const double x = std::sqrt((1.0 - c) * (1.0 + c) - b * b); // vertex (x_bc, b, c)
+  const double y = std::sqrt((1.0 - c) * (1.0 + c) - a * a); // vertex (a, y_ca, c)
+  const double z = std::sqrt((1.0 - b) * (1.0 + b) - a * a); // vertex (a, b, z_ab)
+  // Excess al_ab + al_bc + al_ca - pi, in [0, pi/2] (S >= 0): the argument of minus the product
+  // (a b + i z)(b c + i x)(c a + i y), one atan2 instead of three.
+  const double ur = a * b * b * c - z * x, ui = a * b * x + b * c * z;
+  const double qr = ur * c * a - ui * y, qi = ur * y + ui * c * a;
+  const double excess = std::atan2(-qi, -qr);
+  // Arc angles th_a, th_b, th_c of the faces: angle between the face's two vertices.
+  const double th_a = std::atan2(y * z - b * c, b * y + c * z);
+  const double th_b = std::atan2(x * z - a * c, a * x + c * z);
+  const double th_c = std::atan2(x * y - a * b, a * x + b * y);
+  const double v =
+      excess / 3.0 -
+      (a * (3.0 - a * a) * th_a + b * (3.0 - b * b) * th_b + c * (3.0 - c * c) * th_c) / 6.0 +
+      (a * b * z + b * c * x + c * a * y) / 3.0 - a * b * c;
+  return std::max(v, 0.0);
+}
+
+/// Volume of the unit ball in {x_i > d_i, i < n}, d_i >= 0 (n = 0..3 planes).
+double unit_ball_above(const std::array<double, 3>& d, int n) {
+  switch (n) {
+  case 0:
+    return 4.0 / 3.0 * pi;
+  case 1:
+    return unit_cap(d[0]);
+  case 2:
+    return unit_wedge(d[0], d[1]);
+  default:
+    return unit_corner(d[0], d[1], d[2]);
+  }
 }
 } // namespace
 
@@ -85,33 +128,33 @@ double disc_quadrant_area(double r, double Y, double Z) {
 
 double ball_octant_volume(double R, double X, double Y, double Z) {
   if (!(R > 0.0) || X <= -R || Y <= -R || Z <= -R) return 0.0;
-  std::array<double, 3> c{std::min(X, R), std::min(Y, R), std::min(Z, R)};
-  // Integrate along the axis of the largest bound; the others cut the slices.
-  std::sort(c.begin(), c.end());
-  const double Xe = c[2], Ya = c[0], Za = c[1];
-  if (Za >= R) return ball_below(R, Ya); // one plane: spherical cap (closed form)
-  // Breakpoints of A(r(x), Ya, Za), r(x)^2 = R^2 - x^2: r = |Ya|, r = |Za|, r^2 = Ya^2 + Za^2.
-  std::array<double, 8> br{};
-  int nb = 0;
-  br[static_cast<std::size_t>(nb++)] = -R;
-  for (double r2 : {R * R - Ya * Ya, R * R - Za * Za, R * R - Ya * Ya - Za * Za})
-    if (r2 > 0.0) {
-      const double xb = std::sqrt(r2);
-      for (double x : {-xb, xb})
-        if (x > -R && x < Xe) br[static_cast<std::size_t>(nb++)] = x;
-    }
-  br[static_cast<std::size_t>(nb++)] = Xe;
-  for (int a = 1; a < nb; ++a) // insertion sort (std::sort trips GCC 12's -Warray-bounds)
-    for (int b = a; b > 0 && br[static_cast<std::size_t>(b - 1)] > br[static_cast<std::size_t>(b)];
-         --b)
-      std::swap(br[static_cast<std::size_t>(b - 1)], br[static_cast<std::size_t>(b)]);
-  auto area = [&](double x) {
-    return disc_quadrant_area(std::sqrt(std::max(R * R - x * x, 0.0)), Ya, Za);
-  };
-  double v = 0.0;
-  for (int m = 0; m + 1 < nb; ++m)
-    v += integrate(area, br[static_cast<std::size_t>(m)], br[static_cast<std::size_t>(m + 1)]);
-  return v;
+  // Unit ball, u = X / R: a plane with u <= 0 bounds {x < u}, the mirror image of {x > -u}; one
+  // with 0 < u < 1 bounds {x < u} = ball - {x > u} (inclusion-exclusion over these); u >= 1 does
+  // not cut.
+  std::array<double, 3> u{X / R, Y / R, Z / R};
+  std::sort(u.begin(), u.end()); // bitwise symmetric under permutations of (X, Y, Z)
+  std::array<double, 3> keep{}, flip{};
+  int nk = 0, nf = 0;
+  for (double v : u) {
+    if (v >= 1.0) continue;
+    if (v <= 0.0)
+      keep[static_cast<std::size_t>(nk++)] = -v;
+    else
+      flip[static_cast<std::size_t>(nf++)] = v;
+  }
+  double s = 0.0;
+  for (int m = 0; m < (1 << nf); ++m) {
+    std::array<double, 3> d = keep;
+    int n = nk;
+    bool odd = false;
+    for (int f = 0; f < nf; ++f)
+      if ((m >> f) & 1) {
+        d[static_cast<std::size_t>(n++)] = flip[static_cast<std::size_t>(f)];
+        odd = !odd;
+      }
+    s += odd ? -unit_ball_above(d, n) : unit_ball_above(d, n);
+  }
+  return s * R * R * R;
 }
 
 double sphere_box_volume(const Vec3& c, double R, const std::array<double, 3>& lo,

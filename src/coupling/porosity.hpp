@@ -25,9 +25,11 @@ void validate(const PorositySettings& s);
 
 /// Area of the disc |(y, z)| < r inside the quadrant {y < Y, z < Z}, exact, m^2.
 double disc_quadrant_area(double r, double Y, double Z);
-/// Volume of the ball |x| < R inside the octant {x < X, y < Y, z < Z}, m^3: exact 2-D area
-/// integrated along one axis by tanh-sinh quadrature between the breakpoints of the integrand
-/// (relative error ~1e-15); closed-form spherical cap when only one plane cuts the ball.
+/// Volume of the ball |x| < R inside the octant {x < X, y < Y, z < Z}, m^3, in closed form
+/// (sqrt, atan2): spherical cap, two-plane wedge [Strobl16, see .cpp], three-plane corner
+/// (divergence theorem + Gauss-Bonnet), planes on the centre's side reduced to these by
+/// inclusion-exclusion. Absolute error ~1e-15 R^3 (tests: <= 1e-15 R^3 against 40-digit values);
+/// bitwise symmetric in (X, Y, Z).
 double ball_octant_volume(double R, double X, double Y, double Z);
 /// Volume of the sphere (centre c, radius R) inside the box [lo, hi], m^3.
 double sphere_box_volume(const Vec3& c, double R, const std::array<double, 3>& lo,
