@@ -19,6 +19,25 @@ namespace fluidem {
 
 namespace {
 
+void print_gas_report(const CaseSpec& spec, const CaseReport& r) {
+  if (!spec.gas) return;
+  const auto& g = *spec.gas;
+  const bool two_d = spec.simulation.dimension == 2;
+  fmt::print("gas                {} cells ({}), model {}, {}, viscosity {:.4g} Pa s\n",
+             two_d ? fmt::format("{} x {}", g.cells[0], g.cells[2])
+                   : fmt::format("{} x {} x {}", g.cells[0], g.cells[1], g.cells[2]),
+             two_d ? "x-z plane" : "3-D", g.model == gas::PressureModel::A ? "A" : "B",
+             g.eos == gas::EquationOfState::ideal_gas ? "ideal gas" : "incompressible",
+             g.viscosity);
+  fmt::print("coupling           drag {}, porosity {}, scheme 3 [Zhu07 §3.2]\n",
+             coupling::drag::to_string(spec.coupling.drag),
+             coupling::to_string(spec.coupling.porosity.method));
+  fmt::print("gas time step DT   {:.4g} s", r.flow_time_step);
+  if (spec.simulation.engine == Engine::SoftSphere)
+    fmt::print(" ({} DEM steps each)", r.steps_per_flow_step);
+  fmt::print("\n");
+}
+
 void print_report(const CaseSpec& spec, const CaseReport& r) {
   fmt::print("case               {}\n", spec.source_file);
   fmt::print("dimension          {} ({})\n", spec.simulation.dimension,
@@ -32,6 +51,7 @@ void print_report(const CaseSpec& spec, const CaseReport& r) {
     fmt::print("total mass         {:.6g} kg\n", r.total_mass);
     fmt::print("flow time step DT  {:.4g} s\n", r.chosen_time_step);
     fmt::print("steps              {:.0f}\n", spec.simulation.end_time / r.chosen_time_step);
+    print_gas_report(spec, r);
     return;
   }
   fmt::print("contact model      normal {}, tangential {}, rolling {}\n",
@@ -51,6 +71,7 @@ void print_report(const CaseSpec& spec, const CaseReport& r) {
   fmt::print("expected overlap   {:.3g} of a diameter under the bed's own weight\n",
              r.expected_overlap_ratio);
   fmt::print("neighbour skin     {:.4g} m\n", r.skin);
+  print_gas_report(spec, r);
 }
 
 std::string default_out_dir(const std::string& case_path) {
@@ -120,9 +141,10 @@ int run_cli(int argc, char** argv) {
     fmt::print("done: {} steps in {:.3f} s wall, {:.4g} particle-steps/s\n", s.steps,
                s.wall_seconds, s.particle_steps_per_second);
     fmt::print("time in contacts {:.3f} s, integration {:.3f} s, neighbour lists {:.3f} s "
-               "({} builds), output {:.3f} s\n",
+               "({} builds), output {:.3f} s{}\n",
                s.seconds_contacts, s.seconds_integration, s.seconds_neighbour, s.neighbour_builds,
-               s.seconds_output);
+               s.seconds_output,
+               sim.gas() ? fmt::format(", gas and coupling {:.3f} s", s.seconds_gas) : "");
     if (s.collisions > 0)
       fmt::print("{} collisions, {:.4g} collisions per second of wall time\n", s.collisions,
                  static_cast<double>(s.collisions) / std::max(s.wall_seconds, 1e-9));
@@ -130,6 +152,9 @@ int run_cli(int argc, char** argv) {
                s.bytes_per_particle, s.energy_drift);
     fmt::print("results: {}/particles.h5 (+ particles.xmf for ParaView), {}/series.csv\n", out_dir,
                out_dir);
+    if (sim.gas())
+      fmt::print("         {}/fields.h5 (+ fields.xmf){}\n", out_dir,
+                 sim.spec().output.probes.empty() ? "" : fmt::format(", {}/probes.csv", out_dir));
     return 0;
   } catch (const InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -8,8 +8,11 @@
 
 #include <fmt/format.h>
 
+#include "analysis/bed_height.hpp"
 #include "fluidem_version.hpp"
 #include "io/case_writer.hpp"
+#include "output/fields_writer.hpp"
+#include "output/fields_xdmf.hpp"
 #include "output/h5md_writer.hpp"
 #include "output/series_writer.hpp"
 #include "output/xdmf_writer.hpp"
@@ -97,6 +100,14 @@ Simulation::Simulation(CaseSpec spec) : spec_(std::move(spec)) {
     report_.chosen_time_step = dt_;
     nl_ = std::make_unique<NeighbourList>(box_from(spec_), skin, 0);
     hard_ = std::make_unique<HardSphereEngine>(spec_, box_from(spec_));
+    if (spec_.gas) {
+      if (spec_.gas->time_step != 0.0)
+        throw InputError(spec_.where("gas.time_step"), "gas.time_step",
+                         "hard-sphere runs take the flow step DT from simulation.time_step; "
+                         "remove gas.time_step");
+      report_.flow_time_step = dt_;
+      gas_ = std::make_unique<GasCoupling>(spec_, p_);
+    }
     return;
   }
 
@@ -115,6 +126,18 @@ Simulation::Simulation(CaseSpec spec) : spec_(std::move(spec)) {
                                  "true",
                                  dt_, dt_limit, tc, kMinStepsPerContact));
   }
+  if (spec_.gas) {
+    // Flow step DT ("auto" = 1e-4 s [Hoomans96 §5.3], shortened to end exactly at end_time);
+    // the DEM step is shortened so that a whole number of DEM steps fills DT.
+    double flow_dt = spec_.gas->time_step > 0.0 ? spec_.gas->time_step : 1.0e-4;
+    if (spec_.gas->time_step == 0.0 && sim.end_time > 0.0)
+      flow_dt = sim.end_time / std::ceil(sim.end_time / flow_dt);
+    steps_per_flow_ = std::max(1L, static_cast<long>(std::ceil(flow_dt / dt_ - 1e-9)));
+    dt_ = flow_dt / static_cast<double>(steps_per_flow_);
+    spec_.gas->time_step = flow_dt;
+    report_.flow_time_step = flow_dt;
+    report_.steps_per_flow_step = steps_per_flow_;
+  }
   spec_.simulation.time_step = dt_; // the resolved case reproduces this run
 
   report_.durations = table_->durations();
@@ -127,6 +150,7 @@ Simulation::Simulation(CaseSpec spec) : spec_(std::move(spec)) {
   nl_ = std::make_unique<NeighbourList>(box_from(spec_), skin, contact_history_width(*table_));
   nl_->build(p_);
   compute_forces();
+  if (spec_.gas) gas_ = std::make_unique<GasCoupling>(spec_, p_);
 }
 
 Simulation::~Simulation() = default;
@@ -141,6 +165,12 @@ void Simulation::compute_forces() {
 
 void Simulation::step() {
   if (hard_) {
+    if (gas_) { // [Hoomans96 Fig. 7]: flow step, then drag kick, then the collision sequence
+      const auto tg = Clock::now();
+      gas_->step(p_, time_, dt_);
+      gas_->kick(p_, dt_);
+      t_gas_ += seconds_since(tg);
+    }
     const auto t0 = Clock::now();
     hard_->advance(p_, time_, dt_, spec_.simulation.gravity);
     e_dsp_ = hard_->stats().dissipated;
@@ -154,12 +184,23 @@ void Simulation::step() {
   const double gx = spec_.simulation.gravity[0], gy = spec_.simulation.gravity[1],
                gz = spec_.simulation.gravity[2];
   const auto& box = nl_->box();
-  // Half kick of particle i: v += (F/m + g) dt/2, w += T/I dt/2.
+  if (gas_ && step_ % steps_per_flow_ == 0) { // a flow step; its forces act over the next DT
+    const auto tg = Clock::now();
+    gas_->step(p_, time_, dt_ * static_cast<double>(steps_per_flow_));
+    t_gas_ += seconds_since(tg);
+  }
+  const double* gfx = gas_ ? gas_->force(0).data() : nullptr;
+  const double* gfy = gas_ ? gas_->force(1).data() : nullptr;
+  const double* gfz = gas_ ? gas_->force(2).data() : nullptr;
+  // Half kick of particle i: v += ((F + F_gas)/m + g) dt/2, w += T/I dt/2.
   auto kick = [&](std::size_t i) {
     const double im = p_.inv_mass[i], ii = p_.inv_inertia[i];
-    p_.vx[i] += h * (p_.fx[i] * im + gx);
-    p_.vy[i] += h * (p_.fy[i] * im + gy);
-    p_.vz[i] += h * (p_.fz[i] * im + gz);
+    const double fx = gfx ? p_.fx[i] + gfx[i] : p_.fx[i];
+    const double fy = gfy ? p_.fy[i] + gfy[i] : p_.fy[i];
+    const double fz = gfz ? p_.fz[i] + gfz[i] : p_.fz[i];
+    p_.vx[i] += h * (fx * im + gx);
+    p_.vy[i] += h * (fy * im + gy);
+    p_.vz[i] += h * (fz * im + gz);
     p_.wx[i] += h * p_.tx[i] * ii;
     p_.wy[i] += h * p_.ty[i] * ii;
     p_.wz[i] += h * p_.tz[i] * ii;
@@ -196,6 +237,18 @@ void Simulation::step() {
   t_integration_ += seconds_since(t0);
   ++step_;
   time_ = static_cast<double>(step_) * dt_;
+}
+
+double Simulation::bed_height() const {
+  const auto& g = spec_.simulation.gravity;
+  int axis = 2;
+  for (int d = 0; d < 3; ++d)
+    if (std::abs(g[static_cast<std::size_t>(d)]) > std::abs(g[static_cast<std::size_t>(axis)]))
+      axis = d;
+  const bool upward = g[static_cast<std::size_t>(axis)] <= 0.0;
+  const double floor = upward ? spec_.domain.lo[static_cast<std::size_t>(axis)]
+                              : spec_.domain.hi[static_cast<std::size_t>(axis)];
+  return fluidem::bed_height(p_, axis, floor, upward, spec_.simulation.dimension == 2);
 }
 
 void Simulation::check_stability() const {
@@ -267,9 +320,34 @@ RunSummary Simulation::run(const std::string& out_dir,
     // dissipated; neighbour_builds counts the hard-sphere engine's list builds.
     columns.insert(columns.end(), {"n_collisions", "n_tc_elastic", "n_slow_elastic", "e_tc_kept"});
   }
+  if (gas_) {
+    // Coupled runs: e_total then leaves out the work of the gas on the particles.
+    columns.insert(columns.end(), {"pressure_drop", "bed_height", "gas_iterations"});
+  }
   SeriesWriter series((fs::path(out_dir) / "series.csv").string(), columns);
+  std::unique_ptr<SeriesWriter> probes;
+  if (gas_ && !spec_.output.probes.empty()) {
+    std::vector<std::string> pc{"time"};
+    for (const ProbeSpec& pr : spec_.output.probes) pc.push_back(pr.name);
+    probes = std::make_unique<SeriesWriter>((fs::path(out_dir) / "probes.csv").string(), pc);
+  }
   std::vector<double> frame_times;
   const std::string xmf = (fs::path(out_dir) / "particles.xmf").string();
+  // Gas fields per particle frame (fields.h5 + fields.xmf), coupled runs only.
+  const std::vector<std::string> field_scalars{"porosity", "pressure"};
+  const std::vector<std::string> field_vectors{"gas_velocity", "solids_velocity"};
+  std::unique_ptr<FieldsWriter> fields;
+  FieldGrid fgrid;
+  CellFields cells;
+  if (gas_) {
+    const auto& g = gas_->solver().grid();
+    fgrid.cells = g.n;
+    fgrid.lo = g.lo;
+    fgrid.spacing = g.h;
+    fields = std::make_unique<FieldsWriter>((fs::path(out_dir) / "fields.h5").string(), fgrid,
+                                            field_scalars, field_vectors, kVersion);
+  }
+  const std::string fields_xmf = (fs::path(out_dir) / "fields.xmf").string();
 
   // The run ends at the first step at or after end_time; outputs are written at the first step
   // at or after each multiple of their interval (no drift from rounding intervals to steps).
@@ -309,6 +387,16 @@ RunSummary Simulation::run(const std::string& out_dir,
         row.insert(row.end(), {static_cast<double>(h.collisions), static_cast<double>(h.tc_elastic),
                                static_cast<double>(h.slow_elastic), h.tc_energy_kept});
       }
+      if (gas_) {
+        row.insert(row.end(), {gas_->pressure_drop(), bed_height(),
+                               static_cast<double>(gas_->solver().last_iterations())});
+        if (probes) {
+          std::vector<double> prow{time_};
+          const std::vector<double> pp = gas_->probe_pressures();
+          prow.insert(prow.end(), pp.begin(), pp.end());
+          probes->write_row(prow);
+        }
+      }
       series.write_row(row);
     }
     if (time_ >= next_frame - eps || step_ == total) {
@@ -317,6 +405,16 @@ RunSummary Simulation::run(const std::string& out_dir,
       h5.flush();
       frame_times.push_back(time_);
       write_particles_xdmf(xmf, "particles.h5", p_.size(), frame_times);
+      if (fields) {
+        gas_->cell_fields(p_, cells);
+        auto vec = [](const std::array<std::vector<double>, 3>& v) {
+          return std::array<const double*, 3>{v[0].data(), v[1].data(), v[2].data()};
+        };
+        fields->write_frame(step_, time_, {cells.porosity.data(), cells.pressure.data()},
+                            {vec(cells.gas_velocity), vec(cells.solids_velocity)});
+        write_fields_xdmf(fields_xmf, "fields.h5", fgrid, field_scalars, field_vectors,
+                          frame_times);
+      }
     }
     seconds_output += seconds_since(t0);
   };
@@ -337,6 +435,8 @@ RunSummary Simulation::run(const std::string& out_dir,
     }
   } catch (...) {
     series.close();
+    if (probes) probes->close();
+    if (fields) fields->flush();
     h5.flush();
     throw;
   }
@@ -350,6 +450,7 @@ RunSummary Simulation::run(const std::string& out_dir,
   s.seconds_integration = t_integration_;
   s.seconds_neighbour = t_neighbour_;
   s.seconds_output = seconds_output;
+  s.seconds_gas = t_gas_;
   s.bytes_per_particle =
       p_.size() ? (p_.bytes() + nl_->bytes() + (hard_ ? hard_->bytes() : 0)) / p_.size() : 0;
   if (hard_) {

@@ -15,6 +15,7 @@
 #include "contact/contact_table.hpp"
 #include "core/case_spec.hpp"
 #include "hardsphere/hard_sphere_engine.hpp"
+#include "integrate/gas_coupling.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "particles/particle_store.hpp"
 
@@ -27,6 +28,8 @@ struct CaseReport {
   std::vector<ContactTable::DurationRow> durations; ///< contact duration per pair, s
   double characteristic_velocity = 0.0;             ///< m/s used for Hertz durations
   double stable_time_step = 0.0;                    ///< largest accepted dt, s
+  double flow_time_step = 0.0;                      ///< gas step DT, s (coupled runs)
+  long steps_per_flow_step = 1;                     ///< particle steps per DT (soft sphere)
   double chosen_time_step = 0.0;                    ///< s
   bool time_step_forced = false;
   double expected_overlap_ratio = 0.0; ///< under the bed's own weight, / diameter
@@ -47,7 +50,7 @@ struct RunSummary {
   double particle_steps_per_second = 0.0;
   long neighbour_builds = 0;
   double seconds_contacts = 0.0, seconds_integration = 0.0, seconds_neighbour = 0.0,
-         seconds_output = 0.0;
+         seconds_output = 0.0, seconds_gas = 0.0;
   std::size_t bytes_per_particle = 0;
   double energy_drift = 0.0; ///< (E_total(end) - E_total(0)) / E_scale
   long collisions = 0;       ///< hard-sphere engine: collisions processed
@@ -82,6 +85,10 @@ public:
   /// The hard-sphere engine, or nullptr for the soft-sphere DEM.
   const HardSphereEngine* hard_sphere() const { return hard_.get(); }
   double dissipated_energy() const { return e_dsp_; }
+  /// The gas phase and coupling, or nullptr for a granular run.
+  const GasCoupling* gas() const { return gas_.get(); }
+  /// Bed height (analysis/bed_height.hpp) along the axis of gravity, m.
+  double bed_height() const;
 
 private:
   void compute_forces();
@@ -93,12 +100,14 @@ private:
   std::unique_ptr<ContactTable> table_;
   std::unique_ptr<NeighbourList> nl_;
   std::unique_ptr<HardSphereEngine> hard_; ///< set when engine = "hard_sphere"
+  std::unique_ptr<GasCoupling> gas_;       ///< set when the case has [gas]
+  long steps_per_flow_ = 1;                ///< soft sphere: DEM steps per gas step
   CaseReport report_;
   ContactStats stats_;
   NonconservativeForces nc_;
   double dt_ = 0.0, time_ = 0.0, e_dsp_ = 0.0;
   long step_ = 0;
-  double t_contacts_ = 0.0, t_integration_ = 0.0, t_neighbour_ = 0.0;
+  double t_contacts_ = 0.0, t_integration_ = 0.0, t_neighbour_ = 0.0, t_gas_ = 0.0;
 };
 
 } // namespace fluidem

@@ -1,0 +1,167 @@
+#include "integrate/gas_coupling.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "coupling/drag/drag_model.hpp"
+
+namespace fluidem {
+
+gas::GasSettings GasCoupling::complete_settings(const CaseSpec& spec) {
+  gas::GasSettings s = *spec.gas;
+  s.dimension = spec.simulation.dimension;
+  for (int d = 0; d < 3; ++d) {
+    s.lo[d] = spec.domain.lo[d];
+    s.hi[d] = spec.domain.hi[d];
+    s.gravity[d] = spec.simulation.gravity[d];
+  }
+  if (s.dimension == 2) {
+    s.depth = spec.domain.hi[1] - spec.domain.lo[1];
+    s.cells[1] = 1;
+  }
+  // A periodic particle axis is a periodic gas axis.
+  for (int d = 0; d < 3; ++d)
+    if (spec.domain.periodic[d]) {
+      s.boundary[2 * d].type = gas::BoundaryType::periodic;
+      s.boundary[2 * d + 1].type = gas::BoundaryType::periodic;
+    }
+  return s;
+}
+
+GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
+    : probes_(spec.output.probes), settings_(spec.coupling) {
+  const gas::GasSettings gs = complete_settings(spec);
+  // Polydisperse closures without a given mean diameter: the Sauter mean of the particles.
+  if (coupling::drag::needs_mean_diameter(settings_.drag) && settings_.d_mean == 0.0) {
+    double s3 = 0.0, s2 = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double d = 2.0 * p.radius[i];
+      s3 += d * d * d;
+      s2 += d * d;
+    }
+    if (s2 > 0.0) settings_.d_mean = s3 / s2;
+  }
+  try {
+    coupling::validate(settings_, gs);
+  } catch (const InputError& e) {
+    throw InputError(spec.where("coupling"), "coupling", e.what());
+  }
+  gas_ = std::make_unique<gas::GasSolver>(gs);
+  const auto& g = spec.simulation.gravity;
+  for (int d = 0; d < 3; ++d)
+    if (std::abs(g[static_cast<std::size_t>(d)]) > std::abs(g[static_cast<std::size_t>(vertical_)]))
+      vertical_ = d;
+  falls_low_ = g[static_cast<std::size_t>(vertical_)] <= 0.0;
+  coupling::update_porosity(*gas_, p, settings_);
+  gas_->sync_old_porosity();
+  for (auto& f : force_) f.assign(p.size(), 0.0);
+  f_.resize(p.size());
+}
+
+GasCoupling::~GasCoupling() = default;
+
+void GasCoupling::step(const ParticleStore& p, double time, double dt) {
+  coupling::update_porosity(*gas_, p, settings_);
+  coupling::compute_particle_forces(*gas_, p, settings_, f_);
+  coupling::deposit_momentum_source(*gas_, p, f_);
+  gas_->step(time, dt);
+  coupling::update_particle_forces(*gas_, p, f_);
+  const std::size_t n = p.size();
+  for (auto& f : force_) f.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    force_[0][i] = f_.drag_x[i] + f_.pres_x[i];
+    force_[1][i] = f_.drag_y[i] + f_.pres_y[i];
+    force_[2][i] = f_.drag_z[i] + f_.pres_z[i];
+  }
+}
+
+void GasCoupling::kick(ParticleStore& p, double dt) const {
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double a = dt * p.inv_mass[i];
+    p.vx[i] += a * force_[0][i];
+    p.vy[i] += a * force_[1][i];
+    p.vz[i] += a * force_[2][i];
+  }
+}
+
+double GasCoupling::pressure_drop() const {
+  const gas::GasGrid& g = gas_->grid();
+  const std::vector<double>& pr = gas_->pressure();
+  const int axis = vertical_;
+  const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+  const int n = g.n[static_cast<std::size_t>(axis)];
+  // Mean over a layer of cells normal to `axis` at index k (1-based).
+  auto layer = [&](int k) {
+    double s = 0.0;
+    long m = 0;
+    for (int b = 1; b <= g.n[static_cast<std::size_t>(a2)]; ++b)
+      for (int a = 1; a <= g.n[static_cast<std::size_t>(a1)]; ++a) {
+        std::array<int, 3> c{};
+        c[static_cast<std::size_t>(axis)] = k;
+        c[static_cast<std::size_t>(a1)] = a;
+        c[static_cast<std::size_t>(a2)] = b;
+        s += pr[static_cast<std::size_t>(g.idx(c[0], c[1], c[2]))];
+        ++m;
+      }
+    return s / static_cast<double>(m);
+  };
+  double lo = layer(1), hi = layer(n);
+  if (n >= 2) {
+    lo = 1.5 * lo - 0.5 * layer(2);
+    hi = 1.5 * hi - 0.5 * layer(n - 1);
+  }
+  return falls_low_ ? lo - hi : hi - lo;
+}
+
+std::vector<double> GasCoupling::probe_pressures() const {
+  std::vector<double> v;
+  v.reserve(probes_.size());
+  for (const ProbeSpec& pr : probes_)
+    v.push_back(gas_->pressure_at({pr.position[0], pr.position[1], pr.position[2]}));
+  return v;
+}
+
+void GasCoupling::cell_fields(const ParticleStore& p, CellFields& out) const {
+  const gas::GasGrid& g = gas_->grid();
+  const int nx = g.n[0], ny = g.n[1], nz = g.n[2];
+  const std::size_t nc = static_cast<std::size_t>(nx) * ny * nz;
+  out.cells = g.n;
+  out.porosity.assign(nc, 0.0);
+  out.pressure.assign(nc, 0.0);
+  for (int d = 0; d < 3; ++d) {
+    out.gas_velocity[static_cast<std::size_t>(d)].assign(nc, 0.0);
+    out.solids_velocity[static_cast<std::size_t>(d)].assign(nc, 0.0);
+  }
+  auto flat = [&](int i, int j, int k) {
+    return static_cast<std::size_t>((i - 1) + nx * ((j - 1) + ny * (k - 1)));
+  };
+  for (int k = 1; k <= nz; ++k)
+    for (int j = 1; j <= ny; ++j)
+      for (int i = 1; i <= nx; ++i) {
+        const auto q = static_cast<std::size_t>(g.idx(i, j, k));
+        const std::size_t c = flat(i, j, k);
+        out.porosity[c] = gas_->porosity()[q];
+        out.pressure[c] = gas_->pressure()[q];
+        for (int d = 0; d < 3; ++d) {
+          const auto lowface = static_cast<std::size_t>(static_cast<long>(q) - g.stride[d]);
+          const std::vector<double>& u = gas_->velocity(d);
+          out.gas_velocity[static_cast<std::size_t>(d)][c] = 0.5 * (u[q] + u[lowface]);
+        }
+      }
+  std::vector<double> mass(nc, 0.0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto c = g.cell_of(p.position(i));
+    const std::size_t q = flat(c[0], c[1], c[2]);
+    mass[q] += p.mass[i];
+    out.solids_velocity[0][q] += p.mass[i] * p.vx[i];
+    out.solids_velocity[1][q] += p.mass[i] * p.vy[i];
+    out.solids_velocity[2][q] += p.mass[i] * p.vz[i];
+  }
+  for (std::size_t q = 0; q < nc; ++q)
+    if (mass[q] > 0.0)
+      for (auto& v : out.solids_velocity) v[q] /= mass[q];
+}
+
+} // namespace fluidem

@@ -1,0 +1,75 @@
+// One flow step of the discrete particle model, shared by both particle engines
+// [Hoomans96 Fig. 7; Deen07 §3; Zhu07 §3.2 scheme 3]. At time t^n, with particles at x^n, v^n:
+//   1. porosity eps^{n+1} from x^n (porosity by cell or porous cube, coupling/porosity.hpp);
+//   2. per particle c_i = V_i K(eps_i, |u^n_i - v^n_i|) from the drag closure;
+//   3. the gas gets the semi-implicit sink S = sum_i w c_i (v^n_i - u^{n+1}) / V_cell and is
+//      advanced to t^{n+1} = t^n + DT (gas/gas_solver.hpp);
+//   4. the particles get drag_i = c_i (u^{n+1}_i - v^n_i) (exactly minus what the gas got) and,
+//      in Model A, -V_i grad p^{n+1} [Zhu07 eq. 5]. These forces act unchanged over the next
+//      DT: the hard-sphere engine takes them as one velocity kick before its collision sequence
+//      [Hoomans96 eq. 33, Fig. 7], the soft-sphere DEM adds them in each of its sub-steps.
+// The gas settings of the case are completed here from the particle domain: dimension, lo/hi,
+// 2-D depth (the domain's y extent) and gravity are the simulation's own.
+#pragma once
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/case_spec.hpp"
+#include "coupling/exchange.hpp"
+#include "gas/gas_solver.hpp"
+#include "particles/particle_store.hpp"
+
+namespace fluidem {
+
+/// Gas fields at the interior cell centres, x fastest (index i + nx (j + ny k)), for output.
+struct CellFields {
+  std::array<int, 3> cells{};
+  std::vector<double> porosity, pressure;
+  std::array<std::vector<double>, 3> gas_velocity;    ///< interstitial, mean of the two faces
+  std::array<std::vector<double>, 3> solids_velocity; ///< mass-weighted mean over the particles
+                                                      ///< whose centre is in the cell; 0 if none
+};
+
+class GasCoupling {
+public:
+  /// The gas settings of `spec` completed from its domain and simulation sections.
+  static gas::GasSettings complete_settings(const CaseSpec& spec);
+
+  /// Validates the coupling (InputError naming the key), builds the gas solver and sets the
+  /// initial porosity from the particles (old = new, so the first step starts at rest).
+  GasCoupling(const CaseSpec& spec, const ParticleStore& p);
+  ~GasCoupling();
+
+  /// Steps 1-4 above, from `time` to `time + dt`. InstabilityError if the gas solver fails.
+  void step(const ParticleStore& p, double time, double dt);
+
+  /// The gas force on each particle (drag + pressure), N, held over the current flow step.
+  const std::vector<double>& force(int d) const { return force_[static_cast<std::size_t>(d)]; }
+  /// v_i += dt F_i / m_i (the hard-sphere engine's kick).
+  void kick(ParticleStore& p, double dt) const;
+
+  const gas::GasSolver& solver() const { return *gas_; }
+  const coupling::ParticleGasForces& exchange() const { return f_; }
+
+  /// Bottom-to-top pressure drop, Pa: mean pressure on the low face of the axis against
+  /// gravity minus the mean on its high face, each extrapolated linearly from the two nearest
+  /// layers of cell centres (docs/coupling.md).
+  double pressure_drop() const;
+  /// Pressure at each probe of spec.output.probes, Pa (interpolated, gas::pressure_at).
+  std::vector<double> probe_pressures() const;
+  /// The fields written to fields.h5.
+  void cell_fields(const ParticleStore& p, CellFields& out) const;
+
+private:
+  std::vector<ProbeSpec> probes_;
+  std::unique_ptr<gas::GasSolver> gas_;
+  coupling::CouplingSettings settings_;
+  coupling::ParticleGasForces f_;
+  std::array<std::vector<double>, 3> force_;
+  int vertical_ = 2;      ///< the axis of gravity (z if there is none)
+  bool falls_low_ = true; ///< gravity points to the low side of that axis
+};
+
+} // namespace fluidem
