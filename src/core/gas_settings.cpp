@@ -1,6 +1,7 @@
 // Validation of the gas settings and the inflow time functions [Deen07 §6.1].
 #include "core/gas_settings.hpp"
 #include "core/error.hpp"
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -14,6 +15,18 @@ double inflow_velocity(const InflowProfile& p, double t) {
     return (t >= p.start && t < p.start + p.duration) ? p.velocity : p.background;
   case InflowMode::pulsation:
     return p.velocity + p.amplitude * std::sin(2.0 * std::numbers::pi * p.frequency * t);
+  case InflowMode::table: {
+    // Piecewise linear through (times[k], velocities[k]); constant beyond the ends.
+    const auto& ts = p.times;
+    const auto& vs = p.velocities;
+    if (ts.empty()) return 0.0;
+    if (t <= ts.front()) return vs.front();
+    if (t >= ts.back()) return vs.back();
+    const auto k = static_cast<std::size_t>(std::upper_bound(ts.begin(), ts.end(), t) -
+                                            ts.begin()); // ts[k-1] <= t < ts[k]
+    const double w = (t - ts[k - 1]) / (ts[k] - ts[k - 1]);
+    return vs[k - 1] + w * (vs[k] - vs[k - 1]);
+  }
   }
   throw InputError("gas: inflow mode out of range");
 }
@@ -30,7 +43,17 @@ void check_finite(double v, const std::string& key) {
 
 void check_profile(const InflowProfile& p, const std::string& key) {
   const int m = static_cast<int>(p.mode);
-  if (m < 0 || m > 2) bad(key + ".mode", "unknown inflow mode (constant, pulse, pulsation)");
+  if (m < 0 || m > 3) bad(key + ".mode", "unknown inflow mode (constant, pulse, pulsation, table)");
+  if (p.mode == InflowMode::table) {
+    if (p.times.size() < 2 || p.times.size() != p.velocities.size())
+      bad(key + ".times", "mode \"table\" needs times and velocities of equal length >= 2");
+    for (std::size_t k = 0; k < p.times.size(); ++k) {
+      check_finite(p.times[k], key + ".times");
+      check_finite(p.velocities[k], key + ".velocities");
+      if (k > 0 && !(p.times[k] > p.times[k - 1]))
+        bad(key + ".times", "must be strictly increasing");
+    }
+  }
   check_finite(p.velocity, key + ".velocity");
   check_finite(p.background, key + ".background");
   check_finite(p.start, key + ".start");
@@ -149,6 +172,8 @@ std::string to_string(InflowMode m) {
     return "pulse";
   case InflowMode::pulsation:
     return "pulsation";
+  case InflowMode::table:
+    return "table";
   }
   return "?";
 }
@@ -163,9 +188,10 @@ BoundaryType boundary_type_from_string(const std::string& name, const std::strin
 }
 
 InflowMode inflow_mode_from_string(const std::string& name, const std::string& key) {
-  for (InflowMode m : {InflowMode::constant, InflowMode::pulse, InflowMode::pulsation})
+  for (InflowMode m :
+       {InflowMode::constant, InflowMode::pulse, InflowMode::pulsation, InflowMode::table})
     if (to_string(m) == name) return m;
-  bad(key, "unknown inflow mode '" + name + "' (constant, pulse, pulsation)");
+  bad(key, "unknown inflow mode '" + name + "' (constant, pulse, pulsation, table)");
 }
 
 PressureModel pressure_model_from_string(const std::string& name, const std::string& key) {

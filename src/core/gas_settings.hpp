@@ -22,9 +22,10 @@ enum class BoundaryType {
 
 /// Time dependence of an inflow velocity [Deen07 §6.1].
 enum class InflowMode {
-  constant, ///< velocity
-  pulse,    ///< velocity during [start, start + duration), background otherwise
-  pulsation ///< velocity + amplitude * sin(2 pi frequency t)
+  constant,  ///< velocity
+  pulse,     ///< velocity during [start, start + duration), background otherwise
+  pulsation, ///< velocity + amplitude * sin(2 pi frequency t)
+  table      ///< piecewise linear through (times[k], velocities[k]), constant beyond the ends
 };
 
 enum class PressureModel {
@@ -42,13 +43,15 @@ enum class EquationOfState {
 /// divided by the porosity of the boundary (ghost) cell.
 struct InflowProfile {
   InflowMode mode = InflowMode::constant; ///< `.mode`: "constant" | "pulse" | "pulsation"
-  double velocity = 0.0;   ///< `.velocity`, m/s: constant value; pulse: during the pulse;
-                           ///< pulsation: the mean
-  double background = 0.0; ///< `.background`, m/s: pulse only, velocity outside the pulse
-  double start = 0.0;      ///< `.start`, s: pulse only, start time
-  double duration = 0.0;   ///< `.duration`, s: pulse only, >= 0
-  double amplitude = 0.0;  ///< `.amplitude`, m/s: pulsation only
-  double frequency = 0.0;  ///< `.frequency`, Hz: pulsation only, >= 0
+  double velocity = 0.0;            ///< `.velocity`, m/s: constant value; pulse: during the pulse;
+                                    ///< pulsation: the mean
+  double background = 0.0;          ///< `.background`, m/s: pulse only, velocity outside the pulse
+  double start = 0.0;               ///< `.start`, s: pulse only, start time
+  double duration = 0.0;            ///< `.duration`, s: pulse only, >= 0
+  double amplitude = 0.0;           ///< `.amplitude`, m/s: pulsation only
+  double frequency = 0.0;           ///< `.frequency`, Hz: pulsation only, >= 0
+  std::vector<double> times{};      ///< `.times`, s: table only, strictly increasing, >= 2
+  std::vector<double> velocities{}; ///< `.velocities`, m/s: table only, one per time
 };
 
 /// Superficial inflow velocity of a profile at time t, m/s (exact formula, no smoothing).
@@ -82,16 +85,16 @@ inline constexpr std::array<const char*, 6> side_names{"left", "right",  "front"
                                                        "back", "bottom", "top"};
 
 struct GasSettings {
-  int dimension = 3;                      ///< `gas.dimension`: 2 (x-z plane) or 3
-  std::array<int, 3> cells{8, 8, 8};      ///< `gas.cells`: nx, ny, nz (ny ignored = 1 in 2-D)
-  Vec3 lo{0.0, 0.0, 0.0};                 ///< `gas.lo`, m: lower domain corner
-  Vec3 hi{0.1, 0.1, 0.1};                 ///< `gas.hi`, m: upper corner (hi.y ignored in 2-D)
-  double depth = 0.01;                    ///< `gas.depth`, m: 2-D only, thickness in y
-  double time_step = 0.0; ///< `gas.time_step`, s: flow time step DT of a soft-sphere run (the
-                          ///< DEM sub-steps inside it); 0 = "auto" = 1e-4 s [Hoomans96 §5.3].
-                          ///< Hard-sphere runs: DT is simulation.time_step and this must be 0.
-  double viscosity = 1.8e-5;              ///< `gas.viscosity`, Pa s (kg m^-1 s^-1)
-  PressureModel model = PressureModel::A; ///< `gas.model`: "A" | "B"
+  int dimension = 3;                 ///< `gas.dimension`: 2 (x-z plane) or 3
+  std::array<int, 3> cells{8, 8, 8}; ///< `gas.cells`: nx, ny, nz (ny ignored = 1 in 2-D)
+  Vec3 lo{0.0, 0.0, 0.0};            ///< `gas.lo`, m: lower domain corner
+  Vec3 hi{0.1, 0.1, 0.1};            ///< `gas.hi`, m: upper corner (hi.y ignored in 2-D)
+  double depth = 0.01;               ///< `gas.depth`, m: 2-D only, thickness in y
+  double time_step = 0.0;    ///< `gas.time_step`, s: flow time step DT of a soft-sphere run (the
+                             ///< DEM sub-steps inside it); 0 = "auto" = 1e-4 s [Hoomans96 §5.3].
+                             ///< Hard-sphere runs: DT is simulation.time_step and this must be 0.
+  double viscosity = 1.8e-5; ///< `gas.viscosity`, Pa s (kg m^-1 s^-1)
+  PressureModel model = PressureModel::A;           ///< `gas.model`: "A" | "B"
   EquationOfState eos = EquationOfState::ideal_gas; ///< `gas.eos`: "ideal_gas" | "incompressible"
   double molar_mass = 28.8e-3;          ///< `gas.molar_mass`, kg/mol [Hoomans96 §3.2.1]
   double temperature = 293.0;           ///< `gas.temperature`, K

@@ -2,6 +2,7 @@
 // pulse, background otherwise) and pulsation (mean + amplitude sin(2 pi f t)). Reference: the
 // formulas; exact equality for inflow_velocity(), and the boundary face velocity times the
 // ghost porosity equals it to 4 ulp (one division and one multiplication) at sampled times.
+#include "core/error.hpp"
 #include "gas/gas_solver.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
@@ -22,6 +23,29 @@ TEST(Inflow, ProfilesExact) {
   for (double t : {0.0, 0.0125, 0.025, 0.0375, 0.1234})
     EXPECT_EQ(inflow_velocity(puls, t), 0.8 + 0.4 * std::sin(2.0 * std::numbers::pi * 10.0 * t));
   EXPECT_EQ(inflow_velocity({InflowMode::constant, 0.7}, 3.0), 0.7);
+  // Table: piecewise linear, constant beyond the ends (a velocity sweep up and down).
+  InflowProfile table{InflowMode::table};
+  table.times = {1.0, 3.0, 5.0};
+  table.velocities = {0.5, 3.0, 0.5};
+  EXPECT_EQ(inflow_velocity(table, 0.0), 0.5);
+  EXPECT_EQ(inflow_velocity(table, 1.0), 0.5);
+  EXPECT_DOUBLE_EQ(inflow_velocity(table, 2.0), 1.75);
+  EXPECT_EQ(inflow_velocity(table, 3.0), 3.0);
+  EXPECT_DOUBLE_EQ(inflow_velocity(table, 4.5), 1.125);
+  EXPECT_EQ(inflow_velocity(table, 9.0), 0.5);
+}
+
+TEST(Inflow, BadTablesAreInputErrors) {
+  GasSettings s;
+  s.boundary[bottom].type = BoundaryType::inflow;
+  s.boundary[bottom].inflow.mode = InflowMode::table;
+  s.boundary[bottom].inflow.times = {0.0, 1.0};
+  s.boundary[bottom].inflow.velocities = {1.0};
+  EXPECT_THROW(validate(s), InputError);
+  s.boundary[bottom].inflow.velocities = {1.0, 2.0};
+  EXPECT_NO_THROW(validate(s));
+  s.boundary[bottom].inflow.times = {1.0, 1.0};
+  EXPECT_THROW(validate(s), InputError);
 }
 
 TEST(Inflow, FaceVelocityFollowsProfile) {
