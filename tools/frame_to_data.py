@@ -1,0 +1,39 @@
+#!/usr/bin/python3
+"""Write one frame of a fluidem particles.h5 (H5MD) as a LAMMPS data file
+(Atoms section: id type diameter density x y z), the format of [[insert]] placement = "file".
+
+usage: frame_to_data.py particles.h5 out.data [--frame K] [--density RHO]
+The frame defaults to the last one. H5MD files do not store the density: give it (kg/m^3).
+"""
+import argparse
+import sys
+
+import h5py
+import numpy as np
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("h5")
+    ap.add_argument("out")
+    ap.add_argument("--frame", type=int, default=-1)
+    ap.add_argument("--density", type=float, required=True, help="particle density, kg/m^3")
+    a = ap.parse_args()
+    with h5py.File(a.h5, "r") as f:
+        g = f["particles/all"]
+        pos = np.asarray(g["position/value"][a.frame])
+        rad = np.asarray(g["radius/value"][a.frame])
+        species = np.asarray(g["species/value"][a.frame])
+        ids = np.asarray(g["id/value"][a.frame])
+    n = len(rad)
+    with open(a.out, "w") as o:
+        o.write(f"# frame {a.frame} of {a.h5} (fluidem tools/frame_to_data.py)\n\n")
+        o.write(f"{n} atoms\n{int(species.max()) + 1 if n else 1} atom types\n\nAtoms # sphere\n\n")
+        for k in range(n):
+            o.write(f"{int(ids[k]) + 1} {int(species[k]) + 1} {2.0 * rad[k]:.17g} {a.density:.17g} "
+                    f"{pos[k][0]:.17g} {pos[k][1]:.17g} {pos[k][2]:.17g}\n")
+    print(f"wrote {n} particles to {a.out}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
