@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -26,8 +27,8 @@ constexpr const char* kSetFile = "--set";
 // The schema: valid keys of every table.
 
 const Keys& root_keys() {
-  static const Keys k = {"simulation", "output",  "domain",    "walls",     "species",
-                         "insert",     "contact", "neighbour", "hardsphere"};
+  static const Keys k = {"simulation", "output",    "domain",     "walls", "species", "insert",
+                         "contact",    "neighbour", "hardsphere", "gas",   "coupling"};
   return k;
 }
 const Keys& simulation_keys() {
@@ -42,7 +43,11 @@ const Keys& simulation_keys() {
   return k;
 }
 const Keys& output_keys() {
-  static const Keys k = {"frame_interval", "series_interval"};
+  static const Keys k = {"frame_interval", "series_interval", "probe"};
+  return k;
+}
+const Keys& probe_keys() {
+  static const Keys k = {"name", "position"};
   return k;
 }
 const Keys& domain_keys() {
@@ -97,8 +102,74 @@ const Keys& hardsphere_keys() {
   static const Keys k = {"tc_time", "elastic_below", "max_events_per_particle"};
   return k;
 }
+const Keys& gas_keys() {
+  static const Keys k = {"cells",
+                         "time_step",
+                         "viscosity",
+                         "model",
+                         "eos",
+                         "molar_mass",
+                         "temperature",
+                         "density",
+                         "initial_pressure",
+                         "initial_velocity",
+                         "solver",
+                         "boundary"};
+  return k;
+}
+const Keys& gas_solver_keys() {
+  static const Keys k = {
+      "tolerance",           "velocity_tolerance", "max_iterations",       "velocity_relaxation",
+      "pressure_relaxation", "linear_tolerance",   "linear_max_iterations"};
+  return k;
+}
+const Keys& gas_side_keys() {
+  static const Keys k(gas::side_names.begin(), gas::side_names.end());
+  return k;
+}
+/// Keys of an inflow or pressure boundary: a face or a region of a face.
+const Keys& inflow_keys() {
+  static const Keys k = {"velocity",  "mode",      "background", "start",   "duration",
+                         "amplitude", "frequency", "porosity",   "pressure"};
+  return k;
+}
+const Keys& gas_face_keys() {
+  static const Keys k = [] {
+    Keys all = {"type"};
+    all.insert(all.end(), inflow_keys().begin(), inflow_keys().end());
+    all.push_back("region");
+    return all;
+  }();
+  return k;
+}
+const Keys& gas_region_keys() {
+  static const Keys k = [] {
+    Keys all = {"type", "lo", "hi"};
+    all.insert(all.end(), inflow_keys().begin(), inflow_keys().end());
+    return all;
+  }();
+  return k;
+}
+/// Keys of the gas settings that are derived from the particle side, so that the two domains
+/// can never disagree; each with where it is set instead.
+const std::vector<std::pair<std::string, std::string>>& gas_derived_keys() {
+  static const std::vector<std::pair<std::string, std::string>> k = {
+      {"dimension", "the gas dimension is simulation.dimension"},
+      {"lo", "the gas domain is the particle domain, domain.lo and domain.hi"},
+      {"hi", "the gas domain is the particle domain, domain.lo and domain.hi"},
+      {"depth", "the 2-D gas depth is domain.hi[1] - domain.lo[1]"},
+      {"gravity", "the gas gravity is simulation.gravity"},
+      {"periodic", "a periodic axis is set by domain.periodic"}};
+  return k;
+}
+const Keys& coupling_keys() {
+  static const Keys k = {"drag", "porosity", "cube_factor", "scheme", "d_mean"};
+  return k;
+}
 /// Keys of a top-level table section (species and insert are arrays of tables).
 const Keys& section_keys(const std::string& section) {
+  if (section == "gas") return gas_keys();
+  if (section == "coupling") return coupling_keys();
   if (section == "simulation") return simulation_keys();
   if (section == "output") return output_keys();
   if (section == "domain") return domain_keys();
@@ -112,6 +183,24 @@ const Keys& section_keys(const std::string& section) {
 
 bool contains(const Keys& keys, const std::string& k) {
   return std::find(keys.begin(), keys.end(), k) != keys.end();
+}
+
+/// Keys of the sub-table `sub` of the table at schema path `parent` ("walls", "gas.boundary"),
+/// or nullptr when `sub` is a value (or an array of tables).
+const Keys* subtable_keys(const std::string& parent, const std::string& sub) {
+  if (parent == "walls" && contains(face_keys(), sub)) return &material_keys();
+  if (parent == "insert" && sub == "region") return &region_keys();
+  if (parent == "gas" && sub == "solver") return &gas_solver_keys();
+  if (parent == "gas" && sub == "boundary") return &gas_side_keys();
+  if (parent == "gas.boundary" && contains(gas_side_keys(), sub)) return &gas_face_keys();
+  return nullptr;
+}
+
+/// True for the arrays of tables below the top level ([[output.probe]],
+/// [[gas.boundary.FACE.region]]).
+bool is_table_array(const std::string& parent, const std::string& key) {
+  if (parent == "output") return key == "probe";
+  return parent.rfind("gas.boundary.", 0) == 0 && key == "region";
 }
 
 std::string in_quotes(const std::string& s) {
@@ -226,6 +315,41 @@ const NumRule kLength{Bound::Positive, "m"};
 const NumRule kTime{Bound::Positive, "s"};
 
 // ---------------------------------------------------------------------------------------------
+// Gas boundaries: which type and mode each key of a face or region belongs to.
+
+/// The type (and mode) a boundary key is used with; "" for keys of every type.
+std::string boundary_key_needs(const std::string& key) {
+  if (key == "velocity" || key == "mode" || key == "porosity") return "type = \"inflow\"";
+  if (key == "background" || key == "start" || key == "duration")
+    return "type = \"inflow\" and mode = \"pulse\"";
+  if (key == "amplitude" || key == "frequency") return "type = \"inflow\" and mode = \"pulsation\"";
+  if (key == "pressure") return "type = \"pressure\"";
+  return "";
+}
+
+bool boundary_key_applies(const std::string& key, gas::BoundaryType t, gas::InflowMode m) {
+  const bool inflow = t == gas::BoundaryType::inflow;
+  if (key == "velocity" || key == "mode" || key == "porosity") return inflow;
+  if (key == "background" || key == "start" || key == "duration")
+    return inflow && m == gas::InflowMode::pulse;
+  if (key == "amplitude" || key == "frequency") return inflow && m == gas::InflowMode::pulsation;
+  if (key == "pressure") return t == gas::BoundaryType::pressure;
+  return true;
+}
+
+/// The case-file key of a key named by gas::validate(): "regions[i]" is "region[i]", and the
+/// derived settings are the [simulation] and [domain] keys they come from.
+std::string case_key_of_gas_setting(std::string key) {
+  if (key == "gas.dimension") return "simulation.dimension";
+  if (key == "gas.gravity") return "simulation.gravity";
+  if (key == "gas.lo" || key == "gas.hi" || key == "gas.depth") return "domain.hi";
+  const std::string from = ".regions[";
+  for (auto pos = key.find(from); pos != std::string::npos; pos = key.find(from, pos))
+    key.replace(pos, from.size(), ".region[");
+  return key;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Command-line overrides: "path=value" applied to the parsed table before validation.
 
 struct Seg {
@@ -298,7 +422,12 @@ std::string apply_override(toml::table& root, const std::string& text) {
     for (std::size_t i = 0; i < level; ++i) s += segs[i].text + ".";
     return s;
   };
-  auto check = [&](std::size_t level, const Keys& valid) {
+  auto check = [&](std::size_t level, const std::string& schema, const Keys& valid) {
+    if (is_table_array(schema, segs[level].name))
+      throw InputError(set, key,
+                       typed(level) + segs[level].name +
+                           " is an array of tables, which --set cannot change (edit the case "
+                           "file)");
     if (segs[level].index)
       throw InputError(set, key, typed(level) + segs[level].text + ": not an array");
     if (!contains(valid, segs[level].name))
@@ -361,22 +490,21 @@ std::string apply_override(toml::table& root, const std::string& text) {
                      "names a table, not a key (allowed: " + typed(level) +
                          section_keys(section)[0] + ", ...)");
 
-  // The key inside the section, and for walls faces and insert regions one level more.
-  check(level, section_keys(section));
-  if (level + 1 < segs.size()) {
+  // The key inside the section, and inside its sub-tables (walls faces, insert regions,
+  // gas.solver, gas.boundary.FACE).
+  std::string schema = section;
+  check(level, schema, section_keys(section));
+  while (level + 1 < segs.size()) {
     const std::string& sub = segs[level].name;
-    const Keys* inner = nullptr;
-    if (section == "walls" && contains(face_keys(), sub)) inner = &material_keys();
-    if (section == "insert" && sub == "region") inner = &region_keys();
+    const Keys* inner = subtable_keys(schema, sub);
     if (inner == nullptr)
       throw InputError(set, key, "unknown key (" + typed(level + 1) + " is a value, not a table)");
     tbl = &child_table(*tbl, sub, key, canon + "." + sub);
     canon += "." + sub;
+    schema += "." + sub;
     ++level;
-    check(level, *inner);
+    check(level, schema, *inner);
   }
-  if (level + 1 < segs.size())
-    throw InputError(set, key, "unknown key (" + typed(level + 1) + " is a value, not a table)");
   const std::string& leaf = segs[level].name;
   canon += "." + leaf;
 
@@ -417,7 +545,8 @@ public:
     const SourceLocation file_loc{file_, 0, 0};
     check_keys(root, "", root_keys());
     read_simulation(section(root, "simulation"));
-    read_output(section(root, "output"));
+    const toml::table* output = section(root, "output");
+    read_output(output);
     const auto domain = section(root, "domain");
     if (!domain)
       throw InputError(file_loc, "domain",
@@ -429,6 +558,9 @@ public:
     read_contact(section(root, "contact"));
     read_neighbour(section(root, "neighbour"));
     read_hardsphere(section(root, "hardsphere"));
+    read_gas(root);
+    read_coupling(section(root, "coupling"));
+    read_probes(output);
   }
 
 private:
@@ -618,14 +750,21 @@ private:
 
   /// An array of three numbers.
   std::array<double, 3> vec3(const Entry& e, const std::string& path, NumRule r) const {
-    const std::string what = "an array of 3 numbers" + std::string(*r.unit ? ", in " : "") + r.unit;
+    return vec<3>(e, path, r);
+  }
+
+  /// An array of N numbers.
+  template <std::size_t N>
+  std::array<double, N> vec(const Entry& e, const std::string& path, NumRule r) const {
+    const std::string what = "an array of " + std::to_string(N) + " numbers" +
+                             std::string(*r.unit ? ", in " : "") + r.unit;
     const toml::array* a = e.node->as_array();
-    if (a == nullptr || a->size() != 3)
+    if (a == nullptr || a->size() != N)
       throw InputError(e.where, path,
                        "expected " + what + ", got " + describe(*e.node) + " (allowed: " + what +
                            ")");
-    std::array<double, 3> out{};
-    for (std::size_t i = 0; i < 3; ++i) {
+    std::array<double, N> out{};
+    for (std::size_t i = 0; i < N; ++i) {
       const toml::node& n = *a->get(i);
       const std::string elem = path + "[" + std::to_string(i) + "]";
       const SourceLocation where =
@@ -678,16 +817,48 @@ private:
                        "expected an array of tables [[" + name + "]], got " + describe(*e->node) +
                            " (allowed: " + need + ")");
     if (a->empty()) throw InputError(e->where, name, "is empty (allowed: " + need + ")");
-    for (std::size_t i = 0; i < a->size(); ++i) {
-      const toml::node& n = *a->get(i);
-      const std::string path = name + "[" + std::to_string(i) + "]";
-      if (!n.is_table())
-        throw InputError(n.source().begin.line > 0 ? loc(path, n.source().begin) : e->where, path,
-                         "expected a table, got " + describe(n) + " (allowed: " + need + ")");
-      spec_.locations[path] = n.source().begin.line > 0 ? loc(path, n.source().begin) : e->where;
-      check_keys(*n.as_table(), path + ".", section_keys(name));
-    }
+    check_table_elements(*a, *e, name, section_keys(name), need);
     return *a;
+  }
+
+  /// Checks that every element of the array of tables at `path` is a table with `valid` keys;
+  /// records the location of each, "path[i]".
+  void check_table_elements(const toml::array& a, const Entry& e, const std::string& path,
+                            const Keys& valid, const std::string& need) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const toml::node& n = *a.get(i);
+      const std::string ip = path + "[" + std::to_string(i) + "]";
+      if (!n.is_table())
+        throw InputError(n.source().begin.line > 0 ? loc(ip, n.source().begin) : e.where, ip,
+                         "expected a table, got " + describe(n) + " (allowed: " + need + ")");
+      spec_.locations[ip] = n.source().begin.line > 0 ? loc(ip, n.source().begin) : e.where;
+      check_keys(*n.as_table(), ip + ".", valid);
+    }
+  }
+
+  /// The optional array of tables `key` of `parent` (e.g. [[output.probe]]); nullptr when absent.
+  const toml::array* opt_table_array(const toml::table& parent, const std::string& key,
+                                     const std::string& path, const std::string& shown,
+                                     const Keys& valid, const std::string& what) {
+    const auto e = find(parent, key, path);
+    if (!e) return nullptr;
+    const std::string need = "[[" + shown + "]] tables, " + what;
+    const toml::array* a = e->node->as_array();
+    if (a == nullptr)
+      throw InputError(e->where, path,
+                       "expected an array of tables [[" + shown + "]], got " + describe(*e->node) +
+                           " (allowed: " + need + ")");
+    check_table_elements(*a, *e, path, valid, need);
+    return a;
+  }
+
+  /// An integer in [lo, INT_MAX].
+  int int_value(const Entry& e, const std::string& path, int lo, const std::string& what) const {
+    const std::int64_t v = integer(e, path, lo, what);
+    if (v > std::numeric_limits<int>::max())
+      throw InputError(e.where, path,
+                       std::to_string(v) + " is out of range (allowed: " + what + ")");
+    return static_cast<int>(v);
   }
 
   // --- sections ---------------------------------------------------------------------------
@@ -929,6 +1100,394 @@ private:
     auto_number(t, "hardsphere", "elastic_below", {Bound::NonNegative, "m/s"}, h.elastic_below);
     opt_number(t, "hardsphere", "max_events_per_particle", {Bound::AtLeastOne, ""},
                h.max_events_per_particle);
+  }
+
+  // --- gas, coupling, probes ----------------------------------------------------------------
+
+  /// An array of three integers >= 1.
+  std::array<int, 3> int3(const Entry& e, const std::string& path, const std::string& what) const {
+    const toml::array* a = e.node->as_array();
+    if (a == nullptr || a->size() != 3)
+      throw InputError(e.where, path,
+                       "expected " + what + ", got " + describe(*e.node) + " (allowed: " + what +
+                           ")");
+    std::array<int, 3> out{};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const toml::node& n = *a->get(i);
+      const SourceLocation where =
+          n.source().begin.line > 0 ? loc(path, n.source().begin) : e.where;
+      out[i] = int_value(Entry{&n, where}, path + "[" + std::to_string(i) + "]", 1, what);
+    }
+    return out;
+  }
+
+  void opt_int(const toml::table* t, const std::string& prefix, const std::string& key, int& out) {
+    if (t == nullptr) return;
+    const std::string path = prefix + "." + key;
+    if (const auto e = find(*t, key, path)) out = int_value(*e, path, 1, "an integer >= 1");
+  }
+
+  /// `[gas]`: its presence makes the run coupled. The dimension, the box, the 2-D depth, gravity
+  /// and periodic axes come from [simulation] and [domain], so the two phases cannot disagree.
+  /// Value ranges are gas::validate()'s; its errors are reported at the key they name.
+  void read_gas(const toml::table& root) {
+    const auto e = find(root, "gas", "gas");
+    if (!e) return;
+    const toml::table* t = e->node->as_table();
+    if (t == nullptr)
+      throw InputError(e->where, "gas", "expected a table, got " + describe(*e->node));
+    for (const auto& [key, why] : gas_derived_keys()) {
+      const auto it = t->find(key);
+      if (it == t->end()) continue;
+      const std::string path = "gas." + key;
+      throw InputError(loc(path, it->first.source().begin), path, "not a [gas] key (" + why + ")");
+    }
+    check_keys(*t, "gas.", gas_keys());
+
+    const std::string p = "gas";
+    const int dim = spec_.simulation.dimension;
+    gas::GasSettings g;
+    g.dimension = dim;
+    for (int d = 0; d < 3; ++d) {
+      g.lo[d] = spec_.domain.lo[d];
+      g.hi[d] = spec_.domain.hi[d];
+      g.gravity[d] = spec_.simulation.gravity[d];
+    }
+    if (dim == 2) g.depth = spec_.domain.hi[1] - spec_.domain.lo[1];
+
+    const std::string cells_rule = dim == 2 ? "an array of 3 integers [nx, 1, nz], each >= 1"
+                                            : "an array of 3 integers [nx, ny, nz], each >= 1";
+    const auto cells = find(*t, "cells", p + ".cells");
+    if (!cells) missing(t, p, "[gas]", "cells", cells_rule);
+    g.cells = int3(*cells, p + ".cells", cells_rule);
+    if (dim == 2 && g.cells[1] != 1)
+      throw InputError(cells->where, p + ".cells",
+                       "ny = " + std::to_string(g.cells[1]) +
+                           " is not 1 in dimension 2 (allowed: " + cells_rule +
+                           "; the 2-D gas is one cell thick in y)");
+
+    // The flow time step DT: its own key in a soft-sphere run (DEM sub-steps inside it), while
+    // a hard-sphere run's DT is simulation.time_step.
+    if (spec_.simulation.engine == Engine::HardSphere) {
+      if (const auto k = find(*t, "time_step", p + ".time_step"))
+        throw InputError(k->where, p + ".time_step",
+                         "not allowed with engine = \"hard_sphere\" (only with engine = "
+                         "\"soft_sphere\"; the flow time step of a hard-sphere run is "
+                         "simulation.time_step)");
+    }
+    std::optional<double> dt;
+    auto_number(t, p, "time_step", kTime, dt);
+    g.time_step = dt.value_or(0.0); // 0 = "auto"
+    opt_number(t, p, "viscosity", {Bound::Any, "Pa s"}, g.viscosity);
+    opt_enum<gas::PressureModel>(
+        t, p, "model", {{"A", gas::PressureModel::A}, {"B", gas::PressureModel::B}}, g.model);
+    opt_enum<gas::EquationOfState>(t, p, "eos",
+                                   {{"ideal_gas", gas::EquationOfState::ideal_gas},
+                                    {"incompressible", gas::EquationOfState::incompressible}},
+                                   g.eos);
+    const bool ideal = g.eos == gas::EquationOfState::ideal_gas;
+    for (const std::string key : {"molar_mass", "temperature", "density"}) {
+      if ((key == "density") != ideal) continue; // applies to this equation of state
+      if (const auto k = find(*t, key, p + "." + key))
+        throw InputError(
+            k->where, p + "." + key,
+            std::string("not allowed with eos = ") +
+                (ideal ? "\"ideal_gas\"" : "\"incompressible\"") +
+                " (only with eos = " + (ideal ? "\"incompressible\")" : "\"ideal_gas\")"));
+    }
+    opt_number(t, p, "molar_mass", {Bound::Any, "kg/mol"}, g.molar_mass);
+    opt_number(t, p, "temperature", {Bound::Any, "K"}, g.temperature);
+    opt_number(t, p, "density", {Bound::Any, "kg/m^3"}, g.density);
+    opt_number(t, p, "initial_pressure", {Bound::Any, "Pa"}, g.initial_pressure);
+    std::array<double, 3> u{g.initial_velocity.x, g.initial_velocity.y, g.initial_velocity.z};
+    opt_vec3(t, p, "initial_velocity", {Bound::Any, "m/s"}, u);
+    if (dim == 2 && u[1] != 0.0)
+      throw InputError(spec_.where("gas.initial_velocity"), "gas.initial_velocity",
+                       "y component " + format_double(u[1]) +
+                           " is not 0 in dimension 2 (allowed: a velocity in the x-z plane, "
+                           "[ux, 0, uz])");
+    g.initial_velocity = Vec3{u[0], u[1], u[2]};
+
+    if (const toml::table* st = table(*t, "solver", "gas.solver", gas_solver_keys())) {
+      const std::string sp = "gas.solver";
+      opt_number(st, sp, "tolerance", {Bound::Any, ""}, g.tolerance);
+      opt_number(st, sp, "velocity_tolerance", {Bound::Any, "m/s"}, g.velocity_tolerance);
+      opt_int(st, sp, "max_iterations", g.max_iterations);
+      opt_number(st, sp, "velocity_relaxation", {Bound::Any, ""}, g.velocity_relaxation);
+      opt_number(st, sp, "pressure_relaxation", {Bound::Any, ""}, g.pressure_relaxation);
+      opt_number(st, sp, "linear_tolerance", {Bound::Any, ""}, g.linear_tolerance);
+      opt_int(st, sp, "linear_max_iterations", g.linear_max_iterations);
+    }
+
+    read_gas_boundaries(*t, g);
+    validate_gas(g);
+    spec_.gas = std::move(g);
+  }
+
+  /// `[gas.boundary.<side>]` and their `[[gas.boundary.<side>.region]]`.
+  void read_gas_boundaries(const toml::table& t, gas::GasSettings& g) {
+    const toml::table* bt = table(t, "boundary", "gas.boundary", gas_side_keys());
+    static const char* axis_name = "xyz";
+    for (std::size_t f = 0; f < gas::side_names.size(); ++f) {
+      const std::string side = gas::side_names[f];
+      const std::string fp = "gas.boundary." + side;
+      const std::size_t axis = f / 2;
+      gas::GasBoundary& b = g.boundary[f];
+      if (g.dimension == 2 && axis == 1) {
+        // The 2-D gas is one cell thick: its front and back are free-slip walls.
+        b.type = gas::BoundaryType::wall_free_slip;
+        if (bt == nullptr) continue;
+        if (const auto e = find(*bt, side, fp))
+          throw InputError(e->where, fp,
+                           "not allowed in dimension 2 (front and back are free-slip walls of the "
+                           "one-cell-thick gas; allowed: left, right, bottom, top)");
+        continue;
+      }
+      const bool periodic = spec_.domain.periodic[axis];
+      if (periodic) b.type = gas::BoundaryType::periodic;
+      const toml::table* ft = bt ? table(*bt, side, fp, gas_face_keys()) : nullptr;
+      if (ft == nullptr) continue;
+      read_boundary_keys(*ft, fp, periodic ? static_cast<int>(axis) : -1, false, b.type, b.inflow,
+                         b.porosity, b.pressure);
+
+      const toml::array* regions = opt_table_array(*ft, "region", fp + ".region", fp + ".region",
+                                                   gas_region_keys(), "each with a lo and a hi");
+      if (regions == nullptr) continue;
+      if (periodic)
+        throw InputError(spec_.where(fp + ".region"), fp + ".region",
+                         "not allowed on a periodic face (domain.periodic[" + std::to_string(axis) +
+                             "] = true; allowed: regions of the other faces)");
+      // The two tangential axes of the face, in axis order.
+      const std::array<std::size_t, 2> tang = axis == 0   ? std::array<std::size_t, 2>{1, 2}
+                                              : axis == 1 ? std::array<std::size_t, 2>{0, 2}
+                                                          : std::array<std::size_t, 2>{0, 1};
+      const std::string coords =
+          std::string("(") + axis_name[tang[0]] + ", " + axis_name[tang[1]] + ")";
+      for (std::size_t i = 0; i < regions->size(); ++i) {
+        const toml::table* rt = regions->get(i)->as_table();
+        const std::string rp = fp + ".region[" + std::to_string(i) + "]";
+        gas::BoundaryRegion r;
+        read_boundary_keys(*rt, rp, -1, true, r.type, r.inflow, r.porosity, r.pressure);
+        for (const std::string which : {"lo", "hi"}) {
+          const std::string path = rp + "." + which;
+          const std::string rule =
+              "an array of 2 numbers, in m: the " + coords + " coordinates of the corner";
+          const auto e = find(*rt, which, path);
+          if (!e) missing(rt, rp, "[[" + fp + ".region]] " + rp, which, rule);
+          const std::array<double, 2> v = vec<2>(*e, path, {Bound::Any, "m"});
+          for (std::size_t a = 0; a < 2; ++a) {
+            const std::size_t ax = tang[a];
+            if (g.dimension == 2 && ax == 1) continue; // the y range is not used in 2-D
+            if (v[a] < spec_.domain.lo[ax] || v[a] > spec_.domain.hi[ax])
+              throw InputError(e->where, path,
+                               which + "[" + std::to_string(a) + "] = " + format_double(v[a]) +
+                                   " is outside the " + side + " face (allowed: " +
+                                   format_double(spec_.domain.lo[ax]) + " <= " + axis_name[ax] +
+                                   " <= " + format_double(spec_.domain.hi[ax]) +
+                                   "; the region's coordinates are " + coords + ")");
+          }
+          (which == "lo" ? r.lo : r.hi) = v;
+        }
+        b.regions.push_back(r);
+      }
+    }
+  }
+
+  /// The type and the inflow/pressure keys of a face (`periodic_axis` >= 0: a face of that
+  /// periodic axis) or of a region of a face, at key path `p`. A key that does not apply to the
+  /// type and mode is an error naming the type and mode that use it.
+  void read_boundary_keys(const toml::table& t, const std::string& p, int periodic_axis,
+                          bool region, gas::BoundaryType& type, gas::InflowProfile& in,
+                          double& porosity, double& pressure) {
+    using gas::BoundaryType;
+    static const std::array<BoundaryType, 5> settable = {
+        BoundaryType::wall_free_slip, BoundaryType::wall_no_slip, BoundaryType::inflow,
+        BoundaryType::pressure, BoundaryType::outflow};
+    Keys names;
+    for (const BoundaryType b : settable) names.push_back(gas::to_string(b));
+    const std::string periodic_because = periodic_axis >= 0
+                                             ? "the face is periodic because domain.periodic[" +
+                                                   std::to_string(periodic_axis) + "] = true"
+                                             : "";
+    if (const auto e = find(t, "type", p + ".type")) {
+      const std::string path = p + ".type";
+      const std::string s = str_value(*e, path, "one of " + join_quoted(names));
+      if (periodic_axis >= 0) {
+        if (s != "periodic")
+          throw InputError(e->where, path,
+                           in_quotes(s) +
+                               " on a periodic face (allowed: \"periodic\", or no type; " +
+                               periodic_because + ")");
+      } else if (s == "periodic") {
+        throw InputError(e->where, path,
+                         std::string(region ? "a region cannot be periodic"
+                                            : "\"periodic\" is set by domain.periodic, not here") +
+                             " (allowed: " + join_quoted(names) + ")");
+      } else {
+        const auto it = std::find(names.begin(), names.end(), s);
+        if (it == names.end())
+          throw InputError(e->where, path,
+                           "unknown value " + in_quotes(s) + " (allowed: " + join_quoted(names) +
+                               ")");
+        type = settable[static_cast<std::size_t>(it - names.begin())];
+      }
+    }
+    const bool inflow = type == BoundaryType::inflow;
+    if (inflow) {
+      std::vector<std::pair<std::string, gas::InflowMode>> modes;
+      for (const gas::InflowMode m :
+           {gas::InflowMode::constant, gas::InflowMode::pulse, gas::InflowMode::pulsation})
+        modes.emplace_back(gas::to_string(m), m);
+      opt_enum<gas::InflowMode>(&t, p, "mode", modes, in.mode);
+    }
+
+    // The first key (in file order) that does not apply.
+    const toml::key* bad = nullptr;
+    std::string bad_needs;
+    for (auto&& [k, v] : t) {
+      const std::string key(k.str());
+      const std::string needs = boundary_key_needs(key);
+      if (needs.empty() || boundary_key_applies(key, type, in.mode)) continue;
+      if (bad == nullptr || before(k.source().begin, bad->source().begin)) {
+        bad = &k;
+        bad_needs = needs;
+      }
+    }
+    if (bad != nullptr) {
+      const std::string path = p + "." + std::string(bad->str());
+      const std::string now = inflow ? "mode = " + in_quotes(gas::to_string(in.mode))
+                                     : "type = " + in_quotes(gas::to_string(type));
+      throw InputError(loc(path, bad->source().begin), path,
+                       "not allowed with " + now + " (only with " + bad_needs +
+                           (periodic_axis >= 0 ? "; " + periodic_because : "") + ")");
+    }
+
+    opt_number(&t, p, "velocity", {Bound::Any, "m/s"}, in.velocity);
+    opt_number(&t, p, "background", {Bound::Any, "m/s"}, in.background);
+    opt_number(&t, p, "start", {Bound::Any, "s"}, in.start);
+    opt_number(&t, p, "duration", {Bound::Any, "s"}, in.duration);
+    opt_number(&t, p, "amplitude", {Bound::Any, "m/s"}, in.amplitude);
+    opt_number(&t, p, "frequency", {Bound::Any, "Hz"}, in.frequency);
+    opt_number(&t, p, "porosity", {Bound::Any, ""}, porosity);
+    opt_number(&t, p, "pressure", {Bound::Any, "Pa"}, pressure);
+  }
+
+  /// gas::validate(), its InputError re-thrown at the case-file key it names.
+  void validate_gas(const gas::GasSettings& g) const {
+    try {
+      gas::validate(g);
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      const auto colon = msg.find(": ");
+      if (colon == std::string::npos) throw InputError(spec_.where("gas"), "gas", msg);
+      const std::string key = case_key_of_gas_setting(msg.substr(0, colon));
+      throw InputError(spec_.where(key), key, msg.substr(colon + 2));
+    }
+  }
+
+  void read_coupling(const toml::table* t) {
+    if (t == nullptr) return;
+    if (!spec_.gas)
+      throw InputError(spec_.where("coupling"), "coupling",
+                       "not allowed without [gas] (allowed: [coupling] in a coupled run, one with "
+                       "a [gas] table)");
+    coupling::CouplingSettings& c = spec_.coupling;
+    const std::string p = "coupling";
+    if (const auto e = find(*t, "drag", p + ".drag")) {
+      const std::string name =
+          str_value(*e, p + ".drag", "one of " + coupling::drag::drag_model_names());
+      try {
+        c.drag = coupling::drag::drag_model_from_string(name);
+      } catch (const InputError& ex) {
+        throw InputError(e->where, p + ".drag", ex.what());
+      }
+    }
+    std::vector<std::pair<std::string, coupling::PorosityMethod>> methods;
+    for (const auto m : {coupling::PorosityMethod::cell, coupling::PorosityMethod::porous_cube})
+      methods.emplace_back(coupling::to_string(m), m);
+    opt_enum<coupling::PorosityMethod>(t, p, "porosity", methods, c.porosity.method);
+    if (const auto e = find(*t, "cube_factor", p + ".cube_factor")) {
+      const std::string path = p + ".cube_factor";
+      if (c.porosity.method != coupling::PorosityMethod::porous_cube)
+        throw InputError(e->where, path,
+                         "not allowed with porosity = \"cell\" (only with porosity = "
+                         "\"porous_cube\")");
+      const std::string rule = "a number >= (pi/6)^(1/3) = 0.806 [Deen07 eq. 35]";
+      const double a = number(*e, path, {Bound::Any, ""});
+      if (!(a >= std::cbrt(std::numbers::pi / 6.0)))
+        throw InputError(e->where, path,
+                         format_double(a) + " is out of range (allowed: " + rule + ")");
+      c.porosity.cube_factor = a;
+    }
+    if (const auto e = find(*t, "scheme", p + ".scheme")) {
+      const std::int64_t n =
+          integer(*e, p + ".scheme", std::numeric_limits<std::int64_t>::min(), "1, 2 or 3");
+      static const std::array<coupling::ExchangeScheme, 3> schemes = {
+          coupling::ExchangeScheme::scheme1, coupling::ExchangeScheme::scheme2,
+          coupling::ExchangeScheme::scheme3};
+      if (n < 1 || n > 3)
+        throw InputError(e->where, p + ".scheme",
+                         std::to_string(n) +
+                             " is not a coupling scheme (allowed: 1, 2 or 3 [Zhu07 §3.2])");
+      c.scheme = schemes[static_cast<std::size_t>(n - 1)];
+    }
+    opt_number(t, p, "d_mean", {Bound::NonNegative, "m"}, c.d_mean);
+  }
+
+  /// `[[output.probe]]` (coupled runs only): named points where the gas pressure is recorded.
+  void read_probes(const toml::table* output) {
+    if (output == nullptr) return;
+    const std::string name_rule =
+        "a non-empty name other than \"time\", unique among the [[output.probe]], without "
+        "commas, quotes or line breaks (it names a column of probes.csv)";
+    const toml::array* a = opt_table_array(*output, "probe", "output.probe", "output.probe",
+                                           probe_keys(), "each with a name and a position");
+    if (a == nullptr) return;
+    if (!spec_.gas)
+      throw InputError(spec_.where("output.probe"), "output.probe",
+                       "not allowed without [gas] (allowed: probes of the gas pressure in a "
+                       "coupled run, one with a [gas] table)");
+    static const char* axis_name = "xyz";
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const toml::table* t = a->get(i)->as_table();
+      const std::string p = "output.probe[" + std::to_string(i) + "]";
+      const std::string shown = "[[output.probe]] " + p;
+      ProbeSpec probe;
+      const auto name = find(*t, "name", p + ".name");
+      if (!name) missing(t, p, shown, "name", name_rule);
+      probe.name = str_value(*name, p + ".name", name_rule);
+      if (probe.name.empty())
+        throw InputError(name->where, p + ".name", "is empty (allowed: " + name_rule + ")");
+      if (probe.name == "time")
+        throw InputError(name->where, p + ".name",
+                         "\"time\" is the first column of probes.csv (allowed: " + name_rule + ")");
+      if (probe.name.find_first_of(",\"\r\n") != std::string::npos)
+        throw InputError(name->where, p + ".name",
+                         in_quotes(probe.name) +
+                             " has a comma, a quote or a line break (allowed: " + name_rule + ")");
+      for (std::size_t j = 0; j < spec_.output.probes.size(); ++j)
+        if (spec_.output.probes[j].name == probe.name)
+          throw InputError(name->where, p + ".name",
+                           "duplicate probe name " + in_quotes(probe.name) +
+                               ", also output.probe[" + std::to_string(j) + "] at " +
+                               spec_.where("output.probe[" + std::to_string(j) + "].name").str() +
+                               " (allowed: " + name_rule + ")");
+      const auto pos = find(*t, "position", p + ".position");
+      if (!pos)
+        missing(t, p, shown, "position", "an array of 3 numbers, in m: a point inside the domain");
+      probe.position = vec3(*pos, p + ".position", {Bound::Any, "m"});
+      for (std::size_t d = 0; d < 3; ++d) {
+        if (spec_.simulation.dimension == 2 && d == 1) continue; // y is not used in 2-D
+        const double x = probe.position[d];
+        if (x < spec_.domain.lo[d] || x > spec_.domain.hi[d])
+          throw InputError(pos->where, p + ".position",
+                           "position[" + std::to_string(d) + "] = " + format_double(x) +
+                               " is outside the domain (allowed: a point inside the domain, " +
+                               format_double(spec_.domain.lo[d]) + " <= " + axis_name[d] +
+                               " <= " + format_double(spec_.domain.hi[d]) + ")");
+      }
+      spec_.output.probes.push_back(probe);
+    }
   }
 };
 

@@ -83,6 +83,98 @@ void write_material(std::ostream& os, const MaterialSpec& m) {
      << "rolling_friction = " << format_double(m.rolling_friction) << "\n";
 }
 
+std::string vec2(const std::array<double, 2>& v) {
+  std::string s = "[";
+  s += format_double(v[0]);
+  s += ", ";
+  s += format_double(v[1]);
+  s += "]";
+  return s;
+}
+
+std::string vec3(const Vec3& v) {
+  return vec3(std::array<double, 3>{v.x, v.y, v.z});
+}
+
+/// The type and the keys that apply to it (and to the inflow mode): the reader rejects the rest,
+/// which therefore hold their defaults.
+void write_boundary_keys(std::ostream& os, gas::BoundaryType type, const gas::InflowProfile& in,
+                         double porosity, double pressure) {
+  if (type == gas::BoundaryType::inflow) {
+    os << "mode = " << toml_string(gas::to_string(in.mode)) << "\n"
+       << "velocity = " << format_double(in.velocity) << "  # m/s, superficial\n";
+    if (in.mode == gas::InflowMode::pulse)
+      os << "background = " << format_double(in.background) << "  # m/s\n"
+         << "start = " << format_double(in.start) << "  # s\n"
+         << "duration = " << format_double(in.duration) << "  # s\n";
+    if (in.mode == gas::InflowMode::pulsation)
+      os << "amplitude = " << format_double(in.amplitude) << "  # m/s\n"
+         << "frequency = " << format_double(in.frequency) << "  # Hz\n";
+    os << "porosity = " << format_double(porosity) << "\n";
+  }
+  if (type == gas::BoundaryType::pressure)
+    os << "pressure = " << format_double(pressure) << "  # Pa\n";
+}
+
+/// [gas], [gas.solver], [gas.boundary.*] with their regions. The dimension, box, depth, gravity
+/// and periodic faces are not keys: they follow from [simulation] and [domain].
+void write_gas(std::ostream& os, const gas::GasSettings& g, Engine engine) {
+  os << "\n[gas]  # dimension, box, depth and gravity: from [simulation] and [domain]\n"
+     << "cells = [" << g.cells[0] << ", " << g.cells[1] << ", " << g.cells[2] << "]\n";
+  // Hard spheres: the flow time step is simulation.time_step.
+  if (engine == Engine::SoftSphere)
+    os << "time_step = "
+       << (g.time_step > 0.0 ? format_double(g.time_step) : std::string("\"auto\"")) << "  # s\n";
+  os << "viscosity = " << format_double(g.viscosity) << "  # Pa s\n"
+     << "model = " << toml_string(g.model == gas::PressureModel::A ? "A" : "B") << "\n";
+  if (g.eos == gas::EquationOfState::ideal_gas)
+    os << "eos = \"ideal_gas\"\n"
+       << "molar_mass = " << format_double(g.molar_mass) << "  # kg/mol\n"
+       << "temperature = " << format_double(g.temperature) << "  # K\n";
+  else
+    os << "eos = \"incompressible\"\n"
+       << "density = " << format_double(g.density) << "  # kg/m^3\n";
+  os << "initial_pressure = " << format_double(g.initial_pressure) << "  # Pa\n"
+     << "initial_velocity = " << vec3(g.initial_velocity) << "  # m/s\n";
+
+  os << "\n[gas.solver]\n"
+     << "tolerance = " << format_double(g.tolerance) << "\n"
+     << "velocity_tolerance = " << format_double(g.velocity_tolerance) << "  # m/s\n"
+     << "max_iterations = " << g.max_iterations << "\n"
+     << "velocity_relaxation = " << format_double(g.velocity_relaxation) << "\n"
+     << "pressure_relaxation = " << format_double(g.pressure_relaxation) << "\n"
+     << "linear_tolerance = " << format_double(g.linear_tolerance) << "\n"
+     << "linear_max_iterations = " << g.linear_max_iterations << "\n";
+
+  for (std::size_t f = 0; f < gas::side_names.size(); ++f) {
+    // The 2-D gas is one cell thick: front and back are free-slip walls, not keys.
+    if (g.dimension == 2 && (f == gas::front || f == gas::back)) continue;
+    const gas::GasBoundary& b = g.boundary[f];
+    const std::string name = std::string("gas.boundary.") + gas::side_names[f];
+    os << "\n[" << name << "]\n"
+       << "type = " << toml_string(gas::to_string(b.type))
+       << (b.type == gas::BoundaryType::periodic ? "  # from domain.periodic" : "") << "\n";
+    write_boundary_keys(os, b.type, b.inflow, b.porosity, b.pressure);
+    for (const gas::BoundaryRegion& r : b.regions) {
+      os << "\n[[" << name << ".region]]\n"
+         << "type = " << toml_string(gas::to_string(r.type)) << "\n"
+         << "lo = " << vec2(r.lo) << "  # m\n"
+         << "hi = " << vec2(r.hi) << "  # m\n";
+      write_boundary_keys(os, r.type, r.inflow, r.porosity, r.pressure);
+    }
+  }
+}
+
+void write_coupling(std::ostream& os, const coupling::CouplingSettings& c) {
+  os << "\n[coupling]\n"
+     << "drag = " << toml_string(std::string(coupling::drag::to_string(c.drag))) << "\n"
+     << "porosity = " << toml_string(std::string(coupling::to_string(c.porosity.method))) << "\n";
+  if (c.porosity.method == coupling::PorosityMethod::porous_cube)
+    os << "cube_factor = " << format_double(c.porosity.cube_factor) << "\n";
+  os << "scheme = " << static_cast<int>(c.scheme) + 1 << "\n"
+     << "d_mean = " << format_double(c.d_mean) << "  # m\n";
+}
+
 } // namespace
 
 std::string format_double(double x) {
@@ -112,6 +204,12 @@ std::string write_case_toml(const CaseSpec& spec) {
   os << "\n[output]\n"
      << "frame_interval = " << format_double(spec.output.frame_interval) << "  # s\n"
      << "series_interval = " << format_double(spec.output.series_interval) << "  # s\n";
+  if (spec.gas) {
+    for (const ProbeSpec& p : spec.output.probes)
+      os << "\n[[output.probe]]\n"
+         << "name = " << toml_string(p.name) << "\n"
+         << "position = " << vec3(p.position) << "  # m\n";
+  }
 
   const DomainSpec& d = spec.domain;
   os << "\n[domain]\n"
@@ -179,6 +277,12 @@ std::string write_case_toml(const CaseSpec& spec) {
      << "tc_time = " << format_double(h.tc_time) << "  # s\n"
      << "elastic_below = " << auto_or(h.elastic_below) << "  # m/s\n"
      << "max_events_per_particle = " << format_double(h.max_events_per_particle) << "\n";
+
+  // A coupled run only; a granular case has neither (the reader would reject [coupling]).
+  if (spec.gas) {
+    write_gas(os, *spec.gas, spec.simulation.engine);
+    write_coupling(os, spec.coupling);
+  }
   return os.str();
 }
 
