@@ -129,8 +129,8 @@ const Keys& gas_side_keys() {
 }
 /// Keys of an inflow or pressure boundary: a face or a region of a face.
 const Keys& inflow_keys() {
-  static const Keys k = {"velocity",  "mode",      "background", "start",   "duration",
-                         "amplitude", "frequency", "porosity",   "pressure"};
+  static const Keys k = {"velocity",  "mode",  "background", "start",    "duration", "amplitude",
+                         "frequency", "times", "velocities", "porosity", "pressure"};
   return k;
 }
 const Keys& gas_face_keys() {
@@ -319,20 +319,25 @@ const NumRule kTime{Bound::Positive, "s"};
 
 /// The type (and mode) a boundary key is used with; "" for keys of every type.
 std::string boundary_key_needs(const std::string& key) {
-  if (key == "velocity" || key == "mode" || key == "porosity") return "type = \"inflow\"";
+  if (key == "velocity")
+    return "type = \"inflow\" and mode = \"constant\", \"pulse\" or \"pulsation\"";
+  if (key == "mode" || key == "porosity") return "type = \"inflow\"";
   if (key == "background" || key == "start" || key == "duration")
     return "type = \"inflow\" and mode = \"pulse\"";
   if (key == "amplitude" || key == "frequency") return "type = \"inflow\" and mode = \"pulsation\"";
+  if (key == "times" || key == "velocities") return "type = \"inflow\" and mode = \"table\"";
   if (key == "pressure") return "type = \"pressure\"";
   return "";
 }
 
 bool boundary_key_applies(const std::string& key, gas::BoundaryType t, gas::InflowMode m) {
   const bool inflow = t == gas::BoundaryType::inflow;
-  if (key == "velocity" || key == "mode" || key == "porosity") return inflow;
+  if (key == "velocity") return inflow && m != gas::InflowMode::table;
+  if (key == "mode" || key == "porosity") return inflow;
   if (key == "background" || key == "start" || key == "duration")
     return inflow && m == gas::InflowMode::pulse;
   if (key == "amplitude" || key == "frequency") return inflow && m == gas::InflowMode::pulsation;
+  if (key == "times" || key == "velocities") return inflow && m == gas::InflowMode::table;
   if (key == "pressure") return t == gas::BoundaryType::pressure;
   return true;
 }
@@ -772,6 +777,28 @@ private:
       out[i] = number(Entry{&n, where}, elem, r);
     }
     return out;
+  }
+
+  /// An array of any number (>= 1) of numbers.
+  void opt_numbers(const toml::table* t, const std::string& prefix, const std::string& key,
+                   NumRule r, std::vector<double>& out) {
+    if (t == nullptr) return;
+    const std::string path = prefix + "." + key;
+    const auto e = find(*t, key, path);
+    if (!e) return;
+    const std::string what = "an array of numbers" + std::string(*r.unit ? ", in " : "") + r.unit;
+    const toml::array* a = e->node->as_array();
+    if (a == nullptr || a->empty())
+      throw InputError(e->where, path,
+                       "expected " + what + ", got " + describe(*e->node) + " (allowed: " + what +
+                           ")");
+    out.clear();
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const toml::node& n = *a->get(i);
+      const SourceLocation where =
+          n.source().begin.line > 0 ? loc(path, n.source().begin) : e->where;
+      out.push_back(number(Entry{&n, where}, path + "[" + std::to_string(i) + "]", r));
+    }
   }
 
   void opt_vec3(const toml::table* t, const std::string& prefix, const std::string& key, NumRule r,
@@ -1335,8 +1362,8 @@ private:
     const bool inflow = type == BoundaryType::inflow;
     if (inflow) {
       std::vector<std::pair<std::string, gas::InflowMode>> modes;
-      for (const gas::InflowMode m :
-           {gas::InflowMode::constant, gas::InflowMode::pulse, gas::InflowMode::pulsation})
+      for (const gas::InflowMode m : {gas::InflowMode::constant, gas::InflowMode::pulse,
+                                      gas::InflowMode::pulsation, gas::InflowMode::table})
         modes.emplace_back(gas::to_string(m), m);
       opt_enum<gas::InflowMode>(&t, p, "mode", modes, in.mode);
     }
@@ -1368,6 +1395,8 @@ private:
     opt_number(&t, p, "duration", {Bound::Any, "s"}, in.duration);
     opt_number(&t, p, "amplitude", {Bound::Any, "m/s"}, in.amplitude);
     opt_number(&t, p, "frequency", {Bound::Any, "Hz"}, in.frequency);
+    opt_numbers(&t, p, "times", {Bound::Any, "s"}, in.times);
+    opt_numbers(&t, p, "velocities", {Bound::Any, "m/s"}, in.velocities);
     opt_number(&t, p, "porosity", {Bound::Any, ""}, porosity);
     opt_number(&t, p, "pressure", {Bound::Any, "Pa"}, pressure);
   }

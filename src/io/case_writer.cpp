@@ -101,12 +101,22 @@ std::string vec3(const Vec3& v) {
 void write_boundary_keys(std::ostream& os, gas::BoundaryType type, const gas::InflowProfile& in,
                          double porosity, double pressure) {
   if (type == gas::BoundaryType::inflow) {
-    os << "mode = " << toml_string(gas::to_string(in.mode)) << "\n"
-       << "velocity = " << format_double(in.velocity) << "  # m/s, superficial\n";
+    os << "mode = " << toml_string(gas::to_string(in.mode)) << "\n";
+    if (in.mode != gas::InflowMode::table)
+      os << "velocity = " << format_double(in.velocity) << "  # m/s, superficial\n";
     if (in.mode == gas::InflowMode::pulse)
       os << "background = " << format_double(in.background) << "  # m/s\n"
          << "start = " << format_double(in.start) << "  # s\n"
          << "duration = " << format_double(in.duration) << "  # s\n";
+    if (in.mode == gas::InflowMode::table) {
+      auto list = [&](const std::vector<double>& v) {
+        std::string out = "[";
+        for (std::size_t k = 0; k < v.size(); ++k) out += (k ? ", " : "") + format_double(v[k]);
+        return out + "]";
+      };
+      os << "times = " << list(in.times) << "  # s\n"
+         << "velocities = " << list(in.velocities) << "  # m/s, superficial\n";
+    }
     if (in.mode == gas::InflowMode::pulsation)
       os << "amplitude = " << format_double(in.amplitude) << "  # m/s\n"
          << "frequency = " << format_double(in.frequency) << "  # Hz\n";

@@ -530,6 +530,26 @@ TEST(GasCaseWriter, RoundTripHardSphereEngine) {
   EXPECT_EQ(write_case_toml(b), written);
 }
 
+// A velocity sweep: mode "table" parses, is validated, and round-trips exactly.
+TEST(GasCaseWriter, RoundTripInflowTable) {
+  const std::string text = coupled2d() +
+                           "[gas.boundary.bottom]\ntype = \"inflow\"\nmode = \"table\"\n"
+                           "times = [0.0, 1.0, 5, 9.0]\nvelocities = [2.8, 2.8, 0.3, 2.8]\n";
+  const CaseSpec a = read_case_string(text, "case.toml");
+  const auto& in = a.gas->boundary[gas::bottom].inflow;
+  ASSERT_EQ(in.mode, gas::InflowMode::table);
+  EXPECT_EQ(in.times, (std::vector<double>{0.0, 1.0, 5.0, 9.0}));
+  EXPECT_EQ(in.velocities, (std::vector<double>{2.8, 2.8, 0.3, 2.8}));
+  const CaseSpec b = read_case_string(write_case_toml(a), "case.resolved.toml");
+  EXPECT_EQ(b.gas->boundary[gas::bottom].inflow.times, in.times);
+  EXPECT_EQ(b.gas->boundary[gas::bottom].inflow.velocities, in.velocities);
+  // Unequal lengths: gas::validate's error at the key.
+  const std::string bad = coupled2d() +
+                          "[gas.boundary.bottom]\ntype = \"inflow\"\nmode = \"table\"\n"
+                          "times = [0.0, 1.0]\nvelocities = [2.8]\n";
+  EXPECT_THROW(read_case_string(bad, "case.toml"), InputError);
+}
+
 TEST(GasCaseWriter, RoundTripAwkwardDoubles) {
   CaseSpec a = read_case_string(kBox3D, "case.toml");
   gas::GasSettings& g = *a.gas;
@@ -621,7 +641,7 @@ TEST(GasCaseErrors, BadNamesListValid) {
                   "\"inflow\", \"pressure\", \"outflow\")");
   t = coupled2d() + "[gas.boundary.bottom]\ntype = \"inflow\"\nmode = \"pulsed\"\n";
   expect_error_at(t, "pulsed", "gas.boundary.bottom.mode",
-                  "(allowed: \"constant\", \"pulse\", \"pulsation\")");
+                  "(allowed: \"constant\", \"pulse\", \"pulsation\", \"table\")");
   t = coupled2d("[gas]\ncells = [30, 1, 100]\nmodel = \"C\"\n");
   expect_error_at(t, "model", "gas.model", "(allowed: \"A\", \"B\")");
   t = coupled2d("[gas]\ncells = [30, 1, 100]\neos = \"ideal\"\n");
@@ -650,7 +670,17 @@ TEST(GasCaseErrors, KeysThatDoNotApply) {
   // Default type (no-slip wall): no velocity.
   t = coupled2d() + "[gas.boundary.left]\nvelocity = 1.0\n";
   expect_error_at(t, "velocity", "gas.boundary.left.velocity",
-                  "not allowed with type = \"wall_no_slip\" (only with type = \"inflow\")");
+                  "not allowed with type = \"wall_no_slip\" (only with type = \"inflow\" and "
+                  "mode = \"constant\", \"pulse\" or \"pulsation\")");
+  // Table mode: times/velocities only there, and no single velocity.
+  t = coupled2d() + "[gas.boundary.bottom]\ntype = \"inflow\"\nmode = \"table\"\n" +
+      "times = [0.0, 1.0]\nvelocities = [0.5, 2.0]\nvelocity = 1.0\n";
+  expect_error_at(t, "velocity = 1.0", "gas.boundary.bottom.velocity",
+                  "not allowed with mode = \"table\"");
+  t = coupled2d() + "[gas.boundary.bottom]\ntype = \"inflow\"\nvelocity = 1.0\n" +
+      "times = [0.0, 1.0]\n";
+  expect_error_at(t, "times", "gas.boundary.bottom.times",
+                  "(only with type = \"inflow\" and mode = \"table\")");
   t = coupled2d() + "[gas.boundary.top]\ntype = \"outflow\"\npressure = 1e5\n";
   expect_error_at(t, "pressure = 1e5", "gas.boundary.top.pressure",
                   "(only with type = \"pressure\")");
