@@ -11,7 +11,26 @@ particles when the file has no box), and the title says so. If OUTDIR/series.csv
 panel shows the energies over time (the columns e_kin, e_rot, e_pot, e_el, e_dsp that are present,
 and their sum, "total"). Writes OUTDIR/snapshot.png unless --out is given.
 
-Exit codes: 0 done, 2 bad input (missing file, frame out of range, malformed file).
+Coupled runs (with a gas phase) add:
+  * OUTDIR/fields.h5 (FieldsWriter): a panel next to the particles with the porosity (gas volume
+    fraction) of the same frame, the x-z slice through the middle cell row in y (the only one in
+    2-D), cells drawn at their true size on the particle panel's axes (mm), with sparse arrows of
+    the gas velocity (x and z components, interstitial) when /fields/gas_velocity is present;
+    arrows faster than the 95th percentile of the slice's speeds are drawn at that length, in red.
+  * series.csv columns pressure_drop / OUTDIR/probes.csv: the time-series column becomes a stack
+    of panels: the pressure drop over the bed (kPa), the probe pressures (kPa, relative to each
+    probe's time mean over the whole file, the mean given in the legend), then the particle
+    energies, titled as such: the gas does work on the particles, so their total is not conserved.
+A run without fields.h5, probes.csv and pressure_drop is drawn exactly as before.
+
+Exit codes: 0 done, 2 bad input in particles.h5 (missing file, frame out of range, malformed file).
+A bad fields.h5 (unreadable, a missing or misshapen dataset among /grid/cells, /grid/lo,
+/grid/spacing, /fields/time, /fields/porosity, a frame count different from particles.h5's, or a
+different time for the frame drawn) does not stop the picture: the porosity panel is left out,
+with "fluidem_plot: warning: ..." on stderr, and the exit code stays 0 (the particles alone can
+still be drawn; a live run may have written one file's frame and not yet the other's). A bad
+/fields/gas_velocity only drops the arrows (same warning); an unreadable series.csv or
+probes.csv only drops its curves (a message on stderr).
 """
 import argparse
 import os
@@ -40,9 +59,15 @@ def fail(message):
     sys.exit(2)
 
 
+def warn(message):
+    print(f"fluidem_plot: warning: {message}", file=sys.stderr)
+
+
 def parse_args(argv):
     p = argparse.ArgumentParser(description="Snapshot picture of a fluidem run.")
-    p.add_argument("outdir", help="run output directory (holds particles.h5, series.csv)")
+    p.add_argument("outdir",
+                   help="run output directory (holds particles.h5, series.csv; fields.h5, "
+                        "probes.csv for coupled runs)")
     p.add_argument("--frame", type=int, default=-1, help="frame index, negative from the end")
     p.add_argument("--color-by", choices=["species", "speed", "id"], default="species")
     p.add_argument("--out", default=None, help="PNG to write (default OUTDIR/snapshot.png)")
@@ -92,6 +117,76 @@ def read_frame(h5_path, frame):
             fail(f"{h5_path} is not a fluidem H5MD particle file (missing {e})")
 
 
+class FieldsError(Exception):
+    """fields.h5 cannot be drawn with the particles (the panel is skipped)."""
+
+
+def read_fields(h5_path, d):
+    """The porosity (and gas velocity) of the y-middle x-z slice of fields.h5 at particle frame
+    d["frame"], checked against particles.h5 (frame count and time). Returns a dict with
+    "porosity" [nz][nx], "x_edges", "z_edges" (m), "gas_velocity" [nz][nx][2] (x, z) or None,
+    "j", "ny", "y" (centre of the slice, m), "cells". Raises FieldsError."""
+    import h5py
+
+    try:
+        f = h5py.File(h5_path, "r")
+    except OSError as e:
+        raise FieldsError(f"cannot open {h5_path}: {e}")
+    with f:
+        def get(name):
+            if name not in f or not isinstance(f[name], h5py.Dataset):
+                raise FieldsError(f"{h5_path} has no dataset /{name}")
+            return f[name]
+
+        try:
+            cells = np.asarray(get("grid/cells")[()])
+            lo = np.asarray(get("grid/lo")[()], dtype=float)
+            spacing = np.asarray(get("grid/spacing")[()], dtype=float)
+            if cells.shape != (3,) or lo.shape != (3,) or spacing.shape != (3,):
+                raise FieldsError(f"{h5_path}: /grid/cells, /grid/lo and /grid/spacing must hold "
+                                  "3 values each")
+            if np.any(cells < 1) or not np.all(np.isfinite(lo)) or not np.all(spacing > 0):
+                raise FieldsError(f"{h5_path}: bad grid (cells {cells.tolist()}, spacing "
+                                  f"{spacing.tolist()})")
+            nx, ny, nz = (int(c) for c in cells)
+            times = np.asarray(get("fields/time")[()], dtype=float).reshape(-1)
+            por = get("fields/porosity")
+            n_frames = len(times)
+            if n_frames != d["frames"]:
+                raise FieldsError(f"{h5_path} holds {n_frames} frames, particles.h5 holds "
+                                  f"{d['frames']} (frames are written at the same times)")
+            if por.shape != (n_frames, nz, ny, nx):
+                raise FieldsError(f"/fields/porosity in {h5_path} has shape {por.shape}, "
+                                  f"expected {(n_frames, nz, ny, nx)} (frames, nz, ny, nx)")
+            k = d["frame"]
+            t = float(times[k])
+            if abs(t - d["time"]) > 1e-9 * max(1.0, abs(d["time"])):
+                raise FieldsError(f"frame {k} of {h5_path} is at t = {t:.9g} s, the particles' "
+                                  f"at t = {d['time']:.9g} s")
+            j = ny // 2
+            out = {
+                "porosity": np.asarray(por[k, :, j, :], dtype=float),
+                "x_edges": lo[0] + spacing[0] * np.arange(nx + 1),
+                "z_edges": lo[2] + spacing[2] * np.arange(nz + 1),
+                "j": j,
+                "ny": ny,
+                "y": lo[1] + spacing[1] * (j + 0.5),
+                "cells": (nx, ny, nz),
+                "gas_velocity": None,
+            }
+            if "fields/gas_velocity" in f:
+                u = f["fields/gas_velocity"]
+                if isinstance(u, h5py.Dataset) and u.shape == (n_frames, nz, ny, nx, 3):
+                    out["gas_velocity"] = np.asarray(u[k, :, j, :, :], dtype=float)[:, :, [0, 2]]
+                else:
+                    warn(f"/fields/gas_velocity in {h5_path} has shape "
+                         f"{getattr(u, 'shape', None)}, expected {(n_frames, nz, ny, nx, 3)}; "
+                         "no gas velocity arrows")
+            return out
+        except (OSError, KeyError, ValueError, TypeError) as e:
+            raise FieldsError(f"cannot read {h5_path}: {e}")
+
+
 def read_series(csv_path):
     """Columns of series.csv as a dict of arrays, or None when absent or empty."""
     if not os.path.exists(csv_path):
@@ -106,7 +201,7 @@ def read_series(csv_path):
     return {name: np.atleast_1d(data[name]) for name in data.dtype.names}
 
 
-def draw_particles(ax, fig, d, color_by):
+def draw_particles(ax, fig, d, color_by, narrow=False):
     pos, r = d["position"], d["radius"]
     n_total = len(r)
     title_extra = ""
@@ -161,11 +256,73 @@ def draw_particles(ax, fig, d, color_by):
     ax.set_aspect("equal")
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("z (mm)")
-    ax.set_title(f"t = {d['time']:.6g} s (step {d['step']}, frame {d['frame'] + 1} of "
+    sep = ")\n(" if narrow else ", "  # narrow: a tall panel next to the porosity map
+    ax.set_title(f"t = {d['time']:.6g} s (step {d['step']}{sep}frame {d['frame'] + 1} of "
                  f"{d['frames']}, coloured by {color_by}){title_extra}", fontsize="medium")
 
 
-def draw_energies(ax, series, t_now):
+def draw_porosity(ax, fig, fd, ax_particles, has_box):
+    """Porosity map of the slice fd (read_fields) on ax, same axes (mm) as ax_particles."""
+    xe, ze = fd["x_edges"] * 1e3, fd["z_edges"] * 1e3
+    eps = fd["porosity"]
+    finite = eps[np.isfinite(eps)]
+    vmin = min(0.3, float(finite.min())) if finite.size else 0.3
+    mesh = ax.pcolormesh(xe, ze, eps, cmap="viridis", vmin=vmin, vmax=1.0, shading="flat")
+    mesh.set_label("porosity")
+    fig.colorbar(mesh, ax=ax, label="gas volume fraction", shrink=0.8)
+
+    title, arrows = "porosity", ""
+    if fd["gas_velocity"] is not None:
+        title += " and gas velocity"
+        u = fd["gas_velocity"]
+        nz, nx = eps.shape
+        dx, dz = xe[1] - xe[0], ze[1] - ze[0]
+        # About 20 arrows along the longer side, the same spacing in x and z where possible.
+        target = max(nx * dx, nz * dz) / 20.0
+        sx = max(1, int(round(target / dx)))
+        sz = max(1, int(round(target / dz)))
+        xc = 0.5 * (xe[:-1] + xe[1:])
+        zc = 0.5 * (ze[:-1] + ze[1:])
+        ix, iz = np.arange(sx // 2, nx, sx), np.arange(sz // 2, nz, sz)
+        X, Z = np.meshgrid(xc[ix], zc[iz])
+        U = u[np.ix_(iz, ix)]
+        speed = np.hypot(U[..., 0], U[..., 1])
+        ok = np.isfinite(speed) & (speed > 0)
+        if np.any(ok):
+            # Arrow length: linear up to u_ref (95th percentile of the slice's nonzero speeds),
+            # longer ones are drawn at u_ref length, in red. u_ref is one arrow spacing long.
+            u_ref = float(np.percentile(speed[ok], 95))
+            if u_ref <= 0:
+                u_ref = float(speed[ok].max())
+            factor = np.where(speed > u_ref, u_ref / np.where(speed > 0, speed, 1.0), 1.0)
+            capped = ok & (speed > u_ref * (1 + 1e-12))
+            spacing_mm = min(sx * dx, sz * dz)
+            scale = u_ref / (0.9 * spacing_mm)  # data units (m/s) per mm of arrow
+            for sel, colour in ((ok & ~capped, "white"), (capped, "red")):
+                if np.any(sel):
+                    ax.quiver(X[sel], Z[sel], (U[..., 0] * factor)[sel],
+                                  (U[..., 1] * factor)[sel], color=colour, angles="xy",
+                                  scale_units="xy", scale=scale, pivot="mid", width=0.006,
+                                  edgecolor="k" if colour == "white" else colour, linewidth=0.3)
+            arrows = (f"\narrows: gas velocity, {u_ref:.3g} m/s = {u_ref / scale:.3g} mm"
+                      + ("\n(red: faster, shortened)" if np.any(capped) else ""))
+    nx, ny, nz = fd["cells"]
+    where = "" if ny == 1 else f"\ny slice: cell j = {fd['j']} of {ny} (y = {fd['y'] * 1e3:.4g} mm)"
+    ax.set_title(f"{title} ({nx} x {ny} x {nz} cells){where}{arrows}", fontsize="medium")
+    if has_box:
+        ax.set_xlim(ax_particles.get_xlim())
+        ax.set_ylim(ax_particles.get_ylim())
+    else:
+        # No box in particles.h5: the gas grid is the domain; show it on both panels.
+        for a in (ax, ax_particles):
+            a.set_xlim(xe[0], xe[-1])
+            a.set_ylim(ze[0], ze[-1])
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("z (mm)")
+
+
+def draw_energies(ax, series, t_now, coupled=False):
     t = series["time"]
     present = [c for c in ENERGY_COLUMNS if c in series]
     if not present:
@@ -180,29 +337,131 @@ def draw_energies(ax, series, t_now):
     ax.axvline(t_now, color="0.5", linestyle=":", linewidth=1.0)
     ax.set_xlabel("time (s)")
     ax.set_ylabel("energy (J)")
-    ax.set_title("energies")
+    if coupled:
+        ax.set_title("particle energies (the gas does work on the particles: "
+                     "the total is not conserved)", fontsize="medium")
+    else:
+        ax.set_title("energies")
     ax.legend(fontsize="small")
     ax.grid(True, alpha=0.3)
 
 
-def main(argv=None):
-    args = parse_args(sys.argv[1:] if argv is None else argv)
+def draw_pressure_drop(ax, series, t_now):
+    ax.plot(series["time"], series["pressure_drop"] * 1e-3, color="C0", linewidth=1.0)
+    ax.axvline(t_now, color="0.5", linestyle=":", linewidth=1.0)
+    ax.set_ylabel("pressure drop (kPa)")
+    ax.set_title("pressure drop over the bed (series.csv pressure_drop)", fontsize="medium")
+    ax.grid(True, alpha=0.3)
+
+
+def draw_probes(ax, probes, t_now):
+    t = probes["time"]
+    for c in (c for c in probes if c != "time"):
+        p = probes[c]
+        mean = float(np.nanmean(p)) if np.any(np.isfinite(p)) else float("nan")
+        ax.plot(t, (p - mean) * 1e-3, linewidth=1.0, label=f"{c} (mean {mean * 1e-3:.6g} kPa)")
+    ax.axvline(t_now, color="0.5", linestyle=":", linewidth=1.0)
+    ax.set_ylabel("p - time mean (kPa)")
+    ax.set_title("probe pressures relative to their time mean (probes.csv)", fontsize="medium")
+    ax.legend(fontsize="small")
+    ax.grid(True, alpha=0.3)
+
+
+def make_figure(args):
+    """The figure for parsed arguments `args` (axes labelled "particles", "porosity",
+    "pressure_drop", "probes", "energies" for tests), and the frame drawn (read_frame)."""
     h5_path = os.path.join(args.outdir, "particles.h5")
     if not os.path.isfile(h5_path):
         fail(f"no such file: {h5_path} (is {args.outdir} a fluidem output directory?)")
     d = read_frame(h5_path, args.frame)
     series = read_series(os.path.join(args.outdir, "series.csv"))
 
+    fd = None
+    fields_path = os.path.join(args.outdir, "fields.h5")
+    if os.path.exists(fields_path):
+        try:
+            fd = read_fields(fields_path, d)
+        except FieldsError as e:
+            warn(f"{e}; drawing the particles without the porosity panel")
+    probes = read_series(os.path.join(args.outdir, "probes.csv"))
+    if probes is not None and len(probes) < 2:
+        probes = None
+    has_dp = series is not None and "pressure_drop" in series
+    coupled = has_dp or probes is not None or fd is not None
+    rows = []  # time-series panels, top to bottom
+    if has_dp:
+        rows.append("pressure_drop")
+    if probes is not None:
+        rows.append("probes")
     if series is not None:
-        fig, (ax_p, ax_e) = plt.subplots(1, 2, figsize=(13, 6.5),
-                                         gridspec_kw={"width_ratios": [1.0, 1.1]})
+        rows.append("energies")
+
+    if fd is None and not coupled:  # granular run: as before
+        if series is not None:
+            fig, (ax_p, ax_e) = plt.subplots(1, 2, figsize=(13, 6.5),
+                                             gridspec_kw={"width_ratios": [1.0, 1.1]})
+        else:
+            fig, ax_p = plt.subplots(figsize=(7, 7))
+            ax_e = None
+        ax_p.set_label("particles")
+        draw_particles(ax_p, fig, d, args.color_by)
+        if ax_e is not None:
+            ax_e.set_label("energies")
+            draw_energies(ax_e, series, d["time"])
+        return fig, d
+
+    # Panel widths from the width/height of the picture (box, else gas grid, else particles),
+    # so that the true-aspect maps do not float in white space.
+    if d["box"] is not None:
+        extent = d["box"][1] - d["box"][0]
+    elif fd is not None:
+        extent = np.array([fd["x_edges"][-1] - fd["x_edges"][0], 0.0,
+                           fd["z_edges"][-1] - fd["z_edges"][0]])
+    elif len(d["radius"]) > 0:
+        extent = np.ptp(d["position"], axis=0) + 4.0 * float(d["radius"].max())
     else:
-        fig, ax_p = plt.subplots(figsize=(7, 7))
-        ax_e = None
-    draw_particles(ax_p, fig, d, args.color_by)
-    if ax_e is not None:
-        draw_energies(ax_e, series, d["time"])
-    fig.tight_layout()
+        extent = np.ones(3)
+    aspect = float(extent[0] / extent[2]) if extent[2] > 0 and extent[0] > 0 else 1.0
+    map_height = 6.3  # inches, of a figure 8 inches high
+    map_width = float(np.clip(map_height * aspect, 3.0, 9.0)) + 1.0  # + tick labels
+    colour_bar = 1.3
+    widths = [map_width + (colour_bar if args.color_by != "species" else 0.0)]
+    if fd is not None:
+        widths.append(map_width + colour_bar)
+    if rows:
+        widths.append(7.5)
+    fig = plt.figure(figsize=(sum(widths), 8.0), layout="constrained")
+    gs = fig.add_gridspec(1, len(widths), width_ratios=widths)
+    ax_p = fig.add_subplot(gs[0, 0], label="particles")
+    draw_particles(ax_p, fig, d, args.color_by, narrow=True)
+    if fd is not None:
+        ax_f = fig.add_subplot(gs[0, 1], label="porosity")
+        draw_porosity(ax_f, fig, fd, ax_p, d["box"] is not None)
+    if rows:
+        sub = gs[0, -1].subgridspec(len(rows), 1)
+        first = None
+        for i, name in enumerate(rows):
+            ax = fig.add_subplot(sub[i, 0], label=name, sharex=first)
+            first = first or ax
+            if name == "pressure_drop":
+                draw_pressure_drop(ax, series, d["time"])
+            elif name == "probes":
+                draw_probes(ax, probes, d["time"])
+            else:
+                draw_energies(ax, series, d["time"], coupled=True)
+            if i + 1 < len(rows):
+                ax.tick_params(labelbottom=False)
+                ax.set_xlabel("")
+            else:
+                ax.set_xlabel("time (s)")
+    return fig, d
+
+
+def main(argv=None):
+    args = parse_args(sys.argv[1:] if argv is None else argv)
+    fig, _ = make_figure(args)
+    if fig.get_layout_engine() is None:  # the coupled layout is constrained already
+        fig.tight_layout()
     out = args.out if args.out else os.path.join(args.outdir, "snapshot.png")
     fig.savefig(out, dpi=150)
     plt.close(fig)
