@@ -72,10 +72,12 @@ struct BedFields {
   }
 };
 
-void run_bed(benchmark::State& state, const GasSettings& s, int warmup) {
+void run_bed(benchmark::State& state, const GasSettings& s, int warmup,
+             const LinearSolverOptions& lin = {}) {
   const int threads_before = omp_get_max_threads();
   omp_set_num_threads(static_cast<int>(state.range(0)));
   GasSolver gs(s);
+  gs.set_linear_solver_options(lin);
   const BedFields bed(gs);
   bed.set(gs, 0.0);
   gs.sync_old_porosity();
@@ -86,6 +88,7 @@ void run_bed(benchmark::State& state, const GasSettings& s, int warmup) {
     gs.step(t, dt);
   }
   long steps = 0, iterations = 0;
+  const LinearSolverCounters c0 = gs.linear_counters();
   for (auto _ : state) {
     bed.set(gs, t + dt);
     gs.step(t, dt);
@@ -93,7 +96,17 @@ void run_bed(benchmark::State& state, const GasSettings& s, int warmup) {
     ++steps;
     iterations += gs.last_iterations();
   }
-  state.counters["iters"] = static_cast<double>(iterations) / static_cast<double>(steps);
+  const LinearSolverCounters& c = gs.linear_counters();
+  const auto per = [](long a, long b) {
+    return b > 0 ? static_cast<double>(a) / static_cast<double>(b) : 0.0;
+  };
+  state.counters["iters"] = per(iterations, steps);
+  state.counters["gs_sweeps"] =
+      per(c.momentum_sweeps - c0.momentum_sweeps, c.momentum_solves - c0.momentum_solves);
+  state.counters["fallbacks"] = per(c.momentum_fallbacks - c0.momentum_fallbacks, steps);
+  state.counters["pcg_its"] =
+      per(c.pressure_iterations - c0.pressure_iterations, c.pressure_solves - c0.pressure_solves);
+  state.counters["setups"] = per(c.pressure_setups - c0.pressure_setups, steps);
   state.counters["cells"] = static_cast<double>(gs.grid().n[0] * gs.grid().n[1] * gs.grid().n[2]);
   omp_set_num_threads(threads_before);
 }
@@ -110,6 +123,66 @@ BENCHMARK(gas_bed_3d)
     ->Arg(1)
     ->Arg(2)
     ->Name("GasStep/Bed3D_40x40x40/threads")
+    ->Unit(benchmark::kMicrosecond);
+
+// Linear-solver variants on the 2-D bed (one thread), for the choice documented in docs/gas.md.
+using Reuse = StructSolverOptions::Reuse;
+using Multigrid = StructSolverOptions::Multigrid;
+LinearSolverOptions variant(int v) {
+  LinearSolverOptions o;
+  StructSolverOptions& p = o.pressure;
+  switch (v) {
+  case 1:
+    p.reuse = Reuse::per_step;
+    break;
+  case 2:
+    p.reuse = Reuse::every_solve;
+    break;
+  case 3:
+    p.relax_type = 1;
+    p.rap_type = 0;
+    break; // weighted Jacobi, Galerkin
+  case 4:
+    p.relax_type = 1;
+    p.rap_type = 1;
+    break; // weighted Jacobi, non-Galerkin
+  case 5:
+    p.pre_relax = p.post_relax = 2;
+    break;
+  case 6:
+    p.skip_relax = 0;
+    break;
+  case 7:
+    p.multigrid = Multigrid::smg;
+    break;
+  case 8:
+    p.multigrid = Multigrid::smg;
+    p.reuse = Reuse::every_solve;
+    break;
+  case 9:
+    p.reuse = Reuse::every_solve;
+    o.momentum = LinearSolverOptions::Momentum::hypre;
+    break;
+  default:
+    break;
+  }
+  return o;
+}
+const char* const variant_names[] = {"pfmg_rbgs_adaptive",    "pfmg_rbgs_per_step",
+                                     "pfmg_rbgs_every_solve", "pfmg_wjac_galerkin",
+                                     "pfmg_wjac_nongalerkin", "pfmg_rbgs_2_2",
+                                     "pfmg_rbgs_no_skip",     "smg_adaptive",
+                                     "smg_every_solve",       "pfmg_every_solve_hypre_momentum"};
+
+void gas_bed_2d_variant(benchmark::State& state) {
+  const int v = static_cast<int>(state.range(1));
+  state.SetLabel(variant_names[v]);
+  run_bed(state, bed_settings(2, {15, 1, 25}, {0.15, 0.004, 0.5}), 200, variant(v));
+}
+BENCHMARK(gas_bed_2d_variant)
+    ->ArgsProduct({{1}, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}})
+    ->ArgNames({"threads", "variant"})
+    ->Name("GasStepSolvers/Bed2D_15x1x25")
     ->Unit(benchmark::kMicrosecond);
 
 } // namespace

@@ -2,8 +2,8 @@
 // cell on a domain face gets the type of the face, or of the last region of that face whose
 // rectangle contains the ghost cell's face centre. Corner ghost cells take no part.
 #pragma once
-#include "gas/gas_grid.hpp"
 #include "core/gas_settings.hpp"
+#include "gas/gas_grid.hpp"
 #include <vector>
 
 namespace fluidem::gas {

@@ -8,9 +8,12 @@
 //    div(eps tau) of [Deen07 eq. 9] (see docs/gas.md for what is neglected);
 //  SIMPLEC pressure correction: u' = d (p'_- - p'_+), d = c_p A / (a_P - sum a_nb), and
 //    psi eps_P V / dt p'_P + sum_f (eps rho)_up A d (p'_P - p'_nb) = -(mass residual of P).
+#include "core/error.hpp"
 #include "gas/gas_solver.hpp"
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 namespace fluidem::gas {
 
@@ -36,6 +39,15 @@ void clear(StencilSystem& s) {
     std::fill(v->begin(), v->end(), 0.0);
 }
 } // namespace
+
+void GasSolver::throw_linear_failure(const std::string& what, const LinearSolveStats& st) const {
+  std::ostringstream m;
+  m << "gas: the " << what << " did not converge in the step from t = " << step_time_
+    << " s: relative residual " << st.relative_residual << " after " << st.iterations
+    << " iterations (gas.solver.linear_tolerance " << s_.linear_tolerance
+    << ", gas.solver.linear_max_iterations " << s_.linear_max_iterations << ")";
+  throw InstabilityError(m.str());
+}
 
 void GasSolver::compute_mass_fluxes() {
   for (int d = 0; d < 3; ++d) {
@@ -203,7 +215,25 @@ void GasSolver::solve_momentum(int d, double dt) {
         sys_.rhs[q] = rhs + (1.0 - alpha) * aPr * u[q];
         dcoef_[d][q] = cp * Ad / std::max(aPr - sum_nb, 1e-6 * aPr);
       }
-  momentum_solver_[d]->solve(sys_, u, s_.linear_tolerance, s_.linear_max_iterations);
+  LinearSolveStats st;
+  if (lin_.momentum == LinearSolverOptions::Momentum::gauss_seidel) {
+    st = momentum_gs_[d]->solve(sys_, u, s_.linear_tolerance, lin_.momentum_max_sweeps);
+    ++counters_.momentum_solves;
+    counters_.momentum_sweeps += st.iterations;
+  }
+  if (!st.converged) { // hypre GMRES + PFMG, from where Gauss-Seidel stopped
+    if (!momentum_solver_[d]) {
+      StructSolverOptions o;
+      o.relax_type = 3; // red-black Gauss-Seidel, non-symmetric
+      const std::array<bool, 3> per{bc_.periodic(0), bc_.periodic(1), bc_.periodic(2)};
+      momentum_solver_[d] =
+          std::make_unique<StructLinearSolver>(g_.padded, momentum_box_lo(d), g_.n, per, false, o);
+    }
+    st = momentum_solver_[d]->solve(sys_, u, s_.linear_tolerance, s_.linear_max_iterations);
+    ++counters_.momentum_fallbacks;
+  }
+  if (!st.converged)
+    throw_linear_failure("momentum equation of velocity component " + std::string(1, "xyz"[d]), st);
   fill_periodic(u);
   fill_periodic(dcoef_[d]);
 }
@@ -244,7 +274,12 @@ void GasSolver::solve_pressure_correction(double dt) {
     sys_.diag[q0] = sys_.diag[q0] > 0.0 ? 2.0 * sys_.diag[q0] : 1.0;
   }
   std::fill(pc_.begin(), pc_.end(), 0.0);
-  pressure_solver_->solve(sys_, pc_, s_.linear_tolerance, s_.linear_max_iterations);
+  const LinearSolveStats st =
+      pressure_solver_->solve(sys_, pc_, s_.linear_tolerance, s_.linear_max_iterations);
+  ++counters_.pressure_solves;
+  counters_.pressure_iterations += st.iterations;
+  counters_.pressure_setups += st.setups;
+  if (!st.converged) throw_linear_failure("pressure-correction equation", st);
   // Ghost corrections: prescribed pressure -> -p'_interior, otherwise copy (unused).
   for (int d = 0; d < 3; ++d) {
     if (bc_.periodic(d)) continue;

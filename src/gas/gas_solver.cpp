@@ -50,13 +50,24 @@ GasSolver::GasSolver(const GasSettings& settings) : s_(settings) {
   // (non-periodic: the boundary faces are rows too) or 1 (periodic) to n_d.
   std::array<bool, 3> per{bc_.periodic(0), bc_.periodic(1), bc_.periodic(2)};
   const std::array<int, 3> one{1, 1, 1};
-  pressure_solver_ = std::make_unique<StructLinearSolver>(g_.padded, one, g_.n, per, true);
+  pressure_solver_ =
+      std::make_unique<StructLinearSolver>(g_.padded, one, g_.n, per, true, lin_.pressure);
   for (int d = 0; d < 3; ++d) {
     if (g_.dimension == 2 && d == 1) continue;
-    std::array<int, 3> lo = one;
-    lo[d] = per[d] ? 1 : 0;
-    momentum_solver_[d] = std::make_unique<StructLinearSolver>(g_.padded, lo, g_.n, per, false);
+    momentum_gs_[d] =
+        std::make_unique<RedBlackGaussSeidel>(g_.padded, momentum_box_lo(d), g_.n, per);
   }
+}
+
+std::array<int, 3> GasSolver::momentum_box_lo(int d) const {
+  std::array<int, 3> lo{1, 1, 1};
+  lo[d] = bc_.periodic(d) ? 1 : 0;
+  return lo;
+}
+
+void GasSolver::set_linear_solver_options(const LinearSolverOptions& options) {
+  lin_ = options;
+  pressure_solver_->set_options(lin_.pressure);
 }
 
 GasSolver::~GasSolver() = default;
@@ -194,6 +205,8 @@ void GasSolver::step(double time, double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt) || !std::isfinite(time))
     throw InputError("gas: flow time step dt must be > 0 s (got " + std::to_string(dt) + ")");
   const double t_new = time + dt;
+  step_time_ = time;
+  pressure_solver_->new_step();
   u_old_ = u_;
   apply_scalar_bcs();
   update_density();
@@ -209,7 +222,7 @@ void GasSolver::step(double time, double dt) {
     u_iter_ = u_;
     compute_mass_fluxes();
     for (int d = 0; d < 3; ++d)
-      if (momentum_solver_[d]) solve_momentum(d, dt);
+      if (momentum_gs_[d]) solve_momentum(d, dt);
     apply_velocity_bcs(t_new, false);
     compute_mass_fluxes();
     if (scale_outflow) {

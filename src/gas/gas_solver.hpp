@@ -13,16 +13,38 @@
 //  - applied_source(d): S actually applied with the converged u_new, per face, N m^-3.
 // The gas module knows nothing about particles.
 #pragma once
+#include "core/gas_settings.hpp"
 #include "core/vec3.hpp"
 #include "gas/gas_boundary.hpp"
 #include "gas/gas_grid.hpp"
-#include "core/gas_settings.hpp"
+#include "gas/gauss_seidel.hpp"
 #include "gas/pressure_solver.hpp"
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace fluidem::gas {
+
+/// How the linear systems of a flow step are solved (docs/gas.md, "Linear solvers"). The
+/// defaults are the measured choice; the alternatives are kept for bench/gas_bench.cpp.
+struct LinearSolverOptions {
+  /// Momentum: red-black Gauss-Seidel (falling back to hypre GMRES + PFMG when it would need
+  /// more than momentum_max_sweeps sweeps), or hypre GMRES + PFMG always.
+  enum class Momentum { gauss_seidel, hypre };
+  Momentum momentum = Momentum::gauss_seidel;
+  int momentum_max_sweeps = 50;
+  /// Pressure correction: hypre PCG with this preconditioner and set-up reuse.
+  StructSolverOptions pressure;
+};
+
+/// Work done by the linear solvers since construction (for benchmarks and diagnostics).
+struct LinearSolverCounters {
+  long momentum_solves = 0, momentum_sweeps = 0;     ///< Gauss-Seidel solves and sweeps
+  long momentum_fallbacks = 0;                       ///< solves handed to hypre GMRES
+  long pressure_solves = 0, pressure_iterations = 0; ///< hypre PCG solves and iterations
+  long pressure_setups = 0;                          ///< multigrid set-ups of the pressure solver
+};
 
 class GasSolver {
 public:
@@ -77,6 +99,11 @@ public:
   /// discrete continuity equation), kg/s.
   double boundary_outflow() const { return boundary_outflow_; }
 
+  const LinearSolverOptions& linear_solver_options() const { return lin_; }
+  /// Changes the linear solvers (results stay within the linear tolerance).
+  void set_linear_solver_options(const LinearSolverOptions& options);
+  const LinearSolverCounters& linear_counters() const { return counters_; }
+
   /// Face roles (internal, exposed for tests and coupling): solved, fixed, ...
   enum FaceRole : unsigned char { none = 0, solved, fixed, outflow, pressure_face, periodic_copy };
   const std::vector<unsigned char>& face_role(int d) const { return role_[d]; }
@@ -93,8 +120,12 @@ private:
   void compute_mass_fluxes();
   void balance_outflow(double dt);
   void solve_momentum(int d, double dt);
+  /// Lower corner of the box of momentum unknowns of component d (upper: n).
+  std::array<int, 3> momentum_box_lo(int d) const;
   void solve_pressure_correction(double dt);
   double mass_residual(double dt, double& out_rate) const;
+  /// InstabilityError: a linear solve did not reach gas.solver.linear_tolerance.
+  [[noreturn]] void throw_linear_failure(const std::string& what, const LinearSolveStats& st) const;
 
   GasSettings s_;
   GasGrid g_;
@@ -106,8 +137,12 @@ private:
   std::array<std::vector<double>, 3> u_, u_old_, u_iter_, K_, Kus_, f_, F_, dcoef_;
   std::array<std::vector<unsigned char>, 3> role_;
   StencilSystem sys_;
-  std::array<std::unique_ptr<StructLinearSolver>, 3> momentum_solver_;
+  LinearSolverOptions lin_;
+  LinearSolverCounters counters_;
+  std::array<std::unique_ptr<RedBlackGaussSeidel>, 3> momentum_gs_;
+  std::array<std::unique_ptr<StructLinearSolver>, 3> momentum_solver_; ///< made when needed
   std::unique_ptr<StructLinearSolver> pressure_solver_;
+  double step_time_ = 0.0; ///< start of the step being taken (for messages)
 
   int last_iterations_ = 0;
   double last_mass_residual_ = 0.0;

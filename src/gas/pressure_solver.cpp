@@ -1,4 +1,5 @@
-// hypre Struct wrapper: PFMG-preconditioned PCG / GMRES on one box, one MPI rank.
+// hypre Struct wrapper: PFMG- (or SMG-) preconditioned PCG / GMRES on one box, one MPI rank,
+// with the hypre objects kept from solve to solve (pressure_solver.hpp).
 // Open MPI: C bindings only (the C++ bindings would need libmpi_cxx at link time).
 #define OMPI_SKIP_MPICXX 1
 #define MPICH_SKIP_MPICXX 1
@@ -46,20 +47,123 @@ void ensure_mpi_initialised() {
   });
 }
 
+namespace {
+// Krylov preconditioner "set-up" that does nothing: the multigrid set-up is done (or reused)
+// by StructLinearSolver itself, not by the Krylov solver's set-up.
+HYPRE_Int no_setup(HYPRE_StructSolver, HYPRE_StructMatrix, HYPRE_StructVector, HYPRE_StructVector) {
+  return 0;
+}
+} // namespace
+
 struct StructLinearSolver::Impl {
   std::array<int, 3> padded{}, lo{}, hi{};
   std::array<bool, 3> periodic{}; ///< periodic in hypre (period >= 3)
   std::array<int, 3> fold{};      ///< periodic with period 1 or 2: folded here
   bool symmetric = false;
-  int max_levels = 0; ///< PFMG levels (0: hypre's default)
+  int max_levels = 0; ///< PFMG levels that keep every period >= 3 (0: no limit)
+  // hypre's view: ndim axes (x, z when the box is one cell thick along y, else x, y, z),
+  // extents hlo..hhi, stencil entries in the order of `slot` (index into the 7 stencil
+  // arrays: 0 diag, 1 xm, 2 xp, 3 ym, 4 yp, 5 zm, 6 zp).
+  int ndim = 3;
+  std::array<int, 3> hlo{}, hhi{};
+  std::array<int, 7> slot{0, 1, 2, 3, 4, 5, 6};
+  int nentries = 7;
+  StructSolverOptions opt;
   HYPRE_StructGrid grid = nullptr;
   HYPRE_StructStencil stencil = nullptr;
+  HYPRE_StructMatrix A = nullptr;
+  HYPRE_StructVector b = nullptr, x = nullptr;
+  HYPRE_StructSolver krylov = nullptr, mg = nullptr;
+  bool step_started = true;       ///< new_step() since the last set-up
+  bool stale = true;              ///< adaptive: the set-up should be redone
+  int iterations_after_setup = 0; ///< of the first solve after the last set-up
+  long n_setups = 0, n_solves = 0;
   std::vector<double> values, buf_b, buf_x;
+
+  void destroy_mg() {
+    if (!mg) return;
+    if (opt.multigrid == StructSolverOptions::Multigrid::smg)
+      HYPRE_StructSMGDestroy(mg);
+    else
+      HYPRE_StructPFMGDestroy(mg);
+    mg = nullptr;
+  }
+
+  // A fresh multigrid preconditioner for the current matrix values, handed to the Krylov solver.
+  void setup_mg() {
+    destroy_mg();
+    if (opt.multigrid == StructSolverOptions::Multigrid::smg) {
+      HYPRE_StructSMGCreate(MPI_COMM_WORLD, &mg);
+      HYPRE_StructSMGSetMemoryUse(mg, 0);
+      HYPRE_StructSMGSetMaxIter(mg, 1);
+      HYPRE_StructSMGSetTol(mg, 0.0);
+      HYPRE_StructSMGSetZeroGuess(mg);
+      HYPRE_StructSMGSetNumPreRelax(mg, opt.pre_relax);
+      HYPRE_StructSMGSetNumPostRelax(mg, opt.post_relax);
+      HYPRE_StructSMGSetup(mg, A, b, x);
+    } else {
+      HYPRE_StructPFMGCreate(MPI_COMM_WORLD, &mg);
+      HYPRE_StructPFMGSetMaxIter(mg, 1);
+      HYPRE_StructPFMGSetTol(mg, 0.0);
+      HYPRE_StructPFMGSetZeroGuess(mg);
+      HYPRE_StructPFMGSetRelaxType(mg, opt.relax_type);
+      HYPRE_StructPFMGSetRAPType(mg, opt.rap_type);
+      HYPRE_StructPFMGSetNumPreRelax(mg, opt.pre_relax);
+      HYPRE_StructPFMGSetNumPostRelax(mg, opt.post_relax);
+      HYPRE_StructPFMGSetSkipRelax(mg, opt.skip_relax);
+      int levels = opt.max_levels;
+      if (max_levels > 0) levels = levels > 0 ? std::min(levels, max_levels) : max_levels;
+      if (levels > 0) HYPRE_StructPFMGSetMaxLevels(mg, levels);
+      HYPRE_StructPFMGSetup(mg, A, b, x);
+    }
+    const bool smg = opt.multigrid == StructSolverOptions::Multigrid::smg;
+    const HYPRE_PtrToStructSolverFcn solve_fn = smg ? HYPRE_StructSMGSolve : HYPRE_StructPFMGSolve;
+    if (!krylov) {
+      if (symmetric) {
+        HYPRE_StructPCGCreate(MPI_COMM_WORLD, &krylov);
+        HYPRE_StructPCGSetTwoNorm(krylov, 1);
+        HYPRE_StructPCGSetPrecond(krylov, solve_fn, no_setup, mg);
+        HYPRE_StructPCGSetup(krylov, A, b, x);
+      } else {
+        HYPRE_StructGMRESCreate(MPI_COMM_WORLD, &krylov);
+        HYPRE_StructGMRESSetKDim(krylov, 30);
+        HYPRE_StructGMRESSetPrecond(krylov, solve_fn, no_setup, mg);
+        HYPRE_StructGMRESSetup(krylov, A, b, x);
+      }
+    } else if (symmetric) {
+      HYPRE_StructPCGSetPrecond(krylov, solve_fn, no_setup, mg);
+    } else {
+      HYPRE_StructGMRESSetPrecond(krylov, solve_fn, no_setup, mg);
+    }
+    ++n_setups;
+    step_started = false;
+    stale = false;
+  }
+
+  LinearSolveStats krylov_solve(double rel_tol, int max_iterations) {
+    LinearSolveStats st;
+    if (symmetric) {
+      HYPRE_StructPCGSetTol(krylov, rel_tol);
+      HYPRE_StructPCGSetMaxIter(krylov, max_iterations);
+      HYPRE_StructPCGSolve(krylov, A, b, x);
+      HYPRE_StructPCGGetNumIterations(krylov, &st.iterations);
+      HYPRE_StructPCGGetFinalRelativeResidualNorm(krylov, &st.relative_residual);
+    } else {
+      HYPRE_StructGMRESSetTol(krylov, rel_tol);
+      HYPRE_StructGMRESSetMaxIter(krylov, max_iterations);
+      HYPRE_StructGMRESSolve(krylov, A, b, x);
+      HYPRE_StructGMRESGetNumIterations(krylov, &st.iterations);
+      HYPRE_StructGMRESGetFinalRelativeResidualNorm(krylov, &st.relative_residual);
+    }
+    HYPRE_ClearAllErrors(); // non-convergence is reported in the stats
+    st.converged = st.relative_residual <= rel_tol;
+    return st;
+  }
 };
 
 StructLinearSolver::StructLinearSolver(std::array<int, 3> padded, std::array<int, 3> lo,
                                        std::array<int, 3> hi, std::array<bool, 3> periodic,
-                                       bool symmetric)
+                                       bool symmetric, const StructSolverOptions& options)
     : impl_(std::make_unique<Impl>()) {
   ensure_mpi_initialised();
   Impl& m = *impl_;
@@ -67,6 +171,7 @@ StructLinearSolver::StructLinearSolver(std::array<int, 3> padded, std::array<int
   m.lo = lo;
   m.hi = hi;
   m.symmetric = symmetric;
+  m.opt = options;
   // hypre's periodic Struct grids misbehave when a period (on any PFMG level) is below 3: the
   // two neighbours along the axis coincide. Periods 1 and 2 are folded into the stencil here;
   // for the others PFMG coarsening is limited so the coarsest period stays >= 3.
@@ -81,26 +186,78 @@ StructLinearSolver::StructLinearSolver(std::array<int, 3> padded, std::array<int
     m.max_levels = 1;
     for (int p = min_period; p / 2 >= 3; p /= 2) ++m.max_levels;
   }
-  HYPRE_StructGridCreate(MPI_COMM_WORLD, 3, &m.grid);
-  HYPRE_StructGridSetExtents(m.grid, m.lo.data(), m.hi.data());
+  // One cell thick along y and not periodic there (2-D runs): the y links are out of the box
+  // (0), so hypre gets the 5-point x-z problem.
+  std::array<int, 3> axis{0, 1, 2};
+  if (lo[1] == hi[1] && !periodic[1]) {
+    m.ndim = 2;
+    axis = {0, 2, 2};
+    m.slot = {0, 1, 2, 5, 6, 0, 0};
+    m.nentries = 5;
+  }
   std::array<int, 3> period{};
-  for (int d = 0; d < 3; ++d) period[d] = m.periodic[d] ? hi[d] - lo[d] + 1 : 0;
+  for (int a = 0; a < m.ndim; ++a) {
+    m.hlo[a] = lo[axis[a]];
+    m.hhi[a] = hi[axis[a]];
+    period[a] = m.periodic[axis[a]] ? hi[axis[a]] - lo[axis[a]] + 1 : 0;
+  }
+  HYPRE_StructGridCreate(MPI_COMM_WORLD, m.ndim, &m.grid);
+  HYPRE_StructGridSetExtents(m.grid, m.hlo.data(), m.hhi.data());
   HYPRE_StructGridSetPeriodic(m.grid, period.data());
   HYPRE_StructGridAssemble(m.grid);
-  HYPRE_StructStencilCreate(3, 7, &m.stencil);
-  int offsets[7][3] = {{0, 0, 0}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0},
-                       {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
-  for (int e = 0; e < 7; ++e) HYPRE_StructStencilSetElement(m.stencil, e, offsets[e]);
+  HYPRE_StructStencilCreate(m.ndim, m.nentries, &m.stencil);
+  for (int e = 0; e < m.nentries; ++e) {
+    std::array<int, 3> offset{0, 0, 0};
+    if (e > 0) offset[(e - 1) / 2] = e % 2 == 1 ? -1 : 1; // m, p along hypre axis (e-1)/2
+    HYPRE_StructStencilSetElement(m.stencil, e, offset.data());
+  }
+  HYPRE_StructMatrixCreate(MPI_COMM_WORLD, m.grid, m.stencil, &m.A);
+  HYPRE_StructMatrixInitialize(m.A);
+  HYPRE_StructVectorCreate(MPI_COMM_WORLD, m.grid, &m.b);
+  HYPRE_StructVectorInitialize(m.b);
+  HYPRE_StructVectorCreate(MPI_COMM_WORLD, m.grid, &m.x);
+  HYPRE_StructVectorInitialize(m.x);
   std::size_t n = 1;
   for (int d = 0; d < 3; ++d) n *= static_cast<std::size_t>(hi[d] - lo[d] + 1);
-  m.values.resize(7 * n);
+  m.values.resize(static_cast<std::size_t>(m.nentries) * n);
   m.buf_b.resize(n);
   m.buf_x.resize(n);
 }
 
 StructLinearSolver::~StructLinearSolver() {
-  HYPRE_StructStencilDestroy(impl_->stencil);
-  HYPRE_StructGridDestroy(impl_->grid);
+  Impl& m = *impl_;
+  if (m.krylov) {
+    if (m.symmetric)
+      HYPRE_StructPCGDestroy(m.krylov);
+    else
+      HYPRE_StructGMRESDestroy(m.krylov);
+  }
+  m.destroy_mg();
+  HYPRE_StructVectorDestroy(m.x);
+  HYPRE_StructVectorDestroy(m.b);
+  HYPRE_StructMatrixDestroy(m.A);
+  HYPRE_StructStencilDestroy(m.stencil);
+  HYPRE_StructGridDestroy(m.grid);
+}
+
+void StructLinearSolver::new_step() {
+  impl_->step_started = true;
+}
+
+void StructLinearSolver::set_options(const StructSolverOptions& options) {
+  impl_->destroy_mg();
+  impl_->opt = options;
+  impl_->stale = true;
+}
+
+const StructSolverOptions& StructLinearSolver::options() const {
+  return impl_->opt;
+}
+long StructLinearSolver::setups() const {
+  return impl_->n_setups;
+}
+long StructLinearSolver::solves() const {
+  return impl_->n_solves;
 }
 
 LinearSolveStats StructLinearSolver::solve(const StencilSystem& sys, std::vector<double>& x,
@@ -109,12 +266,13 @@ LinearSolveStats StructLinearSolver::solve(const StencilSystem& sys, std::vector
   const long sx = 1, sy = m.padded[0], sz = static_cast<long>(m.padded[0]) * m.padded[1];
   const std::array<const std::vector<double>*, 7> a{&sys.diag, &sys.xm, &sys.xp, &sys.ym,
                                                     &sys.yp,   &sys.zm, &sys.zp};
+  const int ne = m.nentries;
   std::size_t q = 0;
   for (int k = m.lo[2]; k <= m.hi[2]; ++k)
     for (int j = m.lo[1]; j <= m.hi[1]; ++j)
       for (int i = m.lo[0]; i <= m.hi[0]; ++i, ++q) {
         const long p = i * sx + j * sy + k * sz;
-        double* v = &m.values[7 * q];
+        double v[7];
         for (int e = 0; e < 7; ++e) v[e] = (*a[e])[p];
         // Periods 1 and 2: both neighbours are the point itself (1) or the other point (2).
         const int c[3] = {i, j, k};
@@ -127,79 +285,50 @@ LinearSolveStats StructLinearSolver::solve(const StencilSystem& sys, std::vector
             v[first ? 2 + 2 * d : 1 + 2 * d] += v[first ? 1 + 2 * d : 2 + 2 * d];
             v[first ? 1 + 2 * d : 2 + 2 * d] = 0.0;
           }
+          // Links leaving the box along a non-periodic axis are dropped (documented as 0).
+          if (!m.periodic[d] && c[d] == m.lo[d]) v[1 + 2 * d] = 0.0;
+          if (!m.periodic[d] && c[d] == m.hi[d]) v[2 + 2 * d] = 0.0;
         }
-        // Links leaving the box along a non-periodic axis are dropped (documented as 0).
-        if (!m.periodic[0] && i == m.lo[0]) m.values[7 * q + 1] = 0.0;
-        if (!m.periodic[0] && i == m.hi[0]) m.values[7 * q + 2] = 0.0;
-        if (!m.periodic[1] && j == m.lo[1]) m.values[7 * q + 3] = 0.0;
-        if (!m.periodic[1] && j == m.hi[1]) m.values[7 * q + 4] = 0.0;
-        if (!m.periodic[2] && k == m.lo[2]) m.values[7 * q + 5] = 0.0;
-        if (!m.periodic[2] && k == m.hi[2]) m.values[7 * q + 6] = 0.0;
+        double* out = &m.values[static_cast<std::size_t>(ne) * q];
+        for (int e = 0; e < ne; ++e) out[e] = v[m.slot[e]];
         m.buf_b[q] = sys.rhs[p];
         m.buf_x[q] = x[p];
       }
-  HYPRE_StructMatrix A = nullptr;
-  HYPRE_StructVector b = nullptr, xv = nullptr;
-  HYPRE_StructMatrixCreate(MPI_COMM_WORLD, m.grid, m.stencil, &A);
-  HYPRE_StructMatrixInitialize(A);
   int entries[7] = {0, 1, 2, 3, 4, 5, 6};
-  HYPRE_StructMatrixSetBoxValues(A, m.lo.data(), m.hi.data(), 7, entries, m.values.data());
-  HYPRE_StructMatrixAssemble(A);
-  HYPRE_StructVectorCreate(MPI_COMM_WORLD, m.grid, &b);
-  HYPRE_StructVectorInitialize(b);
-  HYPRE_StructVectorSetBoxValues(b, m.lo.data(), m.hi.data(), m.buf_b.data());
-  HYPRE_StructVectorAssemble(b);
-  HYPRE_StructVectorCreate(MPI_COMM_WORLD, m.grid, &xv);
-  HYPRE_StructVectorInitialize(xv);
-  HYPRE_StructVectorSetBoxValues(xv, m.lo.data(), m.hi.data(), m.buf_x.data());
-  HYPRE_StructVectorAssemble(xv);
+  HYPRE_StructMatrixSetBoxValues(m.A, m.hlo.data(), m.hhi.data(), ne, entries, m.values.data());
+  HYPRE_StructMatrixAssemble(m.A);
+  HYPRE_StructVectorSetBoxValues(m.b, m.hlo.data(), m.hhi.data(), m.buf_b.data());
+  HYPRE_StructVectorAssemble(m.b);
+  HYPRE_StructVectorSetBoxValues(m.x, m.hlo.data(), m.hhi.data(), m.buf_x.data());
+  HYPRE_StructVectorAssemble(m.x);
 
-  HYPRE_StructSolver precond = nullptr, solver = nullptr;
-  HYPRE_StructPFMGCreate(MPI_COMM_WORLD, &precond);
-  HYPRE_StructPFMGSetMaxIter(precond, 1);
-  HYPRE_StructPFMGSetTol(precond, 0.0);
-  HYPRE_StructPFMGSetZeroGuess(precond);
-  HYPRE_StructPFMGSetRelaxType(precond, m.symmetric ? 2 : 3); // red-black Gauss-Seidel
-  HYPRE_StructPFMGSetNumPreRelax(precond, 1);
-  HYPRE_StructPFMGSetNumPostRelax(precond, 1);
-  if (m.max_levels > 0) HYPRE_StructPFMGSetMaxLevels(precond, m.max_levels);
-
-  LinearSolveStats stats;
-  if (m.symmetric) {
-    HYPRE_StructPCGCreate(MPI_COMM_WORLD, &solver);
-    HYPRE_StructPCGSetTol(solver, rel_tol);
-    HYPRE_StructPCGSetMaxIter(solver, max_iterations);
-    HYPRE_StructPCGSetTwoNorm(solver, 1);
-    HYPRE_StructPCGSetPrecond(solver, HYPRE_StructPFMGSolve, HYPRE_StructPFMGSetup, precond);
-    HYPRE_StructPCGSetup(solver, A, b, xv);
-    HYPRE_StructPCGSolve(solver, A, b, xv);
-    HYPRE_StructPCGGetNumIterations(solver, &stats.iterations);
-    HYPRE_StructPCGGetFinalRelativeResidualNorm(solver, &stats.relative_residual);
-    HYPRE_StructPCGDestroy(solver);
-  } else {
-    HYPRE_StructGMRESCreate(MPI_COMM_WORLD, &solver);
-    HYPRE_StructGMRESSetTol(solver, rel_tol);
-    HYPRE_StructGMRESSetMaxIter(solver, max_iterations);
-    HYPRE_StructGMRESSetKDim(solver, 30);
-    HYPRE_StructGMRESSetPrecond(solver, HYPRE_StructPFMGSolve, HYPRE_StructPFMGSetup, precond);
-    HYPRE_StructGMRESSetup(solver, A, b, xv);
-    HYPRE_StructGMRESSolve(solver, A, b, xv);
-    HYPRE_StructGMRESGetNumIterations(solver, &stats.iterations);
-    HYPRE_StructGMRESGetFinalRelativeResidualNorm(solver, &stats.relative_residual);
-    HYPRE_StructGMRESDestroy(solver);
+  using Reuse = StructSolverOptions::Reuse;
+  const bool fresh = !m.mg || m.opt.reuse == Reuse::every_solve ||
+                     (m.opt.reuse == Reuse::per_step && m.step_started) ||
+                     (m.opt.reuse == Reuse::adaptive && m.stale);
+  if (fresh) m.setup_mg();
+  LinearSolveStats st = m.krylov_solve(rel_tol, max_iterations);
+  st.setups = fresh ? 1 : 0;
+  if (fresh) m.iterations_after_setup = st.iterations;
+  if (!st.converged && !fresh) { // the reused set-up was not good enough: redo it and retry
+    HYPRE_StructVectorSetBoxValues(m.x, m.hlo.data(), m.hhi.data(), m.buf_x.data());
+    HYPRE_StructVectorAssemble(m.x);
+    m.setup_mg();
+    const int before = st.iterations;
+    st = m.krylov_solve(rel_tol, max_iterations);
+    m.iterations_after_setup = st.iterations;
+    st.iterations += before;
+    st.setups = 1;
   }
-  HYPRE_ClearAllErrors(); // non-convergence is judged by the outer iterations
-  HYPRE_StructPFMGDestroy(precond);
-  HYPRE_StructVectorGetBoxValues(xv, m.lo.data(), m.hi.data(), m.buf_x.data());
-  HYPRE_StructVectorDestroy(xv);
-  HYPRE_StructVectorDestroy(b);
-  HYPRE_StructMatrixDestroy(A);
+  m.stale = st.iterations > 2 * m.iterations_after_setup + 2;
+  ++m.n_solves;
+  HYPRE_StructVectorGetBoxValues(m.x, m.hlo.data(), m.hhi.data(), m.buf_x.data());
 
   q = 0;
   for (int k = m.lo[2]; k <= m.hi[2]; ++k)
     for (int j = m.lo[1]; j <= m.hi[1]; ++j)
       for (int i = m.lo[0]; i <= m.hi[0]; ++i, ++q) x[i * sx + j * sy + k * sz] = m.buf_x[q];
-  return stats;
+  return st;
 }
 
 } // namespace fluidem::gas

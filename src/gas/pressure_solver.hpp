@@ -1,6 +1,9 @@
-// Linear solver for the 7-point systems of the gas phase (pressure correction, momentum), on
-// a structured box. The only file that sees hypre: its Struct interface, PCG (symmetric
-// matrices) or GMRES (non-symmetric) preconditioned by PFMG geometric multigrid.
+// Linear solver for the 7-point systems of the gas phase (pressure correction; momentum when
+// Gauss-Seidel is not enough), on a structured box. The only file that sees hypre: its Struct
+// interface, PCG (symmetric matrices) or GMRES (non-symmetric) preconditioned by one PFMG (or
+// SMG) multigrid cycle. The hypre grid, stencil, matrix, vectors and Krylov solver are created
+// once; each solve only overwrites the matrix and vector values. The multigrid set-up (coarse
+// operators) is redone according to StructSolverOptions::reuse (docs/gas.md, "Linear solvers").
 #pragma once
 #include <array>
 #include <memory>
@@ -18,16 +21,40 @@ struct StencilSystem {
 };
 
 struct LinearSolveStats {
-  int iterations = 0;
-  double relative_residual = 0.0;
+  int iterations = 0;             ///< Krylov iterations or Gauss-Seidel sweeps
+  double relative_residual = 0.0; ///< ||b - A x||_2 / ||b||_2
+  bool converged = false;         ///< relative_residual <= the requested tolerance
+  int setups = 0;                 ///< multigrid set-ups done for this solve (0: reused)
+};
+
+/// How the hypre solver is preconditioned and when its multigrid set-up is redone.
+struct StructSolverOptions {
+  enum class Multigrid { pfmg, smg };
+  /// When the multigrid set-up is redone (the matrix values change at every solve):
+  ///  every_solve: before each solve;
+  ///  per_step: at the first solve after new_step() (reused for the rest of the flow step);
+  ///  adaptive: when the previous solve needed more than twice (+2) the iterations of the
+  ///    first solve after the last set-up.
+  /// A solve with a reused set-up that does not converge is repeated after a fresh set-up.
+  enum class Reuse { every_solve, per_step, adaptive };
+  Multigrid multigrid = Multigrid::pfmg;
+  Reuse reuse = Reuse::adaptive;
+  int relax_type = 2; ///< PFMG: 0 Jacobi, 1 weighted Jacobi, 2 red-black GS (symmetric),
+                      ///< 3 red-black GS (non-symmetric); red-black forces rap_type 1 in hypre
+  int rap_type = 0;   ///< PFMG coarse operators: 0 Galerkin, 1 non-Galerkin
+  int pre_relax = 2, post_relax = 2; ///< relaxation sweeps per level (measured: 2/2 beats 1/1)
+  int skip_relax = 1;                ///< PFMG: skip relaxation on some levels (hypre's default 1)
+  int max_levels = 0;                ///< 0: hypre's choice (limited further for periodic axes)
 };
 
 class StructLinearSolver {
 public:
   /// padded: array dimensions (x fastest); lo/hi: inclusive box of unknowns in padded indices;
   /// periodic: per axis (the box then spans the period); symmetric: PCG, else GMRES.
+  /// A box one cell thick along y (not periodic there) is solved as a 2-D hypre problem.
   StructLinearSolver(std::array<int, 3> padded, std::array<int, 3> lo, std::array<int, 3> hi,
-                     std::array<bool, 3> periodic, bool symmetric);
+                     std::array<bool, 3> periodic, bool symmetric,
+                     const StructSolverOptions& options = {});
   ~StructLinearSolver();
   StructLinearSolver(const StructLinearSolver&) = delete;
   StructLinearSolver& operator=(const StructLinearSolver&) = delete;
@@ -35,6 +62,14 @@ public:
   /// Solves for x on the box (x outside the box untouched); x holds the initial guess.
   LinearSolveStats solve(const StencilSystem& sys, std::vector<double>& x, double rel_tol,
                          int max_iterations);
+  /// A new flow step begins (Reuse::per_step redoes the set-up at the next solve).
+  void new_step();
+  /// Replaces the options; the next solve does a fresh set-up.
+  void set_options(const StructSolverOptions& options);
+  const StructSolverOptions& options() const;
+  /// Multigrid set-ups and solves since construction.
+  long setups() const;
+  long solves() const;
 
 private:
   struct Impl;
