@@ -92,7 +92,7 @@ double GasCoupling::pressure_drop() const {
   const int axis = vertical_;
   const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
   const int n = g.n[static_cast<std::size_t>(axis)];
-  // Mean over a layer of cells normal to `axis` at index k (1-based).
+  // Mean over a layer of cells normal to `axis` at index k (0 and n + 1: the ghost layers).
   auto layer = [&](int k) {
     double s = 0.0;
     long m = 0;
@@ -107,11 +107,9 @@ double GasCoupling::pressure_drop() const {
       }
     return s / static_cast<double>(m);
   };
-  double lo = layer(1), hi = layer(n);
-  if (n >= 2) {
-    lo = 1.5 * lo - 0.5 * layer(2);
-    hi = 1.5 * hi - 0.5 * layer(n - 1);
-  }
+  // The pressure on a boundary face as the solver sees it: the mean of the ghost cell and the
+  // first interior cell (p_1 at an inflow face, the prescribed p_b at a pressure face).
+  const double lo = 0.5 * (layer(0) + layer(1)), hi = 0.5 * (layer(n) + layer(n + 1));
   return falls_low_ ? lo - hi : hi - lo;
 }
 

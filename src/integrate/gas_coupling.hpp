@@ -53,9 +53,9 @@ public:
   const gas::GasSolver& solver() const { return *gas_; }
   const coupling::ParticleGasForces& exchange() const { return f_; }
 
-  /// Bottom-to-top pressure drop, Pa: mean pressure on the low face of the axis against
-  /// gravity minus the mean on its high face, each extrapolated linearly from the two nearest
-  /// layers of cell centres (docs/coupling.md).
+  /// Bottom-to-top pressure drop, Pa: mean pressure on the bottom face (along gravity) minus
+  /// the mean on the top face, each face's pressure the mean of its ghost and first interior
+  /// cell, as the solver sees it (docs/coupling.md).
   double pressure_drop() const;
   /// Pressure at each probe of spec.output.probes, Pa (interpolated, gas::pressure_at).
   std::vector<double> probe_pressures() const;

@@ -1,10 +1,10 @@
 // A narrow column of the Tsuji particles [Hoomans96 Table 2] for coupled tests: aluminium
-// spheres d = 4 mm, 2700 kg/m3, e = e_w = 0.9, mu = mu_w = 0.3, in a pseudo-2-D box one
-// particle deep (3-D spheres whose centres stay in the plane y = d/2), gas cells of
-// 10 mm x 20 mm, one cell deep, air (ideal gas, 293 K), distributor porosity 0.4 at the bottom
-// inflow, prescribed pressure at the top, no-slip side walls, drag ergun_wen_yu, porosity by
-// cell (exact sphere volumes: no 2-D conversion, so the solid volume the gas sees is the
-// particles' own). The particles start at random positions in the whole column and fall.
+// spheres d = 4 mm, 2700 kg/m3, e = e_w = 0.9, mu = mu_w = 0.3, in a 3-D box, by default one
+// particle deep (a pseudo-2-D bed: the centres stay in the plane y = d/2), gas cells of
+// 10 mm x 20 mm, one cell deep (the whole depth), air (ideal gas, 293 K), distributor porosity 0.4
+// at the bottom inflow, prescribed pressure at the top, no-slip side walls, drag ergun_wen_yu,
+// porosity by cell (exact sphere volumes: no 2-D conversion, so the solid volume the gas sees is
+// the particles' own). The particles start at random positions in the whole column and fall.
 #pragma once
 #include <cmath>
 
@@ -14,7 +14,7 @@ namespace fluidem::test {
 
 struct TsujiColumn {
   Engine engine = Engine::HardSphere;
-  double width = 0.04, height = 0.3; ///< m
+  double width = 0.04, height = 0.3, depth = 0.004; ///< m
   long count = 400;
   double end_time = 1.0; ///< s
   gas::InflowProfile inflow{gas::InflowMode::constant, 2.5};
@@ -29,7 +29,7 @@ inline CaseSpec tsuji_column(const TsujiColumn& c) {
   s.simulation.end_time = c.end_time;
   if (c.engine == Engine::HardSphere) s.simulation.time_step = 1e-4;
   s.domain.lo = {0.0, 0.0, 0.0};
-  s.domain.hi = {c.width, d, c.height};
+  s.domain.hi = {c.width, c.depth, c.height};
   SpeciesSpec sp;
   sp.name = "aluminium";
   sp.diameter = d;
