@@ -41,9 +41,12 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const bool model_a = gs.settings().model == gas::PressureModel::A;
   drag::with_drag_closure(c.drag, [&](auto closure) {
     using C = decltype(closure);
+    // Independent per particle: parallel, and the same result for any thread count.
+#pragma omp parallel for schedule(static) if (n > 2048)
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3 x = p.position(i);
-      const Vec3 u = gas_velocity_at(gs, x);
+      Vec3 u, gp;
+      velocity_and_pressure_gradient_at(gs, x, u, gp);
       const Stencil cs = cell_stencil(gs.grid(), x);
       drag::DragInput in;
       in.eps = interpolate(cs, gs.porosity());
@@ -65,7 +68,6 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
       out.drag_y[i] = ci * slip[1];
       out.drag_z[i] = ci * slip[2];
       if (model_a) { // [Zhu07 eq. 5]: -V grad p on the particle
-        const Vec3 gp = pressure_gradient_at(gs, x);
         out.pres_x[i] = -vol * gp[0];
         out.pres_y[i] = -vol * gp[1];
         out.pres_z[i] = -vol * gp[2];
@@ -112,9 +114,11 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
                             ParticleGasForces& f) {
   const std::size_t n = p.size();
   const bool model_a = gs.settings().model == gas::PressureModel::A;
+#pragma omp parallel for schedule(static) if (n > 2048)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 x = p.position(i);
-    const Vec3 u = gas_velocity_at(gs, x);
+    Vec3 u, gp;
+    velocity_and_pressure_gradient_at(gs, x, u, gp);
     f.ux[i] = u[0];
     f.uy[i] = u[1];
     f.uz[i] = u[2];
@@ -124,7 +128,6 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
     if (model_a) {
       const double d = 2.0 * p.radius[i];
       const double vol = pi * d * d * d / 6.0;
-      const Vec3 gp = pressure_gradient_at(gs, x);
       f.pres_x[i] = -vol * gp[0];
       f.pres_y[i] = -vol * gp[1];
       f.pres_z[i] = -vol * gp[2];

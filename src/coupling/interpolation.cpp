@@ -94,6 +94,26 @@ Vec3 pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x) {
   return gp;
 }
 
+void velocity_and_pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x, Vec3& u,
+                                       Vec3& grad_p) {
+  const gas::GasGrid& g = gs.grid();
+  const std::vector<double>& p = gs.pressure();
+  for (int d = 0; d < 3; ++d) {
+    const Stencil s = face_stencil(g, d, x);
+    const std::vector<double>& ud = gs.velocity(d);
+    const auto sd = static_cast<std::size_t>(g.stride[d]);
+    double uv = 0.0, gv = 0.0;
+    for (int m = 0; m < s.n; ++m) {
+      const auto q = static_cast<std::size_t>(s.q[static_cast<std::size_t>(m)]);
+      const double w = s.w[static_cast<std::size_t>(m)];
+      uv += w * ud[q];
+      gv += w * (p[q + sd] - p[q]);
+    }
+    u[d] = uv;
+    grad_p[d] = gv / g.h[d];
+  }
+}
+
 double porosity_at(const gas::GasSolver& gs, const Vec3& x) {
   return interpolate(cell_stencil(gs.grid(), x), gs.porosity());
 }
