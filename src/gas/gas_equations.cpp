@@ -34,10 +34,6 @@ std::vector<double>& slot(StencilSystem& s, int e, int side) {
     return s.zp;
   }
 }
-void clear(StencilSystem& s) {
-  for (auto* v : {&s.diag, &s.xm, &s.xp, &s.ym, &s.yp, &s.zm, &s.zp, &s.rhs})
-    std::fill(v->begin(), v->end(), 0.0);
-}
 } // namespace
 
 void GasSolver::throw_linear_failure(const std::string& what, const LinearSolveStats& st) const {
@@ -50,20 +46,25 @@ void GasSolver::throw_linear_failure(const std::string& what, const LinearSolveS
 }
 
 void GasSolver::compute_mass_fluxes() {
+  // Faces with a role lie in the box c[d] = 0..n_d, other axes 1..n; F stays 0 elsewhere
+  // (apart from the periodic images written by fill_periodic).
   for (int d = 0; d < 3; ++d) {
-    std::vector<double>& F = F_[d];
-    const std::vector<double>& u = u_[d];
+    double* F = F_[d].data();
+    const double* u = u_[d].data();
+    const unsigned char* role = role_[d].data();
     const double A = g_.face_area(d);
     const long sd = g_.stride[d];
-    for (std::size_t q = 0; q < F.size(); ++q) {
-      if (role_[d][q] == none) {
-        F[q] = 0.0;
-        continue;
+    std::array<int, 3> lo{1, 1, 1};
+    lo[d] = 0;
+    for (int k = lo[2]; k <= g_.n[2]; ++k)
+      for (int j = lo[1]; j <= g_.n[1]; ++j) {
+        const long row = g_.idx(0, j, k);
+        for (long q = row + lo[0]; q <= row + g_.n[0]; ++q) {
+          const long up = u[q] >= 0.0 ? q : q + sd;
+          F[q] = role[q] == none ? 0.0 : A * eps_[up] * rho_[up] * u[q];
+        }
       }
-      const long up = u[q] >= 0.0 ? static_cast<long>(q) : static_cast<long>(q) + sd;
-      F[q] = A * eps_[up] * rho_[up] * u[q];
-    }
-    fill_periodic(F);
+    fill_periodic(F_[d]);
   }
 }
 
@@ -80,15 +81,7 @@ double GasSolver::mass_residual(double dt, double& out_rate) const {
         mass += eps_[q] * rho_[q] * V;
       }
   out_rate = 0.0;
-  for (int d = 0; d < 3; ++d) {
-    if (bc_.periodic(d)) continue;
-    for (std::size_t q = 0; q < F_[d].size(); ++q) {
-      if (role_[d][q] == none) continue;
-      const long id = (static_cast<long>(q) / g_.stride[d]) % g_.padded[d];
-      if (id == 0) out_rate -= F_[d][q];
-      if (id == g_.n[d]) out_rate += F_[d][q];
-    }
-  }
+  for (const DomainFace& f : domain_faces_) out_rate += f.sign * F_[f.d][f.q];
   return sum_abs * dt / mass;
 }
 
@@ -132,89 +125,129 @@ void GasSolver::balance_outflow(double dt) {
 }
 
 void GasSolver::solve_momentum(int d, double dt) {
-  clear(sys_);
   const double V = g_.cell_volume(), Ad = g_.face_area(d), mu = s_.viscosity;
   const double alpha = s_.velocity_relaxation;
   const long sd = g_.stride[d];
   const int nd = g_.n[d];
   const bool per_d = bc_.periodic(d);
+  const bool two_d = g_.dimension == 2;
   std::vector<double>& u = u_[d];
-  for (int k = 0; k < g_.padded[2]; ++k)
-    for (int j = 0; j < g_.padded[1]; ++j)
-      for (int i = 0; i < g_.padded[0]; ++i) {
-        const long q = g_.idx(i, j, k);
-        const unsigned char r = role_[d][q];
-        if (r == none || r == periodic_copy) continue;
-        if (r == fixed || r == outflow) {
-          sys_.diag[q] = 1.0;
-          sys_.rhs[q] = u[q];
-          dcoef_[d][q] = 0.0;
-          continue;
-        }
-        int c[3] = {i, j, k};
-        const int id = c[d];
-        const long c0 = q, c1 = q + sd;
-        const double eps_f = 0.5 * (eps_[c0] + eps_[c1]);
-        const double er = 0.5 * (eps_[c0] * rho_[c0] + eps_[c1] * rho_[c1]);
-        const double er_old = 0.5 * (eps_old_[c0] * rho_old_[c0] + eps_old_[c1] * rho_old_[c1]);
-        const double cp = s_.model == PressureModel::A ? eps_f : 1.0;
-        double aP = er * V / dt + K_[d][q] * V;
-        double rhs = er_old * V / dt * u_old_[d][q] + (Kus_[d][q] + f_[d][q]) * V +
-                     er * V * s_.gravity[d] - cp * Ad * (p_[c1] - p_[c0]);
-        double sum_nb = 0.0;
-        int cb[3] = {i, j, k}; // the interior cell next to the face, for boundary lookups
-        cb[d] = std::clamp(id, 1, nd);
-        for (int e = 0; e < 3; ++e) {
-          if (g_.dimension == 2 && e == 1) continue; // no flow and free slip across y in 2-D
-          const long se = g_.stride[e];
-          const double Ae = g_.face_area(e);
-          for (int side = 0; side < 2; ++side) {
-            const int s = side == 0 ? -1 : 1;
-            double F = 0.0, D = 0.0, gfac = 0.0;
-            bool link = true;
-            if (e == d) {
-              const long cell = s < 0 ? c0 : c1;
-              double Fa = F_[d][cell - sd], Fb = F_[d][cell];
-              if (!per_d && s < 0 && id == 0) Fa = Fb;
-              if (!per_d && s > 0 && id == nd) Fb = Fa;
-              F = 0.5 * (Fa + Fb);
-              D = mu * eps_[cell] * Ad / g_.h[d];
-              if (!per_d && (id + s < 0 || id + s > nd)) {
-                link = false;
-                gfac = 1.0; // zero gradient beyond a prescribed-pressure boundary face
-              }
-            } else {
-              const long f0 = s > 0 ? c0 : c0 - se, f1 = s > 0 ? c1 : c1 - se;
-              double F0 = F_[e][f0], F1 = F_[e][f1];
-              if (!per_d && id == 0) F0 = F1;
-              if (!per_d && id == nd) F1 = F0;
-              F = 0.5 * (F0 + F1);
-              const double eps_l =
-                  0.25 * (eps_[c0] + eps_[c1] + eps_[c0 + s * se] + eps_[c1 + s * se]);
-              D = mu * eps_l * Ae / g_.h[e];
-              const int ie = c[e] + s;
-              if (!bc_.periodic(e) && (ie < 1 || ie > g_.n[e])) {
-                link = false;
-                gfac =
-                    BoundaryMap::tangential_factor(bc_.at(2 * e + side, cb[0], cb[1], cb[2]).type);
-              }
+  const std::array<double*, 6> slots{sys_.xm.data(), sys_.xp.data(), sys_.ym.data(),
+                                     sys_.yp.data(), sys_.zm.data(), sys_.zp.data()};
+  // One row: face (i, j, k) of component d. Interior = every link of the face stays inside the
+  // domain (or wraps around a periodic axis) and no boundary face is involved: the same
+  // arithmetic without the boundary tests.
+  const auto row = [&]<bool interior>(int i, int j, int k) {
+    const long q = g_.idx(i, j, k);
+    if constexpr (!interior) {
+      const unsigned char r = role_[d][q];
+      if (r == fixed || r == outflow) {
+        sys_.diag[q] = 1.0;
+        sys_.rhs[q] = u[q];
+        for (double* sl : slots) sl[q] = 0.0;
+        dcoef_[d][q] = 0.0;
+        return;
+      }
+    }
+    const int c[3] = {i, j, k};
+    const int id = c[d];
+    const long c0 = q, c1 = q + sd;
+    const double eps_f = 0.5 * (eps_[c0] + eps_[c1]);
+    const double er = 0.5 * (eps_[c0] * rho_[c0] + eps_[c1] * rho_[c1]);
+    const double er_old = 0.5 * (eps_old_[c0] * rho_old_[c0] + eps_old_[c1] * rho_old_[c1]);
+    const double cp = s_.model == PressureModel::A ? eps_f : 1.0;
+    double aP = er * V / dt + K_[d][q] * V;
+    double rhs = er_old * V / dt * u_old_[d][q] + (Kus_[d][q] + f_[d][q]) * V +
+                 er * V * s_.gravity[d] - cp * Ad * (p_[c1] - p_[c0]);
+    double sum_nb = 0.0;
+    for (int e = 0; e < 3; ++e) {
+      if (two_d && e == 1) { // no flow and free slip across y in 2-D
+        slots[2][q] = slots[3][q] = 0.0;
+        continue;
+      }
+      const long se = g_.stride[e];
+      const double Ae = g_.face_area(e);
+      for (int side = 0; side < 2; ++side) {
+        const int s = side == 0 ? -1 : 1;
+        double F = 0.0, D = 0.0, gfac = 0.0;
+        bool link = true;
+        if (e == d) {
+          const long cell = s < 0 ? c0 : c1;
+          double Fa = F_[d][cell - sd], Fb = F_[d][cell];
+          if constexpr (!interior) {
+            if (!per_d && s < 0 && id == 0) Fa = Fb;
+            if (!per_d && s > 0 && id == nd) Fb = Fa;
+          }
+          F = 0.5 * (Fa + Fb);
+          D = mu * eps_[cell] * Ad / g_.h[d];
+          if constexpr (!interior) {
+            if (!per_d && (id + s < 0 || id + s > nd)) {
+              link = false;
+              gfac = 1.0; // zero gradient beyond a prescribed-pressure boundary face
             }
-            const double Fout = s * F;
-            const double anb = D + std::max(-Fout, 0.0);
-            aP += D + std::max(Fout, 0.0);
-            if (link) {
-              slot(sys_, e, side)[q] = -anb;
-              sum_nb += anb;
-            } else {
-              aP -= gfac * anb;
+          }
+        } else {
+          const long f0 = s > 0 ? c0 : c0 - se, f1 = s > 0 ? c1 : c1 - se;
+          double F0 = F_[e][f0], F1 = F_[e][f1];
+          if constexpr (!interior) {
+            if (!per_d && id == 0) F0 = F1;
+            if (!per_d && id == nd) F1 = F0;
+          }
+          F = 0.5 * (F0 + F1);
+          const double eps_l = 0.25 * (eps_[c0] + eps_[c1] + eps_[c0 + s * se] + eps_[c1 + s * se]);
+          D = mu * eps_l * Ae / g_.h[e];
+          if constexpr (!interior) {
+            const int ie = c[e] + s;
+            if (!bc_.periodic(e) && (ie < 1 || ie > g_.n[e])) {
+              link = false;
+              int cb[3] = {i, j, k}; // the interior cell next to the face
+              cb[d] = std::clamp(id, 1, nd);
+              gfac = BoundaryMap::tangential_factor(bc_.at(2 * e + side, cb[0], cb[1], cb[2]).type);
             }
           }
         }
-        const double aPr = aP / alpha;
-        sys_.diag[q] = aPr;
-        sys_.rhs[q] = rhs + (1.0 - alpha) * aPr * u[q];
-        dcoef_[d][q] = cp * Ad / std::max(aPr - sum_nb, 1e-6 * aPr);
+        const double Fout = s * F;
+        const double anb = D + std::max(-Fout, 0.0);
+        aP += D + std::max(Fout, 0.0);
+        if (link) {
+          slots[2 * e + side][q] = -anb;
+          sum_nb += anb;
+        } else {
+          slots[2 * e + side][q] = 0.0;
+          aP -= gfac * anb;
+        }
       }
+    }
+    const double aPr = aP / alpha;
+    sys_.diag[q] = aPr;
+    sys_.rhs[q] = rhs + (1.0 - alpha) * aPr * u[q];
+    dcoef_[d][q] = cp * Ad / std::max(aPr - sum_nb, 1e-6 * aPr);
+  };
+  // The box of unknowns and, per axis, the index range of interior faces.
+  const std::array<int, 3> lo = momentum_box_lo(d);
+  std::array<int, 3> in_lo{}, in_hi{};
+  for (int a = 0; a < 3; ++a) {
+    if (a == d) {
+      in_lo[a] = 1;
+      in_hi[a] = per_d ? nd : nd - 1;
+    } else if ((two_d && a == 1) || bc_.periodic(a)) {
+      in_lo[a] = 1;
+      in_hi[a] = g_.n[a];
+    } else {
+      in_lo[a] = 2;
+      in_hi[a] = g_.n[a] - 1;
+    }
+  }
+  const int ny = g_.n[1] - lo[1] + 1, rows = ny * (g_.n[2] - lo[2] + 1);
+  for (int r = 0; r < rows; ++r) {
+    const int j = lo[1] + r % ny, k = lo[2] + r / ny;
+    const bool inside = j >= in_lo[1] && j <= in_hi[1] && k >= in_lo[2] && k <= in_hi[2];
+    const int i0 = inside ? std::max(in_lo[0], lo[0]) : g_.n[0] + 1;
+    const int i1 = inside ? in_hi[0] : g_.n[0];
+    for (int i = lo[0]; i < i0 && i <= g_.n[0]; ++i) row.template operator()<false>(i, j, k);
+    for (int i = i0; i <= i1; ++i) row.template operator()<true>(i, j, k);
+    for (int i = std::max(i1 + 1, i0); i <= g_.n[0]; ++i) row.template operator()<false>(i, j, k);
+  }
   LinearSolveStats st;
   if (lin_.momentum == LinearSolverOptions::Momentum::gauss_seidel) {
     st = momentum_gs_[d]->solve(sys_, u, s_.linear_tolerance, lin_.momentum_max_sweeps);
@@ -239,8 +272,8 @@ void GasSolver::solve_momentum(int d, double dt) {
 }
 
 void GasSolver::solve_pressure_correction(double dt) {
-  clear(sys_);
   const double V = g_.cell_volume();
+  const double area[3] = {g_.face_area(0), g_.face_area(1), g_.face_area(2)};
   for (int k = 1; k <= g_.n[2]; ++k)
     for (int j = 1; j <= g_.n[1]; ++j)
       for (int i = 1; i <= g_.n[0]; ++i) {
@@ -253,9 +286,10 @@ void GasSolver::solve_pressure_correction(double dt) {
           for (int side = 0; side < 2; ++side) {
             const long f = side == 1 ? q : q - se;
             const unsigned char r = role_[e][f];
+            slot(sys_, e, side)[q] = 0.0;
             if (r != solved && r != periodic_copy && r != pressure_face) continue;
             const long up = u_[e][f] >= 0.0 ? f : f + se;
-            const double c = eps_[up] * rho_[up] * g_.face_area(e) * dcoef_[e][f];
+            const double c = eps_[up] * rho_[up] * area[e] * dcoef_[e][f];
             if (r == pressure_face) {
               diag += 2.0 * c; // p'_ghost = -p'_P: the pressure on the face is fixed
             } else {

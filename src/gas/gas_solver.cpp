@@ -38,6 +38,7 @@ GasSolver::GasSolver(const GasSettings& settings) : s_(settings) {
   }
   sys_.resize(n);
   init_roles();
+  build_boundary_lists();
   for (int d = 0; d < 3; ++d)
     for (std::size_t q = 0; q < n; ++q)
       if (role_[d][q] == solved || role_[d][q] == pressure_face || role_[d][q] == periodic_copy)
@@ -120,6 +121,74 @@ void GasSolver::init_roles() {
   }
 }
 
+// The boundary work lists: the same grid sweeps as the original per-call loops, recorded once.
+// Ghost porosity and pressure [Hoomans96 §3.5]: inflow cells take the distributor porosity,
+// other cells copy the adjacent interior porosity; prescribed-pressure cells hold
+// 2 p_b - p_interior (p_b on the boundary face), the others copy the interior pressure.
+// Normal velocity: outflow faces copy the adjacent interior face, walls 0, inflow faces
+// U(t)/eps_ghost into the domain; tangential ghost velocities: factor * interior.
+void GasSolver::build_boundary_lists() {
+  for (int d = 0; d < 3; ++d) {
+    if (bc_.periodic(d)) continue;
+    const long sd = g_.stride[d];
+    for (int k = 0; k < g_.padded[2]; ++k)
+      for (int j = 0; j < g_.padded[1]; ++j)
+        for (int i = 0; i < g_.padded[0]; ++i) {
+          const int c[3] = {i, j, k};
+          if (c[d] != 0 && c[d] != g_.n[d] + 1) continue;
+          const bool low = c[d] == 0;
+          const long q = g_.idx(i, j, k), in = low ? q + sd : q - sd;
+          scalar_ghosts_.push_back({q, in, &bc_.at(2 * d + (low ? 0 : 1), i, j, k)});
+        }
+  }
+  for (int d = 0; d < 3; ++d) {
+    const long sd = g_.stride[d];
+    for (int k = 0; k <= g_.n[2]; ++k)
+      for (int j = 0; j <= g_.n[1]; ++j)
+        for (int i = 0; i <= g_.n[0]; ++i) {
+          const long q = g_.idx(i, j, k);
+          const unsigned char r = role_[d][q];
+          if (r != fixed && r != outflow) continue;
+          const int c[3] = {i, j, k};
+          const bool low = c[d] == 0;
+          if (r == outflow) {
+            if (g_.n[d] > 1) outflow_copies_[d].push_back({q, low ? q + sd : q - sd, 1.0});
+            continue;
+          }
+          const BoundaryPatch* inflow = nullptr;
+          if (!(g_.dimension == 2 && d == 1)) {
+            const BoundaryPatch& b = bc_.at(2 * d + (low ? 0 : 1), i, j, k);
+            if (b.type == BoundaryType::inflow) inflow = &b;
+          }
+          fixed_faces_[d].push_back({q, inflow, low ? 1.0 : -1.0});
+        }
+    for (int e = 0; e < 3; ++e) {
+      if (e == d || bc_.periodic(e)) continue;
+      const long se = g_.stride[e];
+      for (int k = 0; k < g_.padded[2]; ++k)
+        for (int j = 0; j < g_.padded[1]; ++j)
+          for (int i = 0; i < g_.padded[0]; ++i) {
+            const int c[3] = {i, j, k};
+            if (c[e] != 0 && c[e] != g_.n[e] + 1) continue;
+            const bool low = c[e] == 0;
+            const long q = g_.idx(i, j, k);
+            const BoundaryPatch& b = bc_.at(2 * e + (low ? 0 : 1), i, j, k);
+            tangential_ghosts_[d].push_back(
+                {q, low ? q + se : q - se, BoundaryMap::tangential_factor(b.type)});
+          }
+    }
+  }
+  for (int d = 0; d < 3; ++d) {
+    if (bc_.periodic(d)) continue;
+    for (std::size_t q = 0; q < g_.size(); ++q) {
+      if (role_[d][q] == none) continue;
+      const long id = (static_cast<long>(q) / g_.stride[d]) % g_.padded[d];
+      if (id == 0) domain_faces_.push_back({d, static_cast<long>(q), -1.0});
+      if (id == g_.n[d]) domain_faces_.push_back({d, static_cast<long>(q), 1.0});
+    }
+  }
+}
+
 void GasSolver::fill_periodic(std::vector<double>& a) const {
   for (int d = 0; d < 3; ++d) {
     if (!bc_.periodic(d)) continue;
@@ -140,20 +209,10 @@ void GasSolver::fill_periodic(std::vector<double>& a) const {
 // other cells copy the adjacent interior porosity; prescribed-pressure cells hold
 // 2 p_b - p_interior (p_b on the boundary face), the others copy the interior pressure.
 void GasSolver::apply_scalar_bcs() {
-  for (int d = 0; d < 3; ++d) {
-    if (bc_.periodic(d)) continue;
-    const long sd = g_.stride[d];
-    for (int k = 0; k < g_.padded[2]; ++k)
-      for (int j = 0; j < g_.padded[1]; ++j)
-        for (int i = 0; i < g_.padded[0]; ++i) {
-          const int c[3] = {i, j, k};
-          if (c[d] != 0 && c[d] != g_.n[d] + 1) continue;
-          const bool low = c[d] == 0;
-          const long q = g_.idx(i, j, k), in = low ? q + sd : q - sd;
-          const BoundaryPatch& b = bc_.at(2 * d + (low ? 0 : 1), i, j, k);
-          eps_[q] = b.type == BoundaryType::inflow ? b.porosity : eps_[in];
-          p_[q] = b.type == BoundaryType::pressure ? 2.0 * b.pressure - p_[in] : p_[in];
-        }
+  for (const ScalarGhost& g : scalar_ghosts_) {
+    const BoundaryPatch& b = *g.patch;
+    eps_[g.q] = b.type == BoundaryType::inflow ? b.porosity : eps_[g.in];
+    p_[g.q] = b.type == BoundaryType::pressure ? 2.0 * b.pressure - p_[g.in] : p_[g.in];
   }
   fill_periodic(eps_);
   fill_periodic(p_);
@@ -162,41 +221,15 @@ void GasSolver::apply_scalar_bcs() {
 void GasSolver::apply_velocity_bcs(double t_new, bool set_inflow) {
   for (int d = 0; d < 3; ++d) {
     std::vector<double>& u = u_[d];
-    const long sd = g_.stride[d];
-    for (int k = 0; k <= g_.n[2]; ++k)
-      for (int j = 0; j <= g_.n[1]; ++j)
-        for (int i = 0; i <= g_.n[0]; ++i) {
-          const long q = g_.idx(i, j, k);
-          const unsigned char r = role_[d][q];
-          if (r != fixed && r != outflow) continue;
-          const int c[3] = {i, j, k};
-          const bool low = c[d] == 0;
-          if (r == outflow) {
-            if (g_.n[d] > 1) u[q] = low ? u[q + sd] : u[q - sd];
-            continue;
-          }
-          if (!set_inflow) continue;
-          u[q] = 0.0;
-          if (g_.dimension == 2 && d == 1) continue;
-          const BoundaryPatch& b = bc_.at(2 * d + (low ? 0 : 1), i, j, k);
-          if (b.type == BoundaryType::inflow)
-            u[q] = (low ? 1.0 : -1.0) * inflow_velocity(b.inflow, t_new) / b.porosity;
-        }
+    for (const FaceCopy& c : outflow_copies_[d]) u[c.dst] = u[c.src];
+    if (set_inflow)
+      for (const FixedFace& f : fixed_faces_[d]) {
+        u[f.q] = 0.0;
+        if (f.inflow)
+          u[f.q] = f.sign * inflow_velocity(f.inflow->inflow, t_new) / f.inflow->porosity;
+      }
     // Tangential ghost velocities (used only by interpolation): factor * interior.
-    for (int e = 0; e < 3; ++e) {
-      if (e == d || bc_.periodic(e)) continue;
-      const long se = g_.stride[e];
-      for (int k = 0; k < g_.padded[2]; ++k)
-        for (int j = 0; j < g_.padded[1]; ++j)
-          for (int i = 0; i < g_.padded[0]; ++i) {
-            const int c[3] = {i, j, k};
-            if (c[e] != 0 && c[e] != g_.n[e] + 1) continue;
-            const bool low = c[e] == 0;
-            const long q = g_.idx(i, j, k);
-            const BoundaryPatch& b = bc_.at(2 * e + (low ? 0 : 1), i, j, k);
-            u[q] = BoundaryMap::tangential_factor(b.type) * u[low ? q + se : q - se];
-          }
-    }
+    for (const FaceCopy& c : tangential_ghosts_[d]) u[c.dst] = c.factor * u[c.src];
     fill_periodic(u);
   }
 }

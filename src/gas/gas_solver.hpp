@@ -111,6 +111,7 @@ public:
 private:
   // gas_solver.cpp
   void init_roles();
+  void build_boundary_lists();
   void apply_scalar_bcs();
   void apply_velocity_bcs(double t_new, bool set_inflow);
   void fill_periodic(std::vector<double>& a) const;
@@ -136,6 +137,30 @@ private:
   std::vector<double> eps_, eps_old_, p_, rho_, rho_old_, pc_;
   std::array<std::vector<double>, 3> u_, u_old_, u_iter_, K_, Kus_, f_, F_, dcoef_;
   std::array<std::vector<unsigned char>, 3> role_;
+  // Boundary work lists, built once in the order of the original grid sweeps (later entries
+  // may read values written by earlier ones at edges and corners).
+  struct ScalarGhost { ///< ghost cell q next to interior (or ghost) cell `in`
+    long q, in;
+    const BoundaryPatch* patch;
+  };
+  struct FaceCopy { ///< u[dst] = factor * u[src]
+    long dst, src;
+    double factor;
+  };
+  struct FixedFace { ///< normal velocity on a wall (0) or inflow face
+    long q;
+    const BoundaryPatch* inflow; ///< nullptr: wall
+    double sign;                 ///< +1 on a low face (into the domain along +axis), -1 high
+  };
+  struct DomainFace { ///< a face on the domain boundary, for the net outflow
+    int d;
+    long q;
+    double sign; ///< -1 low face, +1 high face
+  };
+  std::vector<ScalarGhost> scalar_ghosts_;
+  std::array<std::vector<FaceCopy>, 3> outflow_copies_, tangential_ghosts_;
+  std::array<std::vector<FixedFace>, 3> fixed_faces_;
+  std::vector<DomainFace> domain_faces_;
   StencilSystem sys_;
   LinearSolverOptions lin_;
   LinearSolverCounters counters_;
