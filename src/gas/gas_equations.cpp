@@ -56,14 +56,14 @@ void GasSolver::compute_mass_fluxes() {
     const long sd = g_.stride[d];
     std::array<int, 3> lo{1, 1, 1};
     lo[d] = 0;
-    for (int k = lo[2]; k <= g_.n[2]; ++k)
-      for (int j = lo[1]; j <= g_.n[1]; ++j) {
-        const long row = g_.idx(0, j, k);
-        for (long q = row + lo[0]; q <= row + g_.n[0]; ++q) {
-          const long up = u[q] >= 0.0 ? q : q + sd;
-          F[q] = role[q] == none ? 0.0 : A * eps_[up] * rho_[up] * u[q];
-        }
+    const int ny = g_.n[1] - lo[1] + 1, rows = ny * (g_.n[2] - lo[2] + 1);
+    for (int r = 0; r < rows; ++r) {
+      const long row = g_.idx(0, lo[1] + r % ny, lo[2] + r / ny);
+      for (long q = row + lo[0]; q <= row + g_.n[0]; ++q) {
+        const long up = u[q] >= 0.0 ? q : q + sd;
+        F[q] = role[q] == none ? 0.0 : A * eps_[up] * rho_[up] * u[q];
       }
+    }
     fill_periodic(F_[d]);
   }
 }
@@ -239,6 +239,7 @@ void GasSolver::solve_momentum(int d, double dt) {
     }
   }
   const int ny = g_.n[1] - lo[1] + 1, rows = ny * (g_.n[2] - lo[2] + 1);
+#pragma omp parallel for schedule(static) if (parallel_)
   for (int r = 0; r < rows; ++r) {
     const int j = lo[1] + r % ny, k = lo[2] + r / ny;
     const bool inside = j >= in_lo[1] && j <= in_hi[1] && k >= in_lo[2] && k <= in_hi[2];
@@ -274,6 +275,7 @@ void GasSolver::solve_momentum(int d, double dt) {
 void GasSolver::solve_pressure_correction(double dt) {
   const double V = g_.cell_volume();
   const double area[3] = {g_.face_area(0), g_.face_area(1), g_.face_area(2)};
+#pragma omp parallel for collapse(2) schedule(static) if (parallel_)
   for (int k = 1; k <= g_.n[2]; ++k)
     for (int j = 1; j <= g_.n[1]; ++j)
       for (int i = 1; i <= g_.n[0]; ++i) {

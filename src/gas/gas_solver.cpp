@@ -24,6 +24,8 @@ GasSolver::GasSolver(const GasSettings& settings) : s_(settings) {
   validate(s_);
   g_ = make_grid(s_);
   bc_ = BoundaryMap(s_, g_);
+  const long cells = static_cast<long>(g_.n[0]) * g_.n[1] * g_.n[2];
+  parallel_ = cells >= parallel_cells;
   compressible_ = s_.eos == EquationOfState::ideal_gas;
   psi_ = compressible_ ? s_.molar_mass / (gas_constant * s_.temperature) : 0.0;
   const std::size_t n = g_.size();
@@ -55,8 +57,8 @@ GasSolver::GasSolver(const GasSettings& settings) : s_(settings) {
       std::make_unique<StructLinearSolver>(g_.padded, one, g_.n, per, true, lin_.pressure);
   for (int d = 0; d < 3; ++d) {
     if (g_.dimension == 2 && d == 1) continue;
-    momentum_gs_[d] =
-        std::make_unique<RedBlackGaussSeidel>(g_.padded, momentum_box_lo(d), g_.n, per);
+    momentum_gs_[d] = std::make_unique<RedBlackGaussSeidel>(
+        g_.padded, momentum_box_lo(d), g_.n, per, cells >= gauss_seidel_parallel_cells);
   }
 }
 

@@ -99,6 +99,13 @@ public:
   /// discrete continuity equation), kg/s.
   double boundary_outflow() const { return boundary_outflow_; }
 
+  /// OpenMP threads (docs/gas.md, "Threads"): the momentum and pressure-correction assembly
+  /// loops run threaded on grids of at least parallel_cells interior cells, the Gauss-Seidel
+  /// sweeps from gauss_seidel_parallel_cells on. Every threaded loop writes per cell or face
+  /// (no reductions across threads): results do not depend on the thread count.
+  static constexpr long parallel_cells = 8192;
+  static constexpr long gauss_seidel_parallel_cells = 1L << 20;
+
   const LinearSolverOptions& linear_solver_options() const { return lin_; }
   /// Changes the linear solvers (results stay within the linear tolerance).
   void set_linear_solver_options(const LinearSolverOptions& options);
@@ -168,6 +175,7 @@ private:
   std::array<std::unique_ptr<StructLinearSolver>, 3> momentum_solver_; ///< made when needed
   std::unique_ptr<StructLinearSolver> pressure_solver_;
   double step_time_ = 0.0; ///< start of the step being taken (for messages)
+  bool parallel_ = false;
 
   int last_iterations_ = 0;
   double last_mass_residual_ = 0.0;

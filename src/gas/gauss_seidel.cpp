@@ -6,13 +6,12 @@
 namespace fluidem::gas {
 
 RedBlackGaussSeidel::RedBlackGaussSeidel(std::array<int, 3> padded, std::array<int, 3> lo,
-                                         std::array<int, 3> hi, std::array<bool, 3> periodic)
-    : padded_(padded), lo_(lo), hi_(hi), periodic_(periodic) {
+                                         std::array<int, 3> hi, std::array<bool, 3> periodic,
+                                         bool threaded)
+    : padded_(padded), lo_(lo), hi_(hi), periodic_(periodic), parallel_(threaded) {
   sy_ = padded[0];
   sz_ = static_cast<long>(padded[0]) * padded[1];
   rows_ = (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
-  const long n = static_cast<long>(hi[0] - lo[0] + 1) * rows_;
-  parallel_ = n >= parallel_threshold;
   row_sum_.assign(static_cast<std::size_t>(rows_), 0.0);
 }
 

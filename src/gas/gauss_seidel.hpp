@@ -11,10 +11,10 @@
 // diffusion-dominated system, e.g. DT near the viscous time), it stops early and reports
 // converged = false; the caller then falls back to a Krylov solver.
 //
-// Threads: the rows of a half-sweep are independent (their neighbours along the sweep are the
-// other colour), so they run in parallel when the box is large enough; the residual norms are
-// summed per row and then over rows in a fixed order. Results are bitwise independent of the
-// thread count.
+// Threads (optional): the rows of a half-sweep are independent (their neighbours along the
+// sweep are the other colour), so they can run in parallel; the residual norms are summed per
+// row and then over rows in a fixed order. Results are bitwise independent of the thread count
+// and of `threaded`.
 #pragma once
 #include "gas/pressure_solver.hpp"
 #include <array>
@@ -27,18 +27,16 @@ public:
   /// Same box conventions as StructLinearSolver: padded array dimensions (x fastest), inclusive
   /// box lo..hi of unknowns, periodic axes (the box spans the period; the ghost layer of x
   /// outside the box is used as the periodic image and overwritten).
+  /// threaded: run the half-sweeps with OpenMP threads (worth it only for large boxes: each
+  /// half-sweep is a parallel region with its barrier).
   RedBlackGaussSeidel(std::array<int, 3> padded, std::array<int, 3> lo, std::array<int, 3> hi,
-                      std::array<bool, 3> periodic);
+                      std::array<bool, 3> periodic, bool threaded = false);
 
   /// Solves for x on the box (x holds the initial guess; outside the box only the periodic
   /// images are written). Entries of sys that link out of the box along a non-periodic axis
   /// must be 0 (x there must be finite).
   LinearSolveStats solve(const StencilSystem& sys, std::vector<double>& x, double rel_tol,
                          int max_sweeps);
-
-  /// Boxes with at least this many unknowns run their sweeps with OpenMP threads (none yet:
-  /// threads are switched on where measured to pay).
-  static constexpr long parallel_threshold = 1L << 62;
 
 private:
   void refresh_periodic(std::vector<double>& x) const;
