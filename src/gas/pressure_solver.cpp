@@ -61,6 +61,7 @@ struct StructLinearSolver::Impl {
   std::array<int, 3> fold{};      ///< periodic with period 1 or 2: folded here
   bool symmetric = false;
   int max_levels = 0; ///< PFMG levels that keep every period >= 3 (0: no limit)
+  long cells = 0;     ///< unknowns in the box
   // hypre's view: ndim axes (x, z when the box is one cell thick along y, else x, y, z),
   // extents hlo..hhi, stencil entries in the order of `slot` (index into the 7 stencil
   // arrays: 0 diag, 1 xm, 2 xp, 3 ym, 4 yp, 5 zm, 6 zp).
@@ -112,6 +113,10 @@ struct StructLinearSolver::Impl {
       HYPRE_StructPFMGSetNumPostRelax(mg, opt.post_relax);
       HYPRE_StructPFMGSetSkipRelax(mg, opt.skip_relax);
       int levels = opt.max_levels;
+      if (levels <= 0 && opt.min_coarse_cells > 0) { // halve (semi-coarsening) while >= min
+        levels = 1;
+        for (long c = cells; c / 2 >= opt.min_coarse_cells; c /= 2) ++levels;
+      }
       if (max_levels > 0) levels = levels > 0 ? std::min(levels, max_levels) : max_levels;
       if (levels > 0) HYPRE_StructPFMGSetMaxLevels(mg, levels);
       HYPRE_StructPFMGSetup(mg, A, b, x);
@@ -219,6 +224,7 @@ StructLinearSolver::StructLinearSolver(std::array<int, 3> padded, std::array<int
   HYPRE_StructVectorInitialize(m.x);
   std::size_t n = 1;
   for (int d = 0; d < 3; ++d) n *= static_cast<std::size_t>(hi[d] - lo[d] + 1);
+  m.cells = static_cast<long>(n);
   m.values.resize(static_cast<std::size_t>(m.nentries) * n);
   m.buf_b.resize(n);
   m.buf_x.resize(n);

@@ -42,9 +42,14 @@ struct StructSolverOptions {
   int relax_type = 2; ///< PFMG: 0 Jacobi, 1 weighted Jacobi, 2 red-black GS (symmetric),
                       ///< 3 red-black GS (non-symmetric); red-black forces rap_type 1 in hypre
   int rap_type = 0;   ///< PFMG coarse operators: 0 Galerkin, 1 non-Galerkin
-  int pre_relax = 2, post_relax = 2; ///< relaxation sweeps per level (measured: 2/2 beats 1/1)
+  int pre_relax = 3, post_relax = 3; ///< relaxation sweeps per level
   int skip_relax = 1;                ///< PFMG: skip relaxation on some levels (hypre's default 1)
-  int max_levels = 0;                ///< 0: hypre's choice (limited further for periodic axes)
+  /// PFMG levels: max_levels > 0 caps them; 0 coarsens while a level keeps at least
+  /// min_coarse_cells cells (the per-level overhead of hypre dominates tiny levels);
+  /// max_levels = 0 and min_coarse_cells = 0: hypre's choice. Always limited further so that
+  /// periodic axes keep a period >= 3.
+  int max_levels = 0;
+  int min_coarse_cells = 64;
 };
 
 class StructLinearSolver {
