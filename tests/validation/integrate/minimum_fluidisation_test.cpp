@@ -1,11 +1,15 @@
-// Minimum fluidisation velocity from a slow velocity sweep [Chang08 §3.4]: a 3-D column of the
-// Tsuji particles (tests/common/tsuji_column.hpp: 40 mm x 20 mm (5 diameters deep) x 0.3 m,
-// 2150 particles, soft spheres) is fluidised at 2.8 m/s, then the superficial velocity falls
-// linearly to 0.3 m/s over 3 s (defluidisation) and rises back to 2.8 m/s over 3 s: the
-// pressure drop against velocity traces the fixed-bed branch and the fluidised plateau with the
-// hysteresis loop of [Chang08 Fig. 6]. Five diameters deep, the packing is a 3-D random one
-// (porosity ~0.42, the range Wen & Yu's correlation stands for); a one-particle-deep bed packs
-// looser (porosity 0.45) and gave u_mf = 2.11 m/s (+19%).
+// Minimum fluidisation velocity from a slow velocity sweep [Chang08 §3.4]: the Tsuji column
+// (tests/common/tsuji_column.hpp: 40 mm wide, one particle deep, 0.3 m high, 400 particles,
+// soft spheres) is fluidised at 2.8 m/s, then the superficial velocity falls linearly to
+// 0.3 m/s over 4 s (defluidisation) and rises back to 2.8 m/s over 4 s: the pressure drop
+// against velocity traces the fixed-bed branch and the fluidised plateau with the hysteresis
+// loop of [Chang08 Fig. 6].
+// STATUS (2026-12-01): FAILS. Measured u_mf = 2.11 m/s (+19%): one particle deep, the packing
+// is loose (porosity ~0.45 against the ~0.41 Wen & Yu's correlation stands for). A column
+// 5 diameters deep (20 mm, 2150 particles) did not fluidise at all up to 2.8 m/s (pressure drop
+// 0.86 x the weight at 2.75 m/s): with 10 and 5 diameters across, the walls loosen the packing
+// further. A fair test needs a bed many diameters across (periodic side boundaries for the gas
+// stencils, or ~10^4 particles).
 // u_mf (the usual construction on the defluidisation branch, Kunii & Levenspiel ch. 3): the
 // fixed-bed points (pressure drop below 70% of the plateau) fitted by the Ergun form
 // dP = a U + b U^2, intersected with the plateau (mean pressure drop at U >= 2.3 m/s).
@@ -31,11 +35,9 @@ TEST(MinimumFluidisation, VelocitySweepGivesTheWenYuVelocity) {
   // Soft spheres: the event-driven engine stalls when the bed defluidises (a packed bed whose
   // weight the gas nearly carries: thousands of collisions per particle per flow step).
   c.engine = Engine::SoftSphere;
-  c.depth = 0.02;
-  c.count = 2150;
-  c.end_time = 7.0;
+  c.end_time = 9.0;
   c.inflow.mode = gas::InflowMode::table;
-  c.inflow.times = {0.0, 1.0, 4.0, 7.0};
+  c.inflow.times = {0.0, 1.0, 5.0, 9.0};
   c.inflow.velocities = {2.8, 2.8, 0.3, 2.8};
   const CaseSpec spec = test::tsuji_column(c);
   Simulation sim(spec);
@@ -53,7 +55,7 @@ TEST(MinimumFluidisation, VelocitySweepGivesTheWenYuVelocity) {
     const double u = gas::inflow_velocity(c.inflow, t);
     const double dp = sim.gas()->pressure_drop();
     const int b = std::min(bins - 1, static_cast<int>(u / 0.1));
-    if (t <= 4.0) {
+    if (t <= 5.0) {
       down_sum[static_cast<std::size_t>(b)] += dp;
       ++down_n[static_cast<std::size_t>(b)];
     } else {
