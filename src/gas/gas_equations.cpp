@@ -317,33 +317,25 @@ void GasSolver::solve_pressure_correction(double dt) {
   counters_.pressure_setups += st.setups;
   if (!st.converged) throw_linear_failure("pressure-correction equation", st);
   // Ghost corrections: prescribed pressure -> -p'_interior, otherwise copy (unused).
-  for (int d = 0; d < 3; ++d) {
-    if (bc_.periodic(d)) continue;
-    const long sd = g_.stride[d];
-    for (int k = 1 - (d == 2 ? 1 : 0); k <= g_.n[2] + (d == 2 ? 1 : 0); ++k)
-      for (int j = 1 - (d == 1 ? 1 : 0); j <= g_.n[1] + (d == 1 ? 1 : 0); ++j)
-        for (int i = 1 - (d == 0 ? 1 : 0); i <= g_.n[0] + (d == 0 ? 1 : 0); ++i) {
-          const int c[3] = {i, j, k};
-          if (c[d] != 0 && c[d] != g_.n[d] + 1) continue;
-          const bool low = c[d] == 0;
-          const long q = g_.idx(i, j, k), in = low ? q + sd : q - sd;
-          const bool dirichlet =
-              bc_.at(2 * d + (low ? 0 : 1), i, j, k).type == BoundaryType::pressure;
-          pc_[q] = dirichlet ? -pc_[in] : pc_[in];
-        }
-  }
+  for (const FaceCopy& c : pc_ghosts_) pc_[c.dst] = c.factor * pc_[c.src];
   fill_periodic(pc_);
   const double ap = s_.pressure_relaxation;
   for (int k = 1; k <= g_.n[2]; ++k)
     for (int j = 1; j <= g_.n[1]; ++j)
       for (int i = 1; i <= g_.n[0]; ++i) p_[g_.idx(i, j, k)] += ap * pc_[g_.idx(i, j, k)];
-  for (int d = 0; d < 3; ++d) {
+  for (int d = 0; d < 3; ++d) { // solved and pressure faces: c[d] = 0..n_d, other axes 1..n
     const long sd = g_.stride[d];
-    for (std::size_t q = 0; q < u_[d].size(); ++q) {
-      const unsigned char r = role_[d][q];
-      if (r != solved && r != pressure_face) continue;
-      u_[d][q] += dcoef_[d][q] * (pc_[q] - pc_[q + sd]);
-    }
+    double* u = u_[d].data();
+    const double* dc = dcoef_[d].data();
+    const unsigned char* role = role_[d].data();
+    std::array<int, 3> lo{1, 1, 1};
+    lo[d] = 0;
+    for (int k = lo[2]; k <= g_.n[2]; ++k)
+      for (int j = lo[1]; j <= g_.n[1]; ++j) {
+        const long row = g_.idx(0, j, k);
+        for (long q = row + lo[0]; q <= row + g_.n[0]; ++q)
+          if (role[q] == solved || role[q] == pressure_face) u[q] += dc[q] * (pc_[q] - pc_[q + sd]);
+      }
     fill_periodic(u_[d]);
   }
 }

@@ -182,6 +182,21 @@ void GasSolver::build_boundary_lists() {
   }
   for (int d = 0; d < 3; ++d) {
     if (bc_.periodic(d)) continue;
+    const long sd = g_.stride[d];
+    for (int k = 1 - (d == 2 ? 1 : 0); k <= g_.n[2] + (d == 2 ? 1 : 0); ++k)
+      for (int j = 1 - (d == 1 ? 1 : 0); j <= g_.n[1] + (d == 1 ? 1 : 0); ++j)
+        for (int i = 1 - (d == 0 ? 1 : 0); i <= g_.n[0] + (d == 0 ? 1 : 0); ++i) {
+          const int c[3] = {i, j, k};
+          if (c[d] != 0 && c[d] != g_.n[d] + 1) continue;
+          const bool low = c[d] == 0;
+          const long q = g_.idx(i, j, k), in = low ? q + sd : q - sd;
+          const bool dirichlet =
+              bc_.at(2 * d + (low ? 0 : 1), i, j, k).type == BoundaryType::pressure;
+          pc_ghosts_.push_back({q, in, dirichlet ? -1.0 : 1.0});
+        }
+  }
+  for (int d = 0; d < 3; ++d) {
+    if (bc_.periodic(d)) continue;
     for (std::size_t q = 0; q < g_.size(); ++q) {
       if (role_[d][q] == none) continue;
       const long id = (static_cast<long>(q) / g_.stride[d]) % g_.padded[d];

@@ -167,6 +167,7 @@ private:
   std::vector<ScalarGhost> scalar_ghosts_;
   std::array<std::vector<FaceCopy>, 3> outflow_copies_, tangential_ghosts_;
   std::array<std::vector<FixedFace>, 3> fixed_faces_;
+  std::vector<FaceCopy> pc_ghosts_; ///< pressure-correction ghosts: -1 (pressure) or 1 * interior
   std::vector<DomainFace> domain_faces_;
   StencilSystem sys_;
   LinearSolverOptions lin_;
