@@ -15,11 +15,87 @@ void ParticleGasForces::resize(std::size_t n) {
     v->assign(n, 0.0);
 }
 
+namespace {
+bool solved_face(unsigned char r) {
+  return r == gas::GasSolver::solved || r == gas::GasSolver::pressure_face;
+}
+
+/// u_c: mean of the two faces of cell q (grid index) along d (the face at q is the HIGH one).
+double cell_gas_velocity(const gas::GasSolver& gs, long q, int d) {
+  const std::vector<double>& u = gs.velocity(d);
+  const long s = gs.grid().stride[static_cast<std::size_t>(d)];
+  return 0.5 * (u[static_cast<std::size_t>(q - s)] + u[static_cast<std::size_t>(q)]);
+}
+
+/// Cell averages of schemes 1 and 2 (exchange.hpp): out.cell, cell_coeff, cell_v*; for
+/// scheme 2 also overwrites the per-particle drag, coeff, u, eps with the shares of F_c.
+template <class Closure>
+void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
+                         const CouplingSettings& c, ParticleGasForces& out) {
+  const gas::GasGrid& g = gs.grid();
+  const std::size_t n = p.size(), nc = g.size();
+  out.cell.assign(n, 0);
+  out.cell_coeff.assign(nc, 0.0);
+  out.cell_vx.assign(nc, 0.0);
+  out.cell_vy.assign(nc, 0.0);
+  out.cell_vz.assign(nc, 0.0);
+  std::vector<double> vs(nc, 0.0), mass(nc, 0.0), sd2(nc, 0.0), sd3(nc, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto cc = g.cell_of(p.position(i));
+    const long q = g.idx(cc[0], cc[1], cc[2]);
+    const auto uq = static_cast<std::size_t>(q);
+    out.cell[i] = q;
+    const double d = 2.0 * p.radius[i];
+    vs[uq] += pi * d * d * d / 6.0;
+    sd2[uq] += d * d;
+    sd3[uq] += d * d * d;
+    const double m = p.mass[i];
+    mass[uq] += m;
+    out.cell_vx[uq] += m * p.vx[i];
+    out.cell_vy[uq] += m * p.vy[i];
+    out.cell_vz[uq] += m * p.vz[i];
+  }
+  const double mu = gs.settings().viscosity;
+  for (std::size_t q = 0; q < nc; ++q) {
+    if (!(vs[q] > 0.0)) continue;
+    if (mass[q] > 0.0) {
+      out.cell_vx[q] /= mass[q];
+      out.cell_vy[q] /= mass[q];
+      out.cell_vz[q] /= mass[q];
+    }
+    const long lq = static_cast<long>(q);
+    const double slip[3] = {cell_gas_velocity(gs, lq, 0) - out.cell_vx[q],
+                            cell_gas_velocity(gs, lq, 1) - out.cell_vy[q],
+                            cell_gas_velocity(gs, lq, 2) - out.cell_vz[q]};
+    drag::DragInput in;
+    in.eps = gs.porosity()[q];
+    in.rho = gs.density()[q];
+    in.d = sd3[q] / sd2[q]; // Sauter mean of the cell's particles
+    in.mu = mu;
+    in.d_mean = c.d_mean;
+    in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
+    out.cell_coeff[q] = vs[q] * Closure::k(in); // C_c = V_s,c K_c [Chang08 eq. 2.10]
+  }
+  if (c.scheme != ExchangeScheme::scheme2) return;
+  // [Chang08 eq. 2.11]: the particle's share of F_c is its surface area over the cell's.
+  for (std::size_t i = 0; i < n; ++i) {
+    const long q = out.cell[i];
+    const auto uq = static_cast<std::size_t>(q);
+    const double d = 2.0 * p.radius[i];
+    const double ci = d * d / sd2[uq] * out.cell_coeff[uq];
+    out.coeff[i] = ci;
+    out.eps[i] = gs.porosity()[uq];
+    out.ux[i] = cell_gas_velocity(gs, q, 0);
+    out.uy[i] = cell_gas_velocity(gs, q, 1);
+    out.uz[i] = cell_gas_velocity(gs, q, 2);
+    out.drag_x[i] = ci * (out.ux[i] - out.cell_vx[uq]);
+    out.drag_y[i] = ci * (out.uy[i] - out.cell_vy[uq]);
+    out.drag_z[i] = ci * (out.uz[i] - out.cell_vz[uq]);
+  }
+}
+} // namespace
+
 void validate(const CouplingSettings& c, const gas::GasSettings& gas) {
-  if (c.scheme != ExchangeScheme::scheme3)
-    throw InputError(std::string("coupling.scheme = ") +
-                     (c.scheme == ExchangeScheme::scheme1 ? "1" : "2") +
-                     ": not implemented (only scheme 3 [Zhu07 §3.2])");
   if (gas.model != gas::PressureModel::A)
     throw InputError("gas.model = B: the particle force of Model B is not implemented in the "
                      "coupling (use model A)");
@@ -37,6 +113,14 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
                              const CouplingSettings& c, ParticleGasForces& out) {
   const std::size_t n = p.size();
   out.resize(n);
+  out.scheme = c.scheme;
+  if (c.scheme == ExchangeScheme::scheme3) {
+    out.cell.clear();
+    out.cell_coeff.clear();
+    out.cell_vx.clear();
+    out.cell_vy.clear();
+    out.cell_vz.clear();
+  }
   const double mu = gs.settings().viscosity;
   const bool model_a = gs.settings().model == gas::PressureModel::A;
   drag::with_drag_closure(c.drag, [&](auto closure) {
@@ -73,6 +157,8 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
         out.pres_z[i] = -vol * gp[2];
       }
     }
+    // Schemes 1, 2: the cell averages (scheme 2 replaces the per-particle drag above).
+    if (c.scheme != ExchangeScheme::scheme3) compute_cell_forces<C>(gs, p, c, out);
   });
 }
 
@@ -88,6 +174,24 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
     K.assign(g.size(), 0.0);
     Kus.assign(g.size(), 0.0);
     src.assign(g.size(), 0.0);
+    if (f.scheme != ExchangeScheme::scheme3) {
+      // Schemes 1, 2: -F_c, half to each face of the cell along d (exchange.hpp).
+      const std::vector<double>& vc = d == 0 ? f.cell_vx : (d == 1 ? f.cell_vy : f.cell_vz);
+      const long st = g.stride[static_cast<std::size_t>(d)];
+      for (std::size_t q = 0; q < f.cell_coeff.size(); ++q) {
+        if (!(f.cell_coeff[q] > 0.0)) continue;
+        const std::size_t faces[2] = {q - static_cast<std::size_t>(st), q};
+        const int ns = int(solved_face(role[faces[0]])) + int(solved_face(role[faces[1]]));
+        if (ns == 0) continue;
+        const double w = f.cell_coeff[q] * inv_v / ns;
+        for (std::size_t fq : faces) {
+          if (!solved_face(role[fq])) continue;
+          K[fq] += w;
+          Kus[fq] += w * vc[q];
+        }
+      }
+      continue;
+    }
     const std::vector<double>& v = d == 0 ? p.vx : (d == 1 ? p.vy : p.vz);
     for (std::size_t i = 0; i < p.size(); ++i) {
       const Stencil s = face_stencil(g, d, p.position(i));
@@ -114,17 +218,25 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
                             ParticleGasForces& f) {
   const std::size_t n = p.size();
   const bool model_a = gs.settings().model == gas::PressureModel::A;
+  const bool scheme2 = f.scheme == ExchangeScheme::scheme2;
 #pragma omp parallel for schedule(static) if (n > 2048)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 x = p.position(i);
     Vec3 u, gp;
     velocity_and_pressure_gradient_at(gs, x, u, gp);
+    Vec3 v = p.velocity(i);
+    if (scheme2) { // s_i C_c (u_c,new - v_c): minus what the gas received [Chang08 eq. 2.11]
+      const long q = f.cell[i];
+      const auto uq = static_cast<std::size_t>(q);
+      for (int d = 0; d < 3; ++d) u[d] = cell_gas_velocity(gs, q, d);
+      v = {f.cell_vx[uq], f.cell_vy[uq], f.cell_vz[uq]};
+    }
     f.ux[i] = u[0];
     f.uy[i] = u[1];
     f.uz[i] = u[2];
-    f.drag_x[i] = f.coeff[i] * (u[0] - p.vx[i]);
-    f.drag_y[i] = f.coeff[i] * (u[1] - p.vy[i]);
-    f.drag_z[i] = f.coeff[i] * (u[2] - p.vz[i]);
+    f.drag_x[i] = f.coeff[i] * (u[0] - v[0]);
+    f.drag_y[i] = f.coeff[i] * (u[1] - v[1]);
+    f.drag_z[i] = f.coeff[i] * (u[2] - v[2]);
     if (model_a) {
       const double d = 2.0 * p.radius[i];
       const double vol = pi * d * d * d / 6.0;

@@ -1,7 +1,9 @@
-// Particle-gas momentum exchange, coupling scheme 3 of [Zhu07 §3.2]: the force on each particle
-// is computed first (drag closure + Model A pressure-gradient force), and the gas receives minus
-// the same drag forces, distributed to the velocity faces with the SAME stencil weights as the
-// interpolation [Hoomans96 eq. 40-41] (interpolation.hpp), per unit cell volume.
+// Particle-gas momentum exchange, coupling schemes 1-3 of [Zhu07 §3.2] (`c.scheme`).
+//
+// Scheme 3 (default): the force on each particle is computed first (drag closure + Model A
+// pressure-gradient force), and the gas receives minus the same drag forces, distributed to the
+// velocity faces with the SAME stencil weights as the interpolation [Hoomans96 eq. 40-41]
+// (interpolation.hpp), per unit cell volume.
 //
 // Per particle i (V_i = pi d_i^3 / 6, also in 2-D: spheres confined to the x-z plane):
 //   u_i   = gas velocity at x_i, eps_i = porosity at x_i, rho_i = gas density at x_i;
@@ -16,6 +18,36 @@
 // inflow, ghosts) are given to the solved faces of the stencil in proportion to their weights
 // (the whole c_i reaches the gas); near walls this breaks the exact equality by O(h grad u).
 // Periodic boundaries are not handled (particles within a cell of a periodic face).
+//
+// Cell averages (schemes 1 and 2), per interior cell c over the particles whose CENTRE is in c
+// (GasGrid::cell_of, points outside clamped onto the domain):
+//   V_s,c = sum_i V_i,  v_c = sum_i m_i v_i / sum_i m_i (mass-weighted),
+//   d_c = sum_i d_i^3 / sum_i d_i^2 (Sauter mean: the diameter with the cell's solids volume
+//         per surface area; = d for identical particles),
+//   eps_c, rho_c = the cell's porosity and gas density, u_c = mean of the two faces of c per
+//   component (as in the fields output);
+//   K_c = closure K at (eps_c, d_c, mu, rho_c, |u_c - v_c|),  C_c = V_s,c K_c (kg/s),
+//   F_c = C_c (u_c - v_c) = beta_c V_cell (u_c - v_c) when V_s,c = (1 - eps_c) V_cell
+//         [Chang08 eq. 2.10].
+// Gas source of schemes 1 and 2: -F_c in semi-implicit form, split HALF to each of the two
+// faces of c along each axis d (our choice; [Zhu07 §3.2] and [Chang08 eq. 2.10] only say "per
+// cell"; the half/half split is the one for which the face sum is exactly -C_c (u_c - v_c)
+// with u_c the mean of the two faces):
+//   K_face += C_c / (2 V_cell),  K_us,face += C_c v_c,d / (2 V_cell)   (both faces of c along d)
+// so sum_f S_f V_cell = C_c (v_c - u_c) = -F_c for ANY u. A face the solver does not solve
+// (wall, inflow, ghost; all v_y faces in 2-D) gives its half to the other face, as in scheme 3
+// (within a cell of such a face the equality then holds only up to O(h grad u)).
+//   Scheme 2 [Zhu07 §3.2; Chang08 eq. 2.11]: F_c is distributed to the particles of c by
+//     surface area: drag_i = s_i F_c, s_i = d_i^2 / sum_{j in c} d_j^2; coeff[i] = s_i C_c,
+//     u_i = u_c, eps[i] = eps_c. Newton's third law holds to round-off (away from walls), also
+//     after the gas step (update_particle_forces recomputes u_c with the new gas velocity and
+//     keeps C_c, v_c: the exact minus of what the gas received).
+//   Scheme 1 [Zhu07 §3.2]: each particle gets its own scheme-3 drag c_i (u_i - v_i), the gas
+//     gets -F_c of the cell averages: the third law holds only ON AVERAGE (exactly only when the
+//     cell averages reproduce the particles' own state, e.g. identical particles with one
+//     velocity in a uniform gas field and porosity). [Zhu07 §3.2] calls it "not reasonable";
+//     it is here to reproduce the early codes (Tsuji 1993, Hoomans 1996).
+// The pressure force is per particle (-V_i grad p at x_i, Model A) in all three schemes.
 #pragma once
 #include "coupling/drag/drag_model.hpp"
 #include "coupling/porosity.hpp"
@@ -25,17 +57,24 @@
 
 namespace fluidem::coupling {
 
-/// InputError for: scheme 1 or 2 (not implemented), gas Model B (not implemented: only the
-/// Model A particle force is), a bad cube factor, a polydisperse closure without d_mean.
+/// InputError for: gas Model B (not implemented: only the Model A particle force is), a bad
+/// cube factor, a polydisperse closure without d_mean. Schemes 1, 2, 3 are all accepted.
 void validate(const CouplingSettings& c, const gas::GasSettings& gas);
 
-/// Per-particle results of the gas -> particle step (all of size p.size()).
+/// Per-particle results of the gas -> particle step (all of size p.size()), and the cell
+/// averages of schemes 1 and 2 (grid-sized, padded layout of gas::GasGrid; empty for scheme 3).
 struct ParticleGasForces {
-  std::vector<double> drag_x, drag_y, drag_z; ///< c_i (u_i - v_i), N
+  std::vector<double> drag_x, drag_y, drag_z; ///< c_i (u_i - v_i) (scheme 2: s_i F_c), N
   std::vector<double> pres_x, pres_y, pres_z; ///< -V_i grad p (Model A), N
-  std::vector<double> coeff;                  ///< c_i = V_i K_i, kg/s
-  std::vector<double> ux, uy, uz;             ///< gas velocity at the particle, m/s
-  std::vector<double> eps;                    ///< porosity at the particle
+  std::vector<double> coeff;                  ///< c_i = V_i K_i (scheme 2: s_i C_c), kg/s
+  std::vector<double> ux, uy, uz;             ///< gas velocity at the particle (scheme 2: u_c)
+  std::vector<double> eps;                    ///< porosity at the particle (scheme 2: eps_c)
+  /// The scheme the forces were computed with (set by compute_particle_forces; read by
+  /// deposit_momentum_source and update_particle_forces, whose signatures do not carry it).
+  ExchangeScheme scheme = ExchangeScheme::scheme3;
+  std::vector<long> cell;                        ///< schemes 1, 2: grid index of i's cell
+  std::vector<double> cell_coeff;                ///< schemes 1, 2: C_c = V_s,c K_c, kg/s
+  std::vector<double> cell_vx, cell_vy, cell_vz; ///< schemes 1, 2: v_c, m/s
   void resize(std::size_t n);
 };
 
@@ -43,20 +82,23 @@ struct ParticleGasForces {
 void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingSettings& c);
 
 /// Gas -> particles: reads gs velocity, pressure, porosity, density and p.x/y/z, vx/vy/vz,
-/// radius; writes `out`. The store is not modified (see add_forces()).
+/// radius, mass; writes `out` (and out.scheme = c.scheme; the cell averages for schemes 1, 2).
+/// The store is not modified (see add_forces()).
 void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
                              const CouplingSettings& c, ParticleGasForces& out);
 
 /// Particles -> gas: overwrites gs.drag_coefficient(d), drag_velocity_term(d) and zeroes
-/// explicit_source(d) for all d, from out.coeff and the CURRENT particle velocities p.vx/vy/vz
-/// (semi-implicit: use the velocities the drag acted with).
+/// explicit_source(d) for all d. Scheme 3: from f.coeff and the CURRENT particle velocities
+/// p.vx/vy/vz (semi-implicit: use the velocities the drag acted with). Schemes 1, 2: from the
+/// cell averages f.cell_coeff, f.cell_v* of compute_particle_forces (half to each face).
 void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
                              const ParticleGasForces& f);
 
 /// After the gas step: drag_i = c_i (u_i - v_i) with the coefficients c_i that
 /// deposit_momentum_source gave the gas, the NEW gas velocity u_i and the same particle
 /// velocities v_i (so that the impulse the particles receive is minus the one the gas received,
-/// [Zhu07 §3.2] scheme 3), and the Model A pressure force with the new pressure.
+/// [Zhu07 §3.2] scheme 3; scheme 1 the same per particle), and the Model A pressure force with
+/// the new pressure. Scheme 2: drag_i = s_i C_c (u_c,new - v_c) with the stored C_c, v_c.
 void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p, ParticleGasForces& f);
 
 /// p.fx/fy/fz += drag + pressure force.
