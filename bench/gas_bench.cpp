@@ -12,6 +12,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <exception>
 #include <numbers>
 #include <omp.h>
 
@@ -72,9 +73,23 @@ struct BedFields {
   }
 };
 
+void run_bed_steps(benchmark::State& state, const GasSettings& s, int warmup,
+                   const LinearSolverOptions& lin);
+
+// A failed step (InstabilityError) ends the benchmark with its message instead of aborting.
 void run_bed(benchmark::State& state, const GasSettings& s, int warmup,
              const LinearSolverOptions& lin = {}) {
   const int threads_before = omp_get_max_threads();
+  try {
+    run_bed_steps(state, s, warmup, lin);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+  }
+  omp_set_num_threads(threads_before);
+}
+
+void run_bed_steps(benchmark::State& state, const GasSettings& s, int warmup,
+                   const LinearSolverOptions& lin) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
   GasSolver gs(s);
   gs.set_linear_solver_options(lin);
@@ -108,7 +123,6 @@ void run_bed(benchmark::State& state, const GasSettings& s, int warmup,
       per(c.pressure_iterations - c0.pressure_iterations, c.pressure_solves - c0.pressure_solves);
   state.counters["setups"] = per(c.pressure_setups - c0.pressure_setups, steps);
   state.counters["cells"] = static_cast<double>(gs.grid().n[0] * gs.grid().n[1] * gs.grid().n[2]);
-  omp_set_num_threads(threads_before);
 }
 
 void gas_bed_2d(benchmark::State& state) {

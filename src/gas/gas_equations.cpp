@@ -173,9 +173,11 @@ void GasSolver::solve_momentum(int d, double dt) {
         bool link = true;
         if (e == d) {
           const long cell = s < 0 ? c0 : c1;
-          double Fa = F_[d][cell - sd], Fb = F_[d][cell];
-          if constexpr (!interior) {
-            if (!per_d && s < 0 && id == 0) Fa = Fb;
+          double Fa = 0.0, Fb = F_[d][cell];
+          if constexpr (interior) {
+            Fa = F_[d][cell - sd];
+          } else { // the face below face 0 is not stored (index -1 along z): not read
+            Fa = !per_d && s < 0 && id == 0 ? Fb : F_[d][cell - sd];
             if (!per_d && s > 0 && id == nd) Fb = Fa;
           }
           F = 0.5 * (Fa + Fb);

@@ -13,6 +13,7 @@ RedBlackGaussSeidel::RedBlackGaussSeidel(std::array<int, 3> padded, std::array<i
   sz_ = static_cast<long>(padded[0]) * padded[1];
   rows_ = (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
   row_sum_.assign(static_cast<std::size_t>(rows_), 0.0);
+  zeros_.assign(static_cast<std::size_t>(padded[0]), 0.0);
 }
 
 // Periodic images: ghost layer lo-1 holds x[hi], hi+1 holds x[lo] (whole padded planes, so
@@ -41,17 +42,24 @@ double RedBlackGaussSeidel::half_sweep(const StencilSystem& s, std::vector<doubl
                *yp = s.yp.data(), *zm = s.zm.data(), *zp = s.zp.data(), *rhs = s.rhs.data();
   double* x = xv.data();
   double* row_sum = row_sum_.data();
+  const double* zeros = zeros_.data();
 #pragma omp parallel for schedule(static) if (parallel_)
   for (int r = 0; r < rows_; ++r) {
     const int j = lo_[1] + r % ny, k = lo_[2] + r / ny;
     const long base = j * sy + k * sz;
+    // A box starting at index 0 (the low boundary faces of a velocity component) has no row
+    // below it along y or z: read zeros there (the coefficients are 0 anyway).
+    const double* x_ym = j > 0 ? x + base - sy : zeros;
+    const double* x_zm = k > 0 ? x + base - sz : zeros;
+    const double *x_yp = x + base + sy, *x_zp = x + base + sz;
+    double* xr = x + base;
     double sum = 0.0;
     for (int i = i_lo + ((i_lo + j + k + colour) & 1); i <= i_hi; i += 2) {
       const long p = base + i;
-      const double res = rhs[p] - diag[p] * x[p] - xm[p] * x[p - 1] - xp[p] * x[p + 1] -
-                         ym[p] * x[p - sy] - yp[p] * x[p + sy] - zm[p] * x[p - sz] -
-                         zp[p] * x[p + sz];
-      x[p] += res / diag[p];
+      const double xl = i > 0 ? xr[i - 1] : 0.0;
+      const double res = rhs[p] - diag[p] * xr[i] - xm[p] * xl - xp[p] * xr[i + 1] -
+                         ym[p] * x_ym[i] - yp[p] * x_yp[i] - zm[p] * x_zm[i] - zp[p] * x_zp[i];
+      xr[i] += res / diag[p];
       sum += res * res;
     }
     row_sum[r] = sum;

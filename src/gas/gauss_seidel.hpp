@@ -34,7 +34,7 @@ public:
 
   /// Solves for x on the box (x holds the initial guess; outside the box only the periodic
   /// images are written). Entries of sys that link out of the box along a non-periodic axis
-  /// must be 0 (x there must be finite).
+  /// must be 0; x is read there only inside the padded array (it must be finite).
   LinearSolveStats solve(const StencilSystem& sys, std::vector<double>& x, double rel_tol,
                          int max_sweeps);
 
@@ -50,6 +50,7 @@ private:
   int rows_ = 0; ///< (j, k) rows of the box
   bool parallel_ = false;
   std::vector<double> row_sum_;
+  std::vector<double> zeros_; ///< stands in for the row below a box that starts at index 0
 };
 
 } // namespace fluidem::gas
