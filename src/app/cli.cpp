@@ -29,9 +29,12 @@ void print_gas_report(const CaseSpec& spec, const CaseReport& r) {
              two_d ? "x-z plane" : "3-D", g.model == gas::PressureModel::A ? "A" : "B",
              g.eos == gas::EquationOfState::ideal_gas ? "ideal gas" : "incompressible",
              g.viscosity);
-  fmt::print("coupling           drag {}, porosity {}, scheme 3 [Zhu07 §3.2]\n",
+  const int scheme = spec.coupling.scheme == coupling::ExchangeScheme::scheme1   ? 1
+                     : spec.coupling.scheme == coupling::ExchangeScheme::scheme2 ? 2
+                                                                                 : 3;
+  fmt::print("coupling           drag {}, porosity {}, exchange scheme {} [Zhu07 §3.2]\n",
              coupling::drag::to_string(spec.coupling.drag),
-             coupling::to_string(spec.coupling.porosity.method));
+             coupling::to_string(spec.coupling.porosity.method), scheme);
   fmt::print("gas time step DT   {:.4g} s", r.flow_time_step);
   if (spec.simulation.engine == Engine::SoftSphere)
     fmt::print(" ({} DEM steps each)", r.steps_per_flow_step);

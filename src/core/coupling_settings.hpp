@@ -59,7 +59,7 @@ struct PorositySettings {
 
 /// [Zhu07 §3.2]: scheme 1 (local-average force on the gas), 2 (cell force distributed to the
 /// particles, [Chang08 eq. 2.11] by surface area), 3 (per-particle forces summed; default).
-/// Only scheme 3 is implemented: the others are rejected by validate() in coupling/exchange.hpp.
+/// All three are implemented in coupling/exchange.cpp (docs/coupling.md).
 enum class ExchangeScheme { scheme1, scheme2, scheme3 };
 
 struct CouplingSettings {
