@@ -7,7 +7,8 @@
 //    kg/m3/s on every face of the bed; upper half: porosity 1, no drag. DT = 1e-4 s.
 //  - Bed3D: the same set-up in 3-D, 40 x 40 x 40 cells over 0.2 x 0.2 x 0.4 m.
 // The counter `iters` is the mean number of SIMPLEC iterations per step; the time per
-// iteration of the benchmark is the time per flow step. Argument: OpenMP threads.
+// iteration of the benchmark is the time per flow step. Arguments: OpenMP threads (and, 3-D,
+// whether every threaded loop is switched on).
 // Run: build/bench/fluidem_gas_bench (or fluidem_bench --benchmark_filter=Gas)
 #include <benchmark/benchmark.h>
 
@@ -74,14 +75,14 @@ struct BedFields {
 };
 
 void run_bed_steps(benchmark::State& state, const GasSettings& s, int warmup,
-                   const LinearSolverOptions& lin);
+                   const LinearSolverOptions& lin, bool threaded);
 
 // A failed step (InstabilityError) ends the benchmark with its message instead of aborting.
 void run_bed(benchmark::State& state, const GasSettings& s, int warmup,
-             const LinearSolverOptions& lin = {}) {
+             const LinearSolverOptions& lin = {}, bool threaded = false) {
   const int threads_before = omp_get_max_threads();
   try {
-    run_bed_steps(state, s, warmup, lin);
+    run_bed_steps(state, s, warmup, lin, threaded);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
   }
@@ -89,10 +90,11 @@ void run_bed(benchmark::State& state, const GasSettings& s, int warmup,
 }
 
 void run_bed_steps(benchmark::State& state, const GasSettings& s, int warmup,
-                   const LinearSolverOptions& lin) {
+                   const LinearSolverOptions& lin, bool threaded) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
   GasSolver gs(s);
   gs.set_linear_solver_options(lin);
+  if (threaded) gs.set_parallel_cells(0, 0); // every threaded loop on, whatever the grid
   const BedFields bed(gs);
   bed.set(gs, 0.0);
   gs.sync_old_porosity();
@@ -130,13 +132,17 @@ void gas_bed_2d(benchmark::State& state) {
 }
 BENCHMARK(gas_bed_2d)->Arg(1)->Name("GasStep/Bed2D_15x1x25/threads")->Unit(benchmark::kMicrosecond);
 
+// Second argument 1: every threaded loop on (assembly and Gauss-Seidel), 0: the defaults.
 void gas_bed_3d(benchmark::State& state) {
-  run_bed(state, bed_settings(3, {40, 40, 40}, {0.2, 0.2, 0.4}), 20);
+  run_bed(state, bed_settings(3, {40, 40, 40}, {0.2, 0.2, 0.4}), 20, {}, state.range(1) != 0);
 }
 BENCHMARK(gas_bed_3d)
-    ->Arg(1)
-    ->Arg(2)
-    ->Name("GasStep/Bed3D_40x40x40/threads")
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->ArgNames({"threads", "threaded_loops"})
+    ->Name("GasStep/Bed3D_40x40x40")
     ->Unit(benchmark::kMicrosecond);
 
 // Linear-solver variants on the 2-D bed (one thread), for the choice documented in docs/gas.md.

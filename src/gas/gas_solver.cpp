@@ -24,8 +24,6 @@ GasSolver::GasSolver(const GasSettings& settings) : s_(settings) {
   validate(s_);
   g_ = make_grid(s_);
   bc_ = BoundaryMap(s_, g_);
-  const long cells = static_cast<long>(g_.n[0]) * g_.n[1] * g_.n[2];
-  parallel_ = cells >= parallel_cells;
   compressible_ = s_.eos == EquationOfState::ideal_gas;
   psi_ = compressible_ ? s_.molar_mass / (gas_constant * s_.temperature) : 0.0;
   const std::size_t n = g_.size();
@@ -55,10 +53,17 @@ GasSolver::GasSolver(const GasSettings& settings) : s_(settings) {
   const std::array<int, 3> one{1, 1, 1};
   pressure_solver_ =
       std::make_unique<StructLinearSolver>(g_.padded, one, g_.n, per, true, lin_.pressure);
+  set_parallel_cells(default_parallel_cells);
+}
+
+void GasSolver::set_parallel_cells(long assembly, long gauss_seidel) {
+  const long cells = static_cast<long>(g_.n[0]) * g_.n[1] * g_.n[2];
+  parallel_ = cells >= assembly;
+  const std::array<bool, 3> per{bc_.periodic(0), bc_.periodic(1), bc_.periodic(2)};
   for (int d = 0; d < 3; ++d) {
     if (g_.dimension == 2 && d == 1) continue;
-    momentum_gs_[d] = std::make_unique<RedBlackGaussSeidel>(
-        g_.padded, momentum_box_lo(d), g_.n, per, cells >= gauss_seidel_parallel_cells);
+    momentum_gs_[d] = std::make_unique<RedBlackGaussSeidel>(g_.padded, momentum_box_lo(d), g_.n,
+                                                            per, cells >= gauss_seidel);
   }
 }
 

@@ -100,11 +100,15 @@ public:
   double boundary_outflow() const { return boundary_outflow_; }
 
   /// OpenMP threads (docs/gas.md, "Threads"): the momentum and pressure-correction assembly
-  /// loops run threaded on grids of at least parallel_cells interior cells, the Gauss-Seidel
-  /// sweeps from gauss_seidel_parallel_cells on. Every threaded loop writes per cell or face
-  /// (no reductions across threads): results do not depend on the thread count.
-  static constexpr long parallel_cells = 8192;
-  static constexpr long gauss_seidel_parallel_cells = 1L << 20;
+  /// loops run threaded on grids of at least `assembly` interior cells, the Gauss-Seidel sweeps
+  /// from `gauss_seidel` cells on. Every threaded loop writes per cell or face (no reductions
+  /// across threads): results do not depend on the thread count nor on these thresholds. The
+  /// defaults are above the grids measured (up to 40^3): on the 2-core machines threads did
+  /// not pay there (hypre, serial, is more than half of the step).
+  static constexpr long default_parallel_cells = 1L << 17;
+  static constexpr long default_gauss_seidel_parallel_cells = 1L << 20;
+  void set_parallel_cells(long assembly, long gauss_seidel = default_gauss_seidel_parallel_cells);
+  bool threaded_assembly() const { return parallel_; }
 
   const LinearSolverOptions& linear_solver_options() const { return lin_; }
   /// Changes the linear solvers (results stay within the linear tolerance).
