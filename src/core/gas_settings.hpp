@@ -113,7 +113,8 @@ struct GasSettings {
   int max_iterations = 100;         ///< `gas.solver.max_iterations`
   double velocity_relaxation = 1.0; ///< `gas.solver.velocity_relaxation`, (0, 1]
   double pressure_relaxation = 1.0; ///< `gas.solver.pressure_relaxation`, (0, 1]
-  double linear_tolerance = 1e-10;  ///< `gas.solver.linear_tolerance`: hypre relative residual
+  double linear_tolerance = 1e-10;  ///< `gas.solver.linear_tolerance`: relative residual of the
+                                    ///< linear solves (Gauss-Seidel momentum, hypre pressure)
   int linear_max_iterations = 200;  ///< `gas.solver.linear_max_iterations`
 };
 
