@@ -1,51 +1,15 @@
 #include "output/fields_xdmf.hpp"
 
-#include <cerrno>
-#include <charconv>
-#include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <stdexcept>
-#include <system_error>
+
+#include "output/xdmf_text.hpp"
 
 namespace fluidem {
 
 namespace {
 
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  out.reserve(s.size());
-  for (const char c : s) {
-    switch (c) {
-    case '&':
-      out += "&amp;";
-      break;
-    case '<':
-      out += "&lt;";
-      break;
-    case '>':
-      out += "&gt;";
-      break;
-    case '"':
-      out += "&quot;";
-      break;
-    case '\'':
-      out += "&apos;";
-      break;
-    default:
-      out += c;
-    }
-  }
-  return out;
-}
-
-// Shortest text that reads back as the same double.
-std::string shortest(double v) {
-  char buf[32];
-  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  if (ec != std::errc{}) return "0";
-  return std::string(buf, end);
-}
+using xdmf_text::shortest;
+using xdmf_text::xml_escape;
 
 // A DataItem selecting frame k of /fields/<name>, a [F][nz][ny][nx] (scalar) or
 // [F][nz][ny][nx][3] (vector) dataset. `cells` is "nz ny nx".
@@ -148,25 +112,7 @@ void write_fields_xdmf(const std::string& xmf_path, const std::string& h5_filena
                        const std::vector<double>& frame_times, XdmfFlavour flavour) {
   const std::string text =
       fields_xdmf(h5_filename_relative, grid, scalars, vectors, frame_times, flavour);
-  const std::string tmp = xmf_path + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) throw std::runtime_error("cannot write '" + tmp + "': " + std::strerror(errno));
-  const std::size_t written = std::fwrite(text.data(), 1, text.size(), f);
-  const bool write_failed = written != text.size();
-  const int write_errno = errno;
-  if (std::fclose(f) != 0 || write_failed) {
-    const int err = write_failed ? write_errno : errno;
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("cannot write '" + tmp + "': " + std::strerror(err));
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, xmf_path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("cannot rename '" + tmp + "' to '" + xmf_path + "': " + ec.message());
-  }
+  xdmf_text::write_file_atomically(xmf_path, text);
 }
 
 } // namespace fluidem
