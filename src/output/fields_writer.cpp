@@ -1,4 +1,5 @@
 #include "output/fields_writer.hpp"
+#include "output/hdf5_support.hpp"
 
 #include <hdf5.h>
 
@@ -25,154 +26,11 @@ namespace {
 constexpr std::size_t kChunkCapBytes = std::size_t{16} << 20;
 constexpr hsize_t kStepChunk = 512; // step/time: 4 KiB chunks
 
-// The innermost message of the HDF5 error stack (e.g. "unable to open file: ... errno = 2 ...").
-std::string hdf5_error_detail() {
-  std::string detail;
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_UPWARD,
-      [](unsigned, const H5E_error2_t* e, void* data) -> herr_t {
-        auto* s = static_cast<std::string*>(data);
-        if (s->empty() && e != nullptr && e->desc != nullptr && e->desc[0] != '\0') *s = e->desc;
-        return 0;
-      },
-      &detail);
-  H5Eclear2(H5E_DEFAULT);
-  return detail;
-}
-
-[[noreturn]] void fail(const std::string& path, const char* op, const std::string& object) {
-  std::string msg = "HDF5 error in '" + path + "': cannot " + op;
-  if (!object.empty()) msg += " '" + object + "'";
-  const std::string detail = hdf5_error_detail();
-  if (!detail.empty()) msg += " (" + detail + ")";
-  throw std::runtime_error(msg);
-}
-
-hid_t check_id(hid_t id, const std::string& path, const char* op, const std::string& object = {}) {
-  if (id < 0) fail(path, op, object);
-  return id;
-}
-
-void check(herr_t status, const std::string& path, const char* op, const std::string& object = {}) {
-  if (status < 0) fail(path, op, object);
-}
-
-// Owns one HDF5 identifier and closes it with the matching H5?close.
-class Handle {
-public:
-  using Closer = herr_t (*)(hid_t);
-  Handle() = default;
-  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
-  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), closer_(o.closer_) {}
-  Handle& operator=(Handle&& o) noexcept {
-    if (this != &o) {
-      reset();
-      id_ = std::exchange(o.id_, H5I_INVALID_HID);
-      closer_ = o.closer_;
-    }
-    return *this;
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() { reset(); }
-
-  hid_t get() const { return id_; }
-  /// Close now; returns the HDF5 status (0 when nothing was open).
-  herr_t reset() {
-    herr_t status = 0;
-    if (id_ >= 0 && closer_ != nullptr) status = closer_(id_);
-    id_ = H5I_INVALID_HID;
-    return status;
-  }
-
-private:
-  hid_t id_ = H5I_INVALID_HID;
-  Closer closer_ = nullptr;
-};
-
-// Small helpers that create one object and throw on failure.
-struct Builder {
-  const std::string& path;
-
-  Handle group(hid_t parent, const char* name) const {
-    return {check_id(H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), path,
-                     "create group", name),
-            H5Gclose};
-  }
-
-  Handle simple_space(int rank, const hsize_t* dims, const hsize_t* maxdims = nullptr) const {
-    return {check_id(H5Screate_simple(rank, dims, maxdims), path, "create dataspace"), H5Sclose};
-  }
-
-  Handle string_type(std::size_t length) const {
-    Handle t{check_id(H5Tcopy(H5T_C_S1), path, "copy string type"), H5Tclose};
-    check(H5Tset_size(t.get(), std::max<std::size_t>(length, 1)), path, "set string size");
-    check(H5Tset_strpad(t.get(), H5T_STR_NULLTERM), path, "set string padding");
-    return t;
-  }
-
-  void string_attr(hid_t obj, const char* name, const std::string& value) const {
-    Handle type = string_type(value.size() + 1);
-    Handle space{check_id(H5Screate(H5S_SCALAR), path, "create dataspace"), H5Sclose};
-    Handle attr{check_id(H5Acreate2(obj, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                         path, "create attribute", name),
-                H5Aclose};
-    check(H5Awrite(attr.get(), type.get(), value.c_str()), path, "write attribute", name);
-  }
-
-  void string_array_attr(hid_t obj, const char* name,
-                         const std::vector<std::string>& values) const {
-    std::size_t width = 1;
-    for (const auto& v : values) width = std::max(width, v.size() + 1);
-    std::vector<char> buffer(width * values.size(), '\0');
-    for (std::size_t i = 0; i < values.size(); ++i)
-      std::copy(values[i].begin(), values[i].end(), buffer.begin() + static_cast<long>(i * width));
-    Handle type = string_type(width);
-    const hsize_t dims[1] = {values.size()};
-    Handle space = simple_space(1, dims);
-    Handle attr{check_id(H5Acreate2(obj, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                         path, "create attribute", name),
-                H5Aclose};
-    check(H5Awrite(attr.get(), type.get(), buffer.data()), path, "write attribute", name);
-  }
-
-  Handle scalar_attr(hid_t obj, const char* name, hid_t file_type, hid_t mem_type,
-                     const void* value) const {
-    Handle space{check_id(H5Screate(H5S_SCALAR), path, "create dataspace"), H5Sclose};
-    Handle attr{check_id(H5Acreate2(obj, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                         path, "create attribute", name),
-                H5Aclose};
-    check(H5Awrite(attr.get(), mem_type, value), path, "write attribute", name);
-    return attr;
-  }
-
-  void fixed_dataset(hid_t parent, const char* name, hid_t file_type, hid_t mem_type, hsize_t n,
-                     const void* data) const {
-    const hsize_t dims[1] = {n};
-    Handle space = simple_space(1, dims);
-    Handle dset{check_id(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
-                                    H5P_DEFAULT),
-                         path, "create dataset", name),
-                H5Dclose};
-    check(H5Dwrite(dset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), path,
-          "write dataset", name);
-  }
-
-  // A chunked dataset of shape [0, inner...] (rank <= 5) with an unlimited first dimension.
-  Handle extendible(hid_t parent, const char* name, hid_t file_type, int rank, const hsize_t* inner,
-                    const hsize_t* chunk) const {
-    hsize_t dims[5] = {0, 0, 0, 0, 0};
-    hsize_t maxdims[5] = {H5S_UNLIMITED, 0, 0, 0, 0};
-    for (int d = 1; d < rank; ++d) dims[d] = maxdims[d] = inner[d - 1];
-    Handle space = simple_space(rank, dims, maxdims);
-    Handle dcpl{check_id(H5Pcreate(H5P_DATASET_CREATE), path, "create property list"), H5Pclose};
-    check(H5Pset_chunk(dcpl.get(), rank, chunk), path, "set chunking of", name);
-    return {check_id(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, dcpl.get(),
-                                H5P_DEFAULT),
-                     path, "create dataset", name),
-            H5Dclose};
-  }
-};
+using hdf5::Builder;
+using hdf5::check;
+using hdf5::check_id;
+using hdf5::fail;
+using hdf5::Handle;
 
 // Extend the [F][...] dataset `dset` to frame + 1 frames and write `data` (selected by
 // `mem_space`) as frame `frame`.
