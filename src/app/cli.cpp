@@ -151,8 +151,11 @@ int run_cli(int argc, char** argv) {
     if (s.collisions > 0)
       fmt::print("{} collisions, {:.4g} collisions per second of wall time\n", s.collisions,
                  static_cast<double>(s.collisions) / std::max(s.wall_seconds, 1e-9));
-    fmt::print("memory {} bytes per particle; energy balance drift {:.3g} (relative)\n",
-               s.bytes_per_particle, s.energy_drift);
+    if (sim.gas()) // the gas does work on the particles: their energy sum is not conserved
+      fmt::print("memory {} bytes per particle\n", s.bytes_per_particle);
+    else
+      fmt::print("memory {} bytes per particle; energy balance drift {:.3g} (relative)\n",
+                 s.bytes_per_particle, s.energy_drift);
     fmt::print("results: {}/particles.h5 (+ particles.xmf for ParaView), {}/series.csv\n", out_dir,
                out_dir);
     if (sim.gas())
