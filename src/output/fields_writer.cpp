@@ -26,27 +26,12 @@ namespace {
 constexpr std::size_t kChunkCapBytes = std::size_t{16} << 20;
 constexpr hsize_t kStepChunk = 512; // step/time: 4 KiB chunks
 
+using hdf5::append_frame;
 using hdf5::Builder;
 using hdf5::check;
 using hdf5::check_id;
 using hdf5::fail;
 using hdf5::Handle;
-
-// Extend the [F][...] dataset `dset` to frame + 1 frames and write `data` (selected by
-// `mem_space`) as frame `frame`.
-void append(hid_t dset, int rank, const hsize_t* inner, hsize_t frame, hid_t mem_type,
-            hid_t mem_space, const void* data, const std::string& path, const std::string& name) {
-  hsize_t dims[5] = {frame + 1, 0, 0, 0, 0};
-  hsize_t start[5] = {frame, 0, 0, 0, 0};
-  hsize_t count[5] = {1, 0, 0, 0, 0};
-  for (int d = 1; d < rank; ++d) dims[d] = count[d] = inner[d - 1];
-  check(H5Dset_extent(dset, dims), path, "extend dataset", name);
-  Handle space{check_id(H5Dget_space(dset), path, "get dataspace of", name), H5Sclose};
-  check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr), path,
-        "select frame in", name);
-  check(H5Dwrite(dset, mem_type, mem_space, space.get(), H5P_DEFAULT, data), path, "write frame to",
-        name);
-}
 
 } // namespace
 
@@ -230,8 +215,8 @@ void FieldsWriter::write_frame(long step, double time, const std::vector<const d
   // overwrites it.
   const hsize_t frame = m.frames;
   for (std::size_t s = 0; s < scalars.size(); ++s)
-    append(m.scalars[s].get(), 4, m.inner_scalar, frame, H5T_NATIVE_DOUBLE, m.mem_scalar.get(),
-           scalars[s], m.path, "/fields/" + m.scalar_names[s]);
+    append_frame(m.scalars[s].get(), 4, m.inner_scalar, frame, H5T_NATIVE_DOUBLE,
+                 m.mem_scalar.get(), scalars[s], m.path, "/fields/" + m.scalar_names[s]);
   const std::size_t n = m.grid.size();
   for (std::size_t v = 0; v < vectors.size(); ++v) {
     const double* const x = vectors[v][0];
@@ -243,14 +228,14 @@ void FieldsWriter::write_frame(long step, double time, const std::vector<const d
       out[3 * i + 1] = y[i];
       out[3 * i + 2] = z[i];
     }
-    append(m.vectors[v].get(), 5, m.inner_vector, frame, H5T_NATIVE_DOUBLE, m.mem_vector.get(), out,
-           m.path, "/fields/" + m.vector_names[v]);
+    append_frame(m.vectors[v].get(), 5, m.inner_vector, frame, H5T_NATIVE_DOUBLE,
+                 m.mem_vector.get(), out, m.path, "/fields/" + m.vector_names[v]);
   }
   const std::int64_t step64 = step;
-  append(m.step.get(), 1, nullptr, frame, H5T_NATIVE_INT64, m.mem_one.get(), &step64, m.path,
-         "/fields/step");
-  append(m.time.get(), 1, nullptr, frame, H5T_NATIVE_DOUBLE, m.mem_one.get(), &time, m.path,
-         "/fields/time");
+  append_frame(m.step.get(), 1, nullptr, frame, H5T_NATIVE_INT64, m.mem_one.get(), &step64, m.path,
+               "/fields/step");
+  append_frame(m.time.get(), 1, nullptr, frame, H5T_NATIVE_DOUBLE, m.mem_one.get(), &time, m.path,
+               "/fields/time");
 
   ++m.frames;
   const std::int64_t frames64 = static_cast<std::int64_t>(m.frames);

@@ -24,6 +24,7 @@ namespace {
 constexpr std::size_t kChunkCapBytes = std::size_t{1} << 20; // 1 MiB per value chunk
 constexpr hsize_t kStepChunk = 512;                          // step/time: 4 KiB chunks
 
+using hdf5::append_frame;
 using hdf5::Builder;
 using hdf5::check;
 using hdf5::check_id;
@@ -114,17 +115,9 @@ struct H5mdWriter::Impl {
 
 void H5mdWriter::Impl::append_value(Element e, const void* data, hid_t mem_space) {
   const ElementSpec& spec = kElements[e];
-  const hsize_t dims[3] = {frames + 1, n, 3};
-  check(H5Dset_extent(value[e].get(), dims), path, "extend dataset", spec.value_path);
-  if (n == 0) return;
-  Handle space{check_id(H5Dget_space(value[e].get()), path, "get dataspace of", spec.value_path),
-               H5Sclose};
-  const hsize_t start[3] = {frames, 0, 0};
-  const hsize_t count[3] = {1, n, 3};
-  check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr), path,
-        "select frame in", spec.value_path);
-  check(H5Dwrite(value[e].get(), spec.mem_type(), mem_space, space.get(), H5P_DEFAULT, data), path,
-        "write frame to", spec.value_path);
+  const hsize_t inner[2] = {n, 3};
+  append_frame(value[e].get(), spec.components == 3 ? 3 : 2, inner, frames, spec.mem_type(),
+               mem_space, data, path, spec.value_path);
 }
 
 H5mdWriter::H5mdWriter(const std::string& path, std::size_t n_particles, int dimension,
@@ -257,27 +250,11 @@ void H5mdWriter::write_frame(long step, double time, const ParticleStore& p) {
                                   std::to_string(n));
   }
 
-  { // step and time
-    const hsize_t dims[1] = {m.frames + 1};
-    const hsize_t start[1] = {m.frames};
-    const hsize_t count[1] = {1};
-    const std::int64_t step64 = step;
-    struct {
-      hid_t dset;
-      hid_t mem_type;
-      const void* data;
-      const char* name;
-    } const items[2] = {{m.step.get(), H5T_NATIVE_INT64, &step64, "/particles/all/position/step"},
-                        {m.time.get(), H5T_NATIVE_DOUBLE, &time, "/particles/all/position/time"}};
-    for (const auto& it : items) {
-      check(H5Dset_extent(it.dset, dims), m.path, "extend dataset", it.name);
-      Handle space{check_id(H5Dget_space(it.dset), m.path, "get dataspace of", it.name), H5Sclose};
-      check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
-            m.path, "select frame in", it.name);
-      check(H5Dwrite(it.dset, it.mem_type, m.mem_one.get(), space.get(), H5P_DEFAULT, it.data),
-            m.path, "write frame to", it.name);
-    }
-  }
+  const std::int64_t step64 = step;
+  append_frame(m.step.get(), 1, nullptr, m.frames, H5T_NATIVE_INT64, m.mem_one.get(), &step64,
+               m.path, "/particles/all/position/step");
+  append_frame(m.time.get(), 1, nullptr, m.frames, H5T_NATIVE_DOUBLE, m.mem_one.get(), &time,
+               m.path, "/particles/all/position/time");
 
   const auto interleave = [&](const std::vector<double>& a, const std::vector<double>& b,
                               const std::vector<double>& c) {

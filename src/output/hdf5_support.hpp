@@ -179,4 +179,27 @@ struct Builder {
   }
 };
 
+// Extend the [F][...] dataset `dset` (rank <= 5, `inner` the sizes after the frame axis) to
+// frame + 1 frames and write `data` (selected by `mem_space`) as frame `frame`. A frame with no
+// elements (an inner size of 0) is only extended.
+inline void append_frame(hid_t dset, int rank, const hsize_t* inner, hsize_t frame, hid_t mem_type,
+                         hid_t mem_space, const void* data, const std::string& path,
+                         const std::string& name) {
+  hsize_t dims[5] = {frame + 1, 0, 0, 0, 0};
+  hsize_t start[5] = {frame, 0, 0, 0, 0};
+  hsize_t count[5] = {1, 0, 0, 0, 0};
+  bool empty = false;
+  for (int d = 1; d < rank; ++d) {
+    dims[d] = count[d] = inner[d - 1];
+    empty = empty || inner[d - 1] == 0;
+  }
+  check(H5Dset_extent(dset, dims), path, "extend dataset", name);
+  if (empty) return;
+  Handle space{check_id(H5Dget_space(dset), path, "get dataspace of", name), H5Sclose};
+  check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr), path,
+        "select frame in", name);
+  check(H5Dwrite(dset, mem_type, mem_space, space.get(), H5P_DEFAULT, data), path, "write frame to",
+        name);
+}
+
 } // namespace fluidem::hdf5
