@@ -106,7 +106,7 @@ void validate(const CouplingSettings& c, const gas::GasSettings& gas) {
 }
 
 void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingSettings& c) {
-  compute_porosity(gs.grid(), p, c.porosity, gs.porosity());
+  compute_porosity(gs.grid(), p, c.porosity, gs.porosity(), periodic_axes(gs));
 }
 
 void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
@@ -123,6 +123,7 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   }
   const double mu = gs.settings().viscosity;
   const bool model_a = gs.settings().model == gas::PressureModel::A;
+  const std::array<bool, 3> periodic = periodic_axes(gs);
   drag::with_drag_closure(c.drag, [&](auto closure) {
     using C = decltype(closure);
     // Independent per particle: parallel, and the same result for any thread count.
@@ -131,7 +132,7 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
       const Vec3 x = p.position(i);
       Vec3 u, gp;
       velocity_and_pressure_gradient_at(gs, x, u, gp);
-      const Stencil cs = cell_stencil(gs.grid(), x);
+      const Stencil cs = cell_stencil(gs.grid(), x, periodic);
       drag::DragInput in;
       in.eps = interpolate(cs, gs.porosity());
       in.rho = interpolate(cs, gs.density());
@@ -166,6 +167,7 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
                              const ParticleGasForces& f) {
   const gas::GasGrid& g = gs.grid();
   const double inv_v = 1.0 / g.cell_volume();
+  const std::array<bool, 3> periodic = periodic_axes(gs);
   for (int d = 0; d < 3; ++d) {
     std::vector<double>& K = gs.drag_coefficient(d);
     std::vector<double>& Kus = gs.drag_velocity_term(d);
@@ -180,7 +182,10 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
       const long st = g.stride[static_cast<std::size_t>(d)];
       for (std::size_t q = 0; q < f.cell_coeff.size(); ++q) {
         if (!(f.cell_coeff[q] > 0.0)) continue;
-        const std::size_t faces[2] = {q - static_cast<std::size_t>(st), q};
+        const auto lq = static_cast<long>(q);
+        const std::size_t faces[2] = {
+            static_cast<std::size_t>(periodic_image(g, periodic, d, lq - st)),
+            static_cast<std::size_t>(periodic_image(g, periodic, d, lq))};
         const int ns = int(solved_face(role[faces[0]])) + int(solved_face(role[faces[1]]));
         if (ns == 0) continue;
         const double w = f.cell_coeff[q] * inv_v / ns;
@@ -194,18 +199,19 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
     }
     const std::vector<double>& v = d == 0 ? p.vx : (d == 1 ? p.vy : p.vz);
     for (std::size_t i = 0; i < p.size(); ++i) {
-      const Stencil s = face_stencil(g, d, p.position(i));
+      Stencil s = face_stencil(g, d, p.position(i));
       double wsum = 0.0;
       for (int m = 0; m < s.n; ++m) {
-        const auto r = role[static_cast<std::size_t>(s.q[static_cast<std::size_t>(m)])];
-        if (r == gas::GasSolver::solved || r == gas::GasSolver::pressure_face)
+        long& q = s.q[static_cast<std::size_t>(m)];
+        q = periodic_image(g, periodic, d, q); // a periodic ghost's force goes to its image
+        if (solved_face(role[static_cast<std::size_t>(q)]))
           wsum += s.w[static_cast<std::size_t>(m)];
       }
       if (!(wsum > 0.0)) continue;
       const double ci = f.coeff[i] * inv_v / wsum;
       for (int m = 0; m < s.n; ++m) {
         const auto q = static_cast<std::size_t>(s.q[static_cast<std::size_t>(m)]);
-        if (role[q] != gas::GasSolver::solved && role[q] != gas::GasSolver::pressure_face) continue;
+        if (!solved_face(role[q])) continue;
         const double w = s.w[static_cast<std::size_t>(m)] * ci;
         K[q] += w;
         Kus[q] += w * v[i];

@@ -17,7 +17,9 @@
 // round-off (Newton's third law). Stencil weights on faces the solver does not solve (walls,
 // inflow, ghosts) are given to the solved faces of the stencil in proportion to their weights
 // (the whole c_i reaches the gas); near walls this breaks the exact equality by O(h grad u).
-// Periodic boundaries are not handled (particles within a cell of a periodic face).
+// Periodic axes: stencil nodes in the ghost layer (or the copy face 0 along d) are the images
+// of unknowns at the other end (interpolation.hpp, periodic_image): their weights go there, so
+// the equality above holds across periodic faces too.
 //
 // Cell averages (schemes 1 and 2), per interior cell c over the particles whose CENTRE is in c
 // (GasGrid::cell_of, points outside clamped onto the domain):

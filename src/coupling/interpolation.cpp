@@ -58,11 +58,19 @@ Stencil face_stencil(const gas::GasGrid& g, int d, const Vec3& x) {
   return tensor(g, i0, t, active);
 }
 
-Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x) {
+Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool, 3>& periodic) {
   std::array<int, 3> i0{1, 1, 1};
   std::array<double, 3> t{0.0, 0.0, 0.0};
   std::array<bool, 3> active{true, true, true};
   for (int e = 0; e < 3; ++e) {
+    if (g.dimension == 2 && e == 1) {
+      active[e] = false; // one cell across y
+      continue;
+    }
+    if (periodic[e]) {
+      axis(x[e], g.lo[e], g.h[e], -0.5, 0, g.n[e], i0[e], t[e]); // ghost images included
+      continue;
+    }
     if (g.n[e] < 2) {
       active[e] = false;
       continue;
@@ -70,6 +78,21 @@ Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x) {
     axis(x[e], g.lo[e], g.h[e], -0.5, 1, g.n[e] - 1, i0[e], t[e]);
   }
   return tensor(g, i0, t, active);
+}
+
+long periodic_image(const gas::GasGrid& g, const std::array<bool, 3>& periodic, int d, long q) {
+  if (!periodic[0] && !periodic[1] && !periodic[2]) return q;
+  std::array<long, 3> c{q % g.padded[0], (q / g.padded[0]) % g.padded[1],
+                        q / (static_cast<long>(g.padded[0]) * g.padded[1])};
+  for (int e = 0; e < 3; ++e) {
+    if (!periodic[e]) continue;
+    const long n = g.n[e];
+    if (c[e] == 0)
+      c[e] = n; // ghost cell 0 = cell n; along d, face 0 = face n
+    else if (c[e] == n + 1 && e != d)
+      c[e] = 1;
+  }
+  return g.idx(static_cast<int>(c[0]), static_cast<int>(c[1]), static_cast<int>(c[2]));
 }
 
 Vec3 gas_velocity_at(const gas::GasSolver& gs, const Vec3& x) {
@@ -115,7 +138,11 @@ void velocity_and_pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x, 
 }
 
 double porosity_at(const gas::GasSolver& gs, const Vec3& x) {
-  return interpolate(cell_stencil(gs.grid(), x), gs.porosity());
+  return interpolate(cell_stencil(gs.grid(), x, periodic_axes(gs)), gs.porosity());
+}
+
+std::array<bool, 3> periodic_axes(const gas::GasSolver& gs) {
+  return {gs.boundary().periodic(0), gs.boundary().periodic(1), gs.boundary().periodic(2)};
 }
 
 } // namespace fluidem::coupling

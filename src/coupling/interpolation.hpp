@@ -4,7 +4,10 @@
 // values the gas solver keeps. The same stencil distributes the particle forces back to the
 // faces (exchange.hpp), which is what makes the exchange conserve momentum [Zhu07 §3.2].
 // Cell-centre scalars (porosity, density) use the trilinear stencil of the interior cell
-// centres, constant (zero gradient) within half a cell of the boundary.
+// centres, constant (zero gradient) within half a cell of a wall.
+// Periodic axes: the gas solver keeps images in the ghost layer (ghost 0 = cell n, ghost n + 1 =
+// cell 1; along d the face 0 of component d = face n), so the stencils read the ghosts there as
+// ordinary nodes; forces deposited on a ghost or copy node go to its image (periodic_image).
 #pragma once
 #include "core/vec3.hpp"
 #include "gas/gas_grid.hpp"
@@ -24,8 +27,14 @@ struct Stencil {
 /// Stencil of velocity component d (faces normal to d) at point x. Points outside the domain
 /// are clamped onto it.
 Stencil face_stencil(const gas::GasGrid& g, int d, const Vec3& x);
-/// Stencil of the interior cell centres at point x (clamped, zero gradient at the boundary).
-Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x);
+/// Stencil of the cell centres at point x: interior centres along walled axes (clamped, zero
+/// gradient at the boundary), ghost centres (periodic images) included along periodic axes.
+Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool, 3>& periodic);
+
+/// The node a periodic ghost or copy node stands for: grid index q of component d (faces normal
+/// to d; -1: cell centres) with every index along a periodic axis wrapped into the unknowns
+/// (cells 1..n; along d for faces: 1..n, face 0 being the copy of face n). Other q unchanged.
+long periodic_image(const gas::GasGrid& g, const std::array<bool, 3>& periodic, int d, long q);
 
 inline double interpolate(const Stencil& s, const std::vector<double>& a) {
   double v = 0.0;
@@ -44,7 +53,9 @@ Vec3 pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x);
 /// the same values as gas_velocity_at and pressure_gradient_at at half the cost.
 void velocity_and_pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x, Vec3& u,
                                        Vec3& grad_p);
-/// Porosity at x (cell-centre stencil).
+/// Which axes of the solver's grid are periodic.
+std::array<bool, 3> periodic_axes(const gas::GasSolver& gs);
+/// Porosity at x (cell-centre stencil; periodic axes from the solver's boundary map).
 double porosity_at(const gas::GasSolver& gs, const Vec3& x);
 
 } // namespace fluidem::coupling

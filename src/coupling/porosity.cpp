@@ -180,8 +180,19 @@ double porosity_2d_to_3d(double eps_2d) {
   return 1.0 - 2.0 / std::sqrt(pi * std::sqrt(3.0)) * solid * std::sqrt(solid);
 }
 
+namespace {
+/// Interior index (1..n) of the unwrapped cell index i along a periodic axis of n cells.
+int wrap_index(int i, int n) {
+  return ((i - 1) % n + n) % n + 1;
+}
+/// Unclamped 1-based cell index of coordinate x along axis d.
+int raw_cell(const gas::GasGrid& g, int d, double x) {
+  return static_cast<int>(std::floor((x - g.lo[d]) / g.h[d])) + 1;
+}
+} // namespace
+
 void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
-                    std::vector<double>& out) {
+                    std::vector<double>& out, const std::array<bool, 3>& periodic) {
   out.assign(g.size(), 0.0);
   const bool two_d = g.dimension == 2;
   const std::array<int, 3> axes_3d{0, 1, 2};
@@ -189,16 +200,28 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
   const std::array<int, 3> axes = two_d ? std::array<int, 3>{0, 2, 1} : axes_3d;
   // 2-D: solid area per unit cell area; 3-D: solid volume per cell volume.
   const double cell_measure = two_d ? g.h[0] * g.h[2] : g.cell_volume();
+  std::array<bool, 3> wrap{};
+  for (int m = 0; m < na; ++m) {
+    const int d = axes[static_cast<std::size_t>(m)];
+    wrap[d] = periodic[d];
+  }
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec3 x = p.position(i);
     const double R = p.radius[i];
-    // Half extent of the particle's footprint, and (cube) its centre shifted into the domain.
+    // Half extent of the particle's footprint, and (cube) its centre shifted into the domain
+    // along walled axes. Along periodic axes the footprint is not shifted: the cells it covers
+    // are counted on the unwrapped index range and folded onto their images.
     const double half = s.method == PorosityMethod::porous_cube ? 0.5 * s.cube_factor * 2.0 * R : R;
     Vec3 c = x;
     std::array<int, 3> c0{1, 1, 1}, c1{1, 1, 1};
     for (int m = 0; m < na; ++m) {
       const int d = axes[static_cast<std::size_t>(m)];
       const double lo = g.lo[d], hi = g.lo[d] + g.n[d] * g.h[d];
+      if (wrap[d]) {
+        c0[d] = raw_cell(g, d, c[d] - half);
+        c1[d] = raw_cell(g, d, c[d] + half);
+        continue;
+      }
       if (s.method == PorosityMethod::porous_cube && hi - lo >= 2.0 * half)
         c[d] = std::clamp(c[d], lo + half, hi - half);
       Vec3 a = c, b = c;
@@ -230,15 +253,18 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
             }
             part = measure * ov / cube_measure; // [Deen07 eq. 36-37]
           }
-          out[static_cast<std::size_t>(g.idx(ii, j, k))] += part / cell_measure;
+          const int wi = wrap[0] ? wrap_index(ii, g.n[0]) : ii;
+          const int wj = wrap[1] ? wrap_index(j, g.n[1]) : j;
+          const int wk = wrap[2] ? wrap_index(k, g.n[2]) : k;
+          out[static_cast<std::size_t>(g.idx(wi, wj, wk))] += part / cell_measure;
         }
   }
 }
 
 void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
-                      std::vector<double>& eps) {
+                      std::vector<double>& eps, const std::array<bool, 3>& periodic) {
   std::vector<double> solid;
-  solid_fraction(g, p, s, solid);
+  solid_fraction(g, p, s, solid, periodic);
   eps.resize(g.size(), 1.0);
   for (int k = 1; k <= g.n[2]; ++k)
     for (int j = 1; j <= g.n[1]; ++j)
@@ -251,6 +277,21 @@ void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const Poros
                                  std::to_string(k) + "): overlapping particles");
         eps[q] = e;
       }
+  // Periodic axes: the ghost cells hold the images (ghost 0 = cell n, ghost n + 1 = cell 1), as
+  // the gas solver keeps them, so that the cell-centre stencil may read them.
+  for (int d = 0; d < 3; ++d) {
+    if (!periodic[d] || (g.dimension == 2 && d == 1)) continue;
+    const long sd = g.stride[d], nd = g.n[d];
+    for (int k = 0; k < g.padded[2]; ++k)
+      for (int j = 0; j < g.padded[1]; ++j)
+        for (int i = 0; i < g.padded[0]; ++i) {
+          const int c[3] = {i, j, k};
+          if (c[d] != 0) continue;
+          const auto q = static_cast<std::size_t>(g.idx(i, j, k));
+          eps[q] = eps[q + static_cast<std::size_t>(nd * sd)];
+          eps[q + static_cast<std::size_t>((nd + 1) * sd)] = eps[q + static_cast<std::size_t>(sd)];
+        }
+  }
 }
 
 } // namespace fluidem::coupling

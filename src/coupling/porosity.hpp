@@ -9,7 +9,9 @@
 //    its overlap with the cube times that fraction [eq. 37]. The cube is shifted to lie inside
 //    the domain (so no solid volume is lost at walls). In 2-D the square of side a d carries the
 //    disc area pi d^2/4, then [Hoomans96 eq. 49].
-// Solid outside the domain (cell method: a sphere overlapping a wall) is not counted.
+// Solid outside the domain (cell method: a sphere overlapping a wall) is not counted. Along a
+// periodic axis nothing is outside: the part of a sphere (or cube) beyond the periodic face is
+// counted in the image cells at the other end.
 #pragma once
 #include "core/coupling_settings.hpp"
 #include "core/vec3.hpp"
@@ -42,12 +44,14 @@ double porosity_2d_to_3d(double eps_2d);
 
 /// Solid volume fraction (1 - eps) per cell (padded layout of the grid; ghosts set to 0):
 /// 3-D: solid volume / V_cell; 2-D: solid AREA fraction in the x-z plane, before eq. 49.
+/// `periodic` per axis (y is ignored on 2-D grids).
 void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
-                    std::vector<double>& out);
+                    std::vector<double>& out, const std::array<bool, 3>& periodic = {});
 
-/// Porosity of every interior cell into eps (ghosts untouched; size = g.size()). 2-D grids use
-/// [Hoomans96 eq. 49]. Throws InstabilityError if a cell's porosity is <= 0.
+/// Porosity of every interior cell into eps (size = g.size()); ghosts along periodic axes get
+/// the images, other ghosts are untouched. 2-D grids use [Hoomans96 eq. 49]. Throws
+/// InstabilityError if a cell's porosity is <= 0.
 void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
-                      std::vector<double>& eps);
+                      std::vector<double>& eps, const std::array<bool, 3>& periodic);
 
 } // namespace fluidem::coupling
