@@ -5,7 +5,10 @@
 // at the bottom inflow, prescribed pressure at the top, no-slip side walls, drag ergun_wen_yu,
 // porosity by cell (exact sphere volumes: no 2-D conversion, so the solid volume the gas sees is
 // the particles' own). The particles start at random positions in the whole column and fall.
+// periodic_sides: no side walls, the column is periodic along x and y (a piece of a wide bed),
+// gas cells 10 mm across y too.
 #pragma once
+#include <algorithm>
 #include <cmath>
 
 #include "core/case_spec.hpp"
@@ -18,6 +21,7 @@ struct TsujiColumn {
   long count = 400;
   double end_time = 1.0; ///< s
   gas::InflowProfile inflow{gas::InflowMode::constant, 2.5};
+  bool periodic_sides = false;
 };
 
 inline CaseSpec tsuji_column(const TsujiColumn& c) {
@@ -30,6 +34,7 @@ inline CaseSpec tsuji_column(const TsujiColumn& c) {
   if (c.engine == Engine::HardSphere) s.simulation.time_step = 1e-4;
   s.domain.lo = {0.0, 0.0, 0.0};
   s.domain.hi = {c.width, c.depth, c.height};
+  s.domain.periodic = {c.periodic_sides, c.periodic_sides, false};
   SpeciesSpec sp;
   sp.name = "aluminium";
   sp.diameter = d;
@@ -46,7 +51,8 @@ inline CaseSpec tsuji_column(const TsujiColumn& c) {
   ins.region_hi = s.domain.hi;
   s.inserts.push_back(ins);
   gas::GasSettings g;
-  g.cells = {static_cast<int>(std::lround(c.width / 0.01)), 1,
+  g.cells = {static_cast<int>(std::lround(c.width / 0.01)),
+             c.periodic_sides ? std::max(1, static_cast<int>(std::lround(c.depth / 0.01))) : 1,
              static_cast<int>(std::lround(c.height / 0.02))};
   g.time_step = c.engine == Engine::SoftSphere ? 1e-4 : 0.0;
   g.boundary[gas::bottom].type = gas::BoundaryType::inflow;
