@@ -56,6 +56,7 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
     out.cell_vz[uq] += m * p.vz[i];
   }
   const double mu = gs.settings().viscosity;
+  const bool model_b = gs.settings().model == gas::PressureModel::B;
   for (std::size_t q = 0; q < nc; ++q) {
     if (!(vs[q] > 0.0)) continue;
     if (mass[q] > 0.0) {
@@ -75,6 +76,7 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
     in.d_mean = c.d_mean;
     in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
     out.cell_coeff[q] = vs[q] * Closure::k(in); // C_c = V_s,c K_c [Chang08 eq. 2.10]
+    if (model_b) out.cell_coeff[q] /= in.eps;   // Model B: F_A / eps (exchange.hpp)
   }
   if (c.scheme != ExchangeScheme::scheme2) return;
   // [Chang08 eq. 2.11]: the particle's share of F_c is its surface area over the cell's.
@@ -95,10 +97,7 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
 }
 } // namespace
 
-void validate(const CouplingSettings& c, const gas::GasSettings& gas) {
-  if (gas.model != gas::PressureModel::A)
-    throw InputError("gas.model = B: the particle force of Model B is not implemented in the "
-                     "coupling (use model A)");
+void validate(const CouplingSettings& c, const gas::GasSettings& /*gas: Models A and B both*/) {
   validate(c.porosity);
   if (drag::needs_mean_diameter(c.drag) && !(c.d_mean > 0.0))
     throw InputError(std::string("coupling.d_mean must be > 0 for drag closure '") +
@@ -124,6 +123,7 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const double mu = gs.settings().viscosity;
   const bool model_a = gs.settings().model == gas::PressureModel::A;
   const std::array<bool, 3> periodic = periodic_axes(gs);
+  const Vec3 grav = gs.settings().gravity;
   drag::with_drag_closure(c.drag, [&](auto closure) {
     using C = decltype(closure);
     // Independent per particle: parallel, and the same result for any thread count.
@@ -143,7 +143,8 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
       const Vec3 slip{u[0] - v[0], u[1] - v[1], u[2] - v[2]};
       in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
       const double vol = pi * in.d * in.d * in.d / 6.0;
-      const double ci = vol * C::k(in); // [Deen07 eq. 1]: F = V K (u - v)
+      double ci = vol * C::k(in); // [Deen07 eq. 1]: F = V K (u - v)
+      if (!model_a) ci /= in.eps; // Model B: f_d / eps (exchange.hpp)
       out.coeff[i] = ci;
       out.eps[i] = in.eps;
       out.ux[i] = u[0];
@@ -156,6 +157,10 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
         out.pres_x[i] = -vol * gp[0];
         out.pres_y[i] = -vol * gp[1];
         out.pres_z[i] = -vol * gp[2];
+      } else { // Model B: the buoyancy term -V rho g of f_pf (exchange.hpp)
+        out.pres_x[i] = -vol * in.rho * grav[0];
+        out.pres_y[i] = -vol * in.rho * grav[1];
+        out.pres_z[i] = -vol * in.rho * grav[2];
       }
     }
     // Schemes 1, 2: the cell averages (scheme 2 replaces the per-particle drag above).
@@ -168,6 +173,7 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
   const gas::GasGrid& g = gs.grid();
   const double inv_v = 1.0 / g.cell_volume();
   const std::array<bool, 3> periodic = periodic_axes(gs);
+  const bool model_b = gs.settings().model == gas::PressureModel::B;
   for (int d = 0; d < 3; ++d) {
     std::vector<double>& K = gs.drag_coefficient(d);
     std::vector<double>& Kus = gs.drag_velocity_term(d);
@@ -176,16 +182,22 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
     K.assign(g.size(), 0.0);
     Kus.assign(g.size(), 0.0);
     src.assign(g.size(), 0.0);
+    // Model B: minus the buoyancy terms, with the same weights as the drag (exchange.hpp).
+    const std::vector<double>& pr = d == 0 ? f.pres_x : (d == 1 ? f.pres_y : f.pres_z);
     if (f.scheme != ExchangeScheme::scheme3) {
       // Schemes 1, 2: -F_c, half to each face of the cell along d (exchange.hpp).
       const std::vector<double>& vc = d == 0 ? f.cell_vx : (d == 1 ? f.cell_vy : f.cell_vz);
       const long st = g.stride[static_cast<std::size_t>(d)];
-      for (std::size_t q = 0; q < f.cell_coeff.size(); ++q) {
-        if (!(f.cell_coeff[q] > 0.0)) continue;
+      // The two faces of cell q along d (periodic copies replaced by their images).
+      auto faces_of = [&](std::size_t q) {
         const auto lq = static_cast<long>(q);
-        const std::size_t faces[2] = {
+        return std::array<std::size_t, 2>{
             static_cast<std::size_t>(periodic_image(g, periodic, d, lq - st)),
             static_cast<std::size_t>(periodic_image(g, periodic, d, lq))};
+      };
+      for (std::size_t q = 0; q < f.cell_coeff.size(); ++q) {
+        if (!(f.cell_coeff[q] > 0.0)) continue;
+        const std::array<std::size_t, 2> faces = faces_of(q);
         const int ns = int(solved_face(role[faces[0]])) + int(solved_face(role[faces[1]]));
         if (ns == 0) continue;
         const double w = f.cell_coeff[q] * inv_v / ns;
@@ -195,6 +207,15 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
           Kus[fq] += w * vc[q];
         }
       }
+      if (model_b) // per particle, to the faces of its cell as the cell's drag
+        for (std::size_t i = 0; i < p.size(); ++i) {
+          const std::array<std::size_t, 2> faces = faces_of(static_cast<std::size_t>(f.cell[i]));
+          const int ns = int(solved_face(role[faces[0]])) + int(solved_face(role[faces[1]]));
+          if (ns == 0) continue;
+          const double w = -pr[i] * inv_v / ns;
+          for (std::size_t fq : faces)
+            if (solved_face(role[fq])) src[fq] += w;
+        }
       continue;
     }
     const std::vector<double>& v = d == 0 ? p.vx : (d == 1 ? p.vy : p.vz);
@@ -215,6 +236,7 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
         const double w = s.w[static_cast<std::size_t>(m)] * ci;
         K[q] += w;
         Kus[q] += w * v[i];
+        if (model_b) src[q] -= s.w[static_cast<std::size_t>(m)] * pr[i] * inv_v / wsum;
       }
     }
   }

@@ -5,20 +5,33 @@
 // to 1e-10 relative to sum_i |drag_i| (per component), before and after a change of the gas
 // velocity (the drag after the gas step, update_particle_forces). Particles are kept one cell away
 // from the domain boundary so every stencil face is a solved face (near walls the weights on
-// boundary faces are handed to the solved faces; see exchange.hpp). Also: gas Model B is an
-// InputError ("not implemented"); schemes 1/2 are accepted (tested in exchange_schemes_test).
+// boundary faces are handed to the solved faces; see exchange.hpp). Schemes 1/2 are accepted
+// (tested in exchange_schemes_test), and so is gas Model B.
+// Model B (exchange.hpp: the particle gets f_pf,i = V_i K_i/eps_i (u_i - v_i) - V_i rho_i g, the
+// gas -sum f_pf,i / V_cell, the buoyancy part through explicit_source), scheme 3 and scheme 2,
+// gravity (1, -2, -9.81) m/s^2 (all three components used):
+//   sum_i (drag_i + pres_i) + sum_faces applied_source V_cell = 0, 1e-10 relative to
+//   sum_i (|drag_i| + |pres_i|), before and after the change of u; the buoyancy part alone,
+//   sum_i pres_i + sum_faces explicit_source V_cell = 0, 1e-10 relative to sum_i |pres_i| (it is
+//   ~1e-4 of the drag, so the first check alone would not see it); and Archimedes,
+//   sum_i pres_i = -rho g sum_i V_i (uniform rho), 1e-12 relative.
 #include "core/error.hpp"
 #include "coupling/exchange.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
+#include <numbers>
 #include <random>
 
 using namespace fluidem;
 using namespace fluidem::coupling;
 
 namespace {
-void run(drag::DragModel model) {
+void run(drag::DragModel model, gas::PressureModel gas_model = gas::PressureModel::A,
+         ExchangeScheme scheme = ExchangeScheme::scheme3) {
+  const bool model_b = gas_model == gas::PressureModel::B;
   gas::GasSettings s;
+  s.model = gas_model;
+  if (model_b) s.gravity = {1.0, -2.0, -9.81};
   s.cells = {8, 6, 10};
   s.hi = {0.04, 0.03, 0.05};
   s.eos = gas::EquationOfState::incompressible;
@@ -41,11 +54,33 @@ void run(drag::DragModel model) {
   CouplingSettings c;
   c.drag = model;
   c.d_mean = 0.002;
+  c.scheme = scheme;
   validate(c, s);
   update_porosity(gs, p, c);
   ParticleGasForces f;
   compute_particle_forces(gs, p, c, f);
   deposit_momentum_source(gs, p, f);
+  if (model_b) { // the buoyancy terms: Archimedes, and the gas gets their exact opposite
+    double vol = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      vol += 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius[i], 3);
+    for (int d = 0; d < 3; ++d) {
+      const std::vector<double>& pr = d == 0 ? f.pres_x : (d == 1 ? f.pres_y : f.pres_z);
+      double sum_p = 0.0, abs_p = 0.0, sum_g = 0.0;
+      for (double x : pr) {
+        sum_p += x;
+        abs_p += std::abs(x);
+      }
+      for (double x : gs.explicit_source(d)) sum_g += x * g.cell_volume();
+      const double archimedes = -s.density * s.gravity[d] * vol;
+      std::printf("Model B, scheme %d, component %d: sum buoyancy %.6e N (rho g V: %.6e N), gas "
+                  "%.6e N, rel. imbalance %.2e\n",
+                  static_cast<int>(scheme) + 1, d, sum_p, archimedes, sum_g,
+                  std::abs(sum_p + sum_g) / abs_p);
+      EXPECT_LT(std::abs(sum_p + sum_g) / abs_p, 1e-10);
+      EXPECT_NEAR(sum_p / archimedes, 1.0, 1e-12);
+    }
+  }
   // The gas step changes u; the particles then get c_i (u_new - v_i) (update_particle_forces),
   // and applied_source uses u_new too: the balance must hold for the new field as well.
   for (int pass = 0; pass < 2; ++pass) {
@@ -56,16 +91,19 @@ void run(drag::DragModel model) {
     }
     for (int d = 0; d < 3; ++d) {
       const std::vector<double>& dr = d == 0 ? f.drag_x : (d == 1 ? f.drag_y : f.drag_z);
+      const std::vector<double>& pr = d == 0 ? f.pres_x : (d == 1 ? f.pres_y : f.pres_z);
       double sum_p = 0.0, abs_p = 0.0, sum_g = 0.0;
-      for (double x : dr) {
+      for (std::size_t i = 0; i < dr.size(); ++i) { // Model A: the gas gets minus the drag only
+        const double x = model_b ? dr[i] + pr[i] : dr[i];
         sum_p += x;
-        abs_p += std::abs(x);
+        abs_p += std::abs(dr[i]) + (model_b ? std::abs(pr[i]) : 0.0);
       }
       for (double x : gs.applied_source(d)) sum_g += x * g.cell_volume();
       const double rel = std::abs(sum_p + sum_g) / abs_p;
-      std::printf("%s, component %d: sum drag %.6e N, sum gas source %.6e N, rel. imbalance "
-                  "%.2e\n",
-                  std::string(drag::to_string(model)).c_str(), d, sum_p, sum_g, rel);
+      std::printf("%s, Model %s, scheme %d, component %d: sum particle force %.6e N, sum gas "
+                  "source %.6e N, rel. imbalance %.2e\n",
+                  std::string(drag::to_string(model)).c_str(), model_b ? "B" : "A",
+                  static_cast<int>(scheme) + 1, d, sum_p, sum_g, rel);
       EXPECT_LT(rel, 1e-10);
     }
   }
@@ -79,7 +117,14 @@ TEST(NewtonThirdLaw, Scheme3Beetstra) {
   run(drag::DragModel::beetstra);
 }
 
-TEST(NewtonThirdLaw, UnimplementedOptionsAreInputErrors) {
+TEST(NewtonThirdLaw, ModelBScheme3ErgunWenYu) {
+  run(drag::DragModel::ergun_wen_yu, gas::PressureModel::B, ExchangeScheme::scheme3);
+}
+TEST(NewtonThirdLaw, ModelBScheme2ErgunWenYu) {
+  run(drag::DragModel::ergun_wen_yu, gas::PressureModel::B, ExchangeScheme::scheme2);
+}
+
+TEST(NewtonThirdLaw, SchemesAndModelBAreAccepted) {
   gas::GasSettings s;
   CouplingSettings c;
   c.scheme = ExchangeScheme::scheme1; // implemented [Zhu07 §3.2]: accepted
@@ -87,6 +132,6 @@ TEST(NewtonThirdLaw, UnimplementedOptionsAreInputErrors) {
   c.scheme = ExchangeScheme::scheme2;
   EXPECT_NO_THROW(validate(c, s));
   c.scheme = ExchangeScheme::scheme3;
-  s.model = gas::PressureModel::B;
-  EXPECT_THROW(validate(c, s), InputError);
+  s.model = gas::PressureModel::B; // implemented (exchange.hpp): accepted
+  EXPECT_NO_THROW(validate(c, s));
 }

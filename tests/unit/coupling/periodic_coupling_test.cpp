@@ -9,7 +9,8 @@
 //    to 2 delta |grad eps| (delta = 1e-9 m, |grad eps| < 50 /m here: to 1e-7);
 //  - Newton's third law of the exchange [Zhu07 §3.2] holds for particles anywhere, including
 //    within a cell of the periodic faces: sum_i drag_i + sum_faces S V_cell = 0 to 1e-10
-//    relative (schemes 3 and 2), because the weights of ghost nodes go to their images.
+//    relative (schemes 3 and 2; gas Model A, and Model B whose buoyancy term the gas gets too),
+//    because the weights of ghost nodes go to their images.
 #include "core/error.hpp"
 #include "coupling/exchange.hpp"
 #include "coupling/interpolation.hpp"
@@ -105,8 +106,10 @@ TEST(PeriodicCoupling, PorosityIsContinuousAcrossThePeriodicFace) {
 }
 
 namespace {
-void third_law(ExchangeScheme scheme, int number) {
-  const gas::GasSettings s = periodic_xy_settings();
+void third_law(ExchangeScheme scheme, int number, gas::PressureModel model) {
+  gas::GasSettings s = periodic_xy_settings();
+  s.model = model;
+  s.gravity = {0.5, -1.0, -9.81}; // Model B: the buoyancy term goes to the gas too
   gas::GasSolver gs(s);
   const gas::GasGrid& g = gs.grid();
   // A smooth periodic gas velocity (x period 0.03 m, y period 0.02 m), ghosts included.
@@ -144,23 +147,29 @@ void third_law(ExchangeScheme scheme, int number) {
   deposit_momentum_source(gs, p, f);
   for (int d = 0; d < 3; ++d) {
     const std::vector<double>& dr = d == 0 ? f.drag_x : (d == 1 ? f.drag_y : f.drag_z);
+    const std::vector<double>& pr = d == 0 ? f.pres_x : (d == 1 ? f.pres_y : f.pres_z);
+    const bool b = model == gas::PressureModel::B; // the gas also gets minus pres (buoyancy)
     double sum_p = 0.0, abs_p = 0.0, sum_g = 0.0;
-    for (double x : dr) {
+    for (std::size_t i = 0; i < dr.size(); ++i) {
+      const double x = dr[i] + (b ? pr[i] : 0.0);
       sum_p += x;
       abs_p += std::abs(x);
     }
     for (double x : gs.applied_source(d)) sum_g += x * g.cell_volume();
     const double rel = std::abs(sum_p + sum_g) / abs_p;
-    std::printf("scheme %d, component %d: sum drag %.6e N, gas %.6e N, rel. imbalance %.2e\n",
-                number, d, sum_p, sum_g, rel);
+    std::printf(
+        "model %s, scheme %d, component %d: sum drag %.6e N, gas %.6e N, rel. imbalance %.2e\n",
+        b ? "B" : "A", number, d, sum_p, sum_g, rel);
     EXPECT_LT(rel, 1e-10);
   }
 }
 } // namespace
 
 TEST(PeriodicCoupling, NewtonThirdLawScheme3) {
-  third_law(ExchangeScheme::scheme3, 3);
+  third_law(ExchangeScheme::scheme3, 3, gas::PressureModel::A);
+  third_law(ExchangeScheme::scheme3, 3, gas::PressureModel::B);
 }
 TEST(PeriodicCoupling, NewtonThirdLawScheme2) {
-  third_law(ExchangeScheme::scheme2, 2);
+  third_law(ExchangeScheme::scheme2, 2, gas::PressureModel::A);
+  third_law(ExchangeScheme::scheme2, 2, gas::PressureModel::B);
 }
