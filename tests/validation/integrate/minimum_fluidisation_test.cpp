@@ -1,15 +1,14 @@
-// Minimum fluidisation velocity from a slow velocity sweep [Chang08 §3.4]: the Tsuji column
-// (tests/common/tsuji_column.hpp: 40 mm wide, one particle deep, 0.3 m high, 400 particles,
-// soft spheres) is fluidised at 2.8 m/s, then the superficial velocity falls linearly to
-// 0.3 m/s over 4 s (defluidisation) and rises back to 2.8 m/s over 4 s: the pressure drop
-// against velocity traces the fixed-bed branch and the fluidised plateau with the hysteresis
-// loop of [Chang08 Fig. 6].
-// STATUS (2026-12-01): FAILS. Measured u_mf = 2.11 m/s (+19%): one particle deep, the packing
-// is loose (porosity ~0.45 against the ~0.41 Wen & Yu's correlation stands for). A column
-// 5 diameters deep (20 mm, 2150 particles) did not fluidise at all up to 2.8 m/s (pressure drop
-// 0.86 x the weight at 2.75 m/s): with 10 and 5 diameters across, the walls loosen the packing
-// further. A fair test needs a bed many diameters across (periodic side boundaries for the gas
-// stencils, or ~10^4 particles).
+// Minimum fluidisation velocity from a slow velocity sweep [Chang08 §3.4]: a piece of a wide
+// bed of the Tsuji particles (tests/common/tsuji_column.hpp with periodic sides: 40 mm x 20 mm
+// periodic along x and y, 0.3 m high, 1000 particles, bed about 7 cm, soft spheres) is
+// fluidised at 2.8 m/s, then the superficial velocity falls linearly to 0.3 m/s over 4 s
+// (defluidisation) and rises back to 2.8 m/s over 4 s: the pressure drop against velocity
+// traces the fixed-bed branch and the fluidised plateau [Chang08 Fig. 6].
+// Measured (2026-12-01): u_mf = 1.594 m/s (-9.9%), plateau 1049 Pa (0.95 x the weight per area:
+// slugging, 1 s of plateau samples); 10 min on the loaded 2-core machine.
+// History: in a column one particle deep with walls (the pseudo-2-D set-up) the packing is loose
+// (porosity ~0.45) and u_mf came out 2.11 m/s (+19%); a walled column 5 diameters deep did not
+// fluidise up to 2.8 m/s (the walls carried part of the weight). Periodic sides remove both.
 // u_mf (the usual construction on the defluidisation branch, Kunii & Levenspiel ch. 3): the
 // fixed-bed points (pressure drop below 70% of the plateau) fitted by the Ergun form
 // dP = a U + b U^2, intersected with the plateau (mean pressure drop at U >= 2.3 m/s).
@@ -36,6 +35,9 @@ TEST(MinimumFluidisation, VelocitySweepGivesTheWenYuVelocity) {
   // weight the gas nearly carries: thousands of collisions per particle per flow step).
   c.engine = Engine::SoftSphere;
   c.end_time = 9.0;
+  c.periodic_sides = true;
+  c.depth = 0.02;
+  c.count = 1000;
   c.inflow.mode = gas::InflowMode::table;
   c.inflow.times = {0.0, 1.0, 5.0, 9.0};
   c.inflow.velocities = {2.8, 2.8, 0.3, 2.8};
