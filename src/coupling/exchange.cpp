@@ -1,6 +1,7 @@
 #include "coupling/exchange.hpp"
 #include "core/error.hpp"
 #include "coupling/interpolation.hpp"
+#include "coupling/particle_mapping.hpp"
 #include <cmath>
 
 namespace fluidem::coupling {
@@ -113,6 +114,7 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const std::size_t n = p.size();
   out.resize(n);
   out.scheme = c.scheme;
+  out.porosity = c.porosity;
   if (c.scheme == ExchangeScheme::scheme3) {
     out.cell.clear();
     out.cell_coeff.clear();
@@ -122,45 +124,46 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   }
   const double mu = gs.settings().viscosity;
   const bool model_a = gs.settings().model == gas::PressureModel::A;
-  const std::array<bool, 3> periodic = periodic_axes(gs);
   const Vec3 grav = gs.settings().gravity;
   drag::with_drag_closure(c.drag, [&](auto closure) {
     using C = decltype(closure);
     // Independent per particle: parallel, and the same result for any thread count.
-#pragma omp parallel for schedule(static) if (n > 2048)
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec3 x = p.position(i);
-      Vec3 u, gp;
-      velocity_and_pressure_gradient_at(gs, x, u, gp);
-      const Stencil cs = cell_stencil(gs.grid(), x, periodic);
-      drag::DragInput in;
-      in.eps = interpolate(cs, gs.porosity());
-      in.rho = interpolate(cs, gs.density());
-      in.d = 2.0 * p.radius[i];
-      in.mu = mu;
-      in.d_mean = c.d_mean;
-      const Vec3 v = p.velocity(i);
-      const Vec3 slip{u[0] - v[0], u[1] - v[1], u[2] - v[2]};
-      in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
-      const double vol = pi * in.d * in.d * in.d / 6.0;
-      double ci = vol * C::k(in); // [Deen07 eq. 1]: F = V K (u - v)
-      if (!model_a) ci /= in.eps; // Model B: f_d / eps (exchange.hpp)
-      out.coeff[i] = ci;
-      out.eps[i] = in.eps;
-      out.ux[i] = u[0];
-      out.uy[i] = u[1];
-      out.uz[i] = u[2];
-      out.drag_x[i] = ci * slip[0];
-      out.drag_y[i] = ci * slip[1];
-      out.drag_z[i] = ci * slip[2];
-      if (model_a) { // [Zhu07 eq. 5]: -V grad p on the particle
-        out.pres_x[i] = -vol * gp[0];
-        out.pres_y[i] = -vol * gp[1];
-        out.pres_z[i] = -vol * gp[2];
-      } else { // Model B: the buoyancy term -V rho g of f_pf (exchange.hpp)
-        out.pres_x[i] = -vol * in.rho * grav[0];
-        out.pres_y[i] = -vol * in.rho * grav[1];
-        out.pres_z[i] = -vol * in.rho * grav[2];
+#pragma omp parallel if (n > 2048)
+    {
+      ParticleMapping map(gs, c.porosity); // per thread: scratch space
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        const Vec3 x = p.position(i);
+        drag::DragInput in;
+        in.d = 2.0 * p.radius[i];
+        Vec3 u, gp;
+        map.velocity_and_pressure_gradient(x, in.d, u, gp);
+        map.porosity_and_density(x, in.d, in.eps, in.rho);
+        in.mu = mu;
+        in.d_mean = c.d_mean;
+        const Vec3 v = p.velocity(i);
+        const Vec3 slip{u[0] - v[0], u[1] - v[1], u[2] - v[2]};
+        in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
+        const double vol = pi * in.d * in.d * in.d / 6.0;
+        double ci = vol * C::k(in); // [Deen07 eq. 1]: F = V K (u - v)
+        if (!model_a) ci /= in.eps; // Model B: f_d / eps (exchange.hpp)
+        out.coeff[i] = ci;
+        out.eps[i] = in.eps;
+        out.ux[i] = u[0];
+        out.uy[i] = u[1];
+        out.uz[i] = u[2];
+        out.drag_x[i] = ci * slip[0];
+        out.drag_y[i] = ci * slip[1];
+        out.drag_z[i] = ci * slip[2];
+        if (model_a) { // [Zhu07 eq. 5]: -V grad p on the particle
+          out.pres_x[i] = -vol * gp[0];
+          out.pres_y[i] = -vol * gp[1];
+          out.pres_z[i] = -vol * gp[2];
+        } else { // Model B: the buoyancy term -V rho g of f_pf (exchange.hpp)
+          out.pres_x[i] = -vol * in.rho * grav[0];
+          out.pres_y[i] = -vol * in.rho * grav[1];
+          out.pres_z[i] = -vol * in.rho * grav[2];
+        }
       }
     }
     // Schemes 1, 2: the cell averages (scheme 2 replaces the per-particle drag above).
@@ -174,6 +177,7 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
   const double inv_v = 1.0 / g.cell_volume();
   const std::array<bool, 3> periodic = periodic_axes(gs);
   const bool model_b = gs.settings().model == gas::PressureModel::B;
+  ParticleMapping map(gs, f.porosity);
   for (int d = 0; d < 3; ++d) {
     std::vector<double>& K = gs.drag_coefficient(d);
     std::vector<double>& Kus = gs.drag_velocity_term(d);
@@ -220,23 +224,20 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
     }
     const std::vector<double>& v = d == 0 ? p.vx : (d == 1 ? p.vy : p.vz);
     for (std::size_t i = 0; i < p.size(); ++i) {
-      Stencil s = face_stencil(g, d, p.position(i));
+      // The weights the particle's gas velocity came from (periodic images resolved).
+      const CubeWeights& s = map.face_weights(d, p.position(i), 2.0 * p.radius[i]);
       double wsum = 0.0;
-      for (int m = 0; m < s.n; ++m) {
-        long& q = s.q[static_cast<std::size_t>(m)];
-        q = periodic_image(g, periodic, d, q); // a periodic ghost's force goes to its image
-        if (solved_face(role[static_cast<std::size_t>(q)]))
-          wsum += s.w[static_cast<std::size_t>(m)];
-      }
+      for (std::size_t m = 0; m < s.size(); ++m)
+        if (solved_face(role[static_cast<std::size_t>(s.q[m])])) wsum += s.w[m];
       if (!(wsum > 0.0)) continue;
       const double ci = f.coeff[i] * inv_v / wsum;
-      for (int m = 0; m < s.n; ++m) {
-        const auto q = static_cast<std::size_t>(s.q[static_cast<std::size_t>(m)]);
+      for (std::size_t m = 0; m < s.size(); ++m) {
+        const auto q = static_cast<std::size_t>(s.q[m]);
         if (!solved_face(role[q])) continue;
-        const double w = s.w[static_cast<std::size_t>(m)] * ci;
+        const double w = s.w[m] * ci;
         K[q] += w;
         Kus[q] += w * v[i];
-        if (model_b) src[q] -= s.w[static_cast<std::size_t>(m)] * pr[i] * inv_v / wsum;
+        if (model_b) src[q] -= s.w[m] * pr[i] * inv_v / wsum;
       }
     }
   }
@@ -247,30 +248,34 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const std::size_t n = p.size();
   const bool model_a = gs.settings().model == gas::PressureModel::A;
   const bool scheme2 = f.scheme == ExchangeScheme::scheme2;
-#pragma omp parallel for schedule(static) if (n > 2048)
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 x = p.position(i);
-    Vec3 u, gp;
-    velocity_and_pressure_gradient_at(gs, x, u, gp);
-    Vec3 v = p.velocity(i);
-    if (scheme2) { // s_i C_c (u_c,new - v_c): minus what the gas received [Chang08 eq. 2.11]
-      const long q = f.cell[i];
-      const auto uq = static_cast<std::size_t>(q);
-      for (int d = 0; d < 3; ++d) u[d] = cell_gas_velocity(gs, q, d);
-      v = {f.cell_vx[uq], f.cell_vy[uq], f.cell_vz[uq]};
-    }
-    f.ux[i] = u[0];
-    f.uy[i] = u[1];
-    f.uz[i] = u[2];
-    f.drag_x[i] = f.coeff[i] * (u[0] - v[0]);
-    f.drag_y[i] = f.coeff[i] * (u[1] - v[1]);
-    f.drag_z[i] = f.coeff[i] * (u[2] - v[2]);
-    if (model_a) {
-      const double d = 2.0 * p.radius[i];
-      const double vol = pi * d * d * d / 6.0;
-      f.pres_x[i] = -vol * gp[0];
-      f.pres_y[i] = -vol * gp[1];
-      f.pres_z[i] = -vol * gp[2];
+#pragma omp parallel if (n > 2048)
+  {
+    ParticleMapping map(gs, f.porosity); // per thread: scratch space
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 x = p.position(i);
+      Vec3 u, gp;
+      map.velocity_and_pressure_gradient(x, 2.0 * p.radius[i], u, gp);
+      Vec3 v = p.velocity(i);
+      if (scheme2) { // s_i C_c (u_c,new - v_c): minus what the gas received [Chang08 eq. 2.11]
+        const long q = f.cell[i];
+        const auto uq = static_cast<std::size_t>(q);
+        for (int d = 0; d < 3; ++d) u[d] = cell_gas_velocity(gs, q, d);
+        v = {f.cell_vx[uq], f.cell_vy[uq], f.cell_vz[uq]};
+      }
+      f.ux[i] = u[0];
+      f.uy[i] = u[1];
+      f.uz[i] = u[2];
+      f.drag_x[i] = f.coeff[i] * (u[0] - v[0]);
+      f.drag_y[i] = f.coeff[i] * (u[1] - v[1]);
+      f.drag_z[i] = f.coeff[i] * (u[2] - v[2]);
+      if (model_a) {
+        const double d = 2.0 * p.radius[i];
+        const double vol = pi * d * d * d / 6.0;
+        f.pres_x[i] = -vol * gp[0];
+        f.pres_y[i] = -vol * gp[1];
+        f.pres_z[i] = -vol * gp[2];
+      }
     }
   }
 }

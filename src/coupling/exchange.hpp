@@ -104,6 +104,9 @@ struct ParticleGasForces {
   /// The scheme the forces were computed with (set by compute_particle_forces; read by
   /// deposit_momentum_source and update_particle_forces, whose signatures do not carry it).
   ExchangeScheme scheme = ExchangeScheme::scheme3;
+  /// The porosity settings, which choose the mapping kernel (particle_mapping.hpp): set like
+  /// `scheme`.
+  PorositySettings porosity;
   std::vector<long> cell;         ///< schemes 1, 2: grid index of i's cell
   std::vector<double> cell_coeff; ///< schemes 1, 2: C_c = V_s,c K_c (/ eps_c in B), kg/s
   std::vector<double> cell_vx, cell_vy, cell_vz; ///< schemes 1, 2: v_c, m/s

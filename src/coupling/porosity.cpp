@@ -1,5 +1,6 @@
 #include "coupling/porosity.hpp"
 #include "core/error.hpp"
+#include "coupling/cube_mapping.hpp"
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -205,33 +206,39 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
     const int d = axes[static_cast<std::size_t>(m)];
     wrap[d] = periodic[d];
   }
+  if (s.method == PorosityMethod::porous_cube) {
+    // [Deen07 eq. 36-37]: the cube of side a d carries the particle's volume (2-D: disc area)
+    // spread uniformly; the cell gets the fraction of the cube inside it, the weights of
+    // cube_mapping.hpp (shifted into the domain at walls, wrapped at periodic axes).
+    CubeWeights w;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double R = p.radius[i];
+      const double measure = two_d ? pi * R * R : 4.0 / 3.0 * pi * R * R * R;
+      cube_weights(g, cell_component, p.position(i), s.cube_factor * R, wrap, w);
+      for (std::size_t m = 0; m < w.size(); ++m)
+        out[static_cast<std::size_t>(w.q[m])] += measure * w.w[m] / cell_measure;
+    }
+    return;
+  }
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec3 x = p.position(i);
     const double R = p.radius[i];
-    // Half extent of the particle's footprint, and (cube) its centre shifted into the domain
-    // along walled axes. Along periodic axes the footprint is not shifted: the cells it covers
-    // are counted on the unwrapped index range and folded onto their images.
-    const double half = s.method == PorosityMethod::porous_cube ? 0.5 * s.cube_factor * 2.0 * R : R;
-    Vec3 c = x;
+    // The cells the sphere covers; along periodic axes on the unwrapped index range, folded
+    // onto their images.
     std::array<int, 3> c0{1, 1, 1}, c1{1, 1, 1};
     for (int m = 0; m < na; ++m) {
       const int d = axes[static_cast<std::size_t>(m)];
-      const double lo = g.lo[d], hi = g.lo[d] + g.n[d] * g.h[d];
       if (wrap[d]) {
-        c0[d] = raw_cell(g, d, c[d] - half);
-        c1[d] = raw_cell(g, d, c[d] + half);
+        c0[d] = raw_cell(g, d, x[d] - R);
+        c1[d] = raw_cell(g, d, x[d] + R);
         continue;
       }
-      if (s.method == PorosityMethod::porous_cube && hi - lo >= 2.0 * half)
-        c[d] = std::clamp(c[d], lo + half, hi - half);
-      Vec3 a = c, b = c;
-      a[d] -= half;
-      b[d] += half;
+      Vec3 a = x, b = x;
+      a[d] -= R;
+      b[d] += R;
       c0[d] = g.cell_of(a)[d];
       c1[d] = g.cell_of(b)[d];
     }
-    const double measure = two_d ? pi * R * R : 4.0 / 3.0 * pi * R * R * R;
-    const double cube_measure = two_d ? 4.0 * half * half : 8.0 * half * half * half;
     for (int k = c0[2]; k <= c1[2]; ++k)
       for (int j = c0[1]; j <= c1[1]; ++j)
         for (int ii = c0[0]; ii <= c1[0]; ++ii) {
@@ -241,18 +248,9 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
             blo[d] = g.lo[d] + (ijk[d] - 1) * g.h[d];
             bhi[d] = blo[d] + g.h[d];
           }
-          double part = 0.0;
-          if (s.method == PorosityMethod::cell) {
-            part = two_d ? disc_rect_area(c[0], c[2], R, blo[0], bhi[0], blo[2], bhi[2])
-                         : sphere_box_volume(c, R, blo, bhi);
-          } else {
-            double ov = 1.0;
-            for (int m = 0; m < na; ++m) {
-              const int d = axes[static_cast<std::size_t>(m)];
-              ov *= std::max(0.0, std::min(bhi[d], c[d] + half) - std::max(blo[d], c[d] - half));
-            }
-            part = measure * ov / cube_measure; // [Deen07 eq. 36-37]
-          }
+          // [Deen07 eq. 33]: the exact volume (2-D: area) of the particle inside the cell.
+          const double part = two_d ? disc_rect_area(x[0], x[2], R, blo[0], bhi[0], blo[2], bhi[2])
+                                    : sphere_box_volume(x, R, blo, bhi);
           const int wi = wrap[0] ? wrap_index(ii, g.n[0]) : ii;
           const int wj = wrap[1] ? wrap_index(j, g.n[1]) : j;
           const int wk = wrap[2] ? wrap_index(k, g.n[2]) : k;
@@ -271,10 +269,12 @@ void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const Poros
       for (int i = 1; i <= g.n[0]; ++i) {
         const auto q = static_cast<std::size_t>(g.idx(i, j, k));
         const double e = g.dimension == 2 ? porosity_2d_to_3d(1.0 - solid[q]) : 1.0 - solid[q];
-        if (!(e > 0.0))
-          throw InstabilityError("porosity " + std::to_string(e) + " <= 0 in gas cell (" +
-                                 std::to_string(i) + ", " + std::to_string(j) + ", " +
-                                 std::to_string(k) + "): overlapping particles");
+        if (!(e >= min_porosity))
+          throw InstabilityError(
+              "porosity " + std::to_string(e) + " (no gas) in gas cell (" + std::to_string(i) +
+              ", " + std::to_string(j) + ", " + std::to_string(k) +
+              "): overlapping particles, or gas cells smaller than the particles (use larger "
+              "cells or coupling.porosity = \"porous_cube\")");
         eps[q] = e;
       }
   // Periodic axes: the ghost cells hold the images (ghost 0 = cell n, ghost n + 1 = cell 1), as

@@ -6,9 +6,11 @@
 //    [Hoomans96 eq. 49]: eps_3D = 1 - 2/sqrt(pi sqrt 3) (1 - eps_2D)^(3/2).
 //  - porous cube [Deen07 eq. 34-37]: particle i is a cube of side a d_i centred on it (a >=
 //    (pi/6)^(1/3) [eq. 35], typically 3-5) with solid fraction pi/(6 a^3) [eq. 36]; the cell gets
-//    its overlap with the cube times that fraction [eq. 37]. The cube is shifted to lie inside
-//    the domain (so no solid volume is lost at walls). In 2-D the square of side a d carries the
-//    disc area pi d^2/4, then [Hoomans96 eq. 49].
+//    its overlap with the cube times that fraction [eq. 37]: the weights of cube_mapping.hpp,
+//    which also map the gas to the particle [eq. 38-39]. The cube is shifted to lie inside
+//    the domain (so no solid volume is lost at walls; a domain narrower than the cube gets the
+//    whole volume in its width). In 2-D the square of side a d carries the disc area pi d^2/4,
+//    then [Hoomans96 eq. 49].
 // Solid outside the domain (cell method: a sphere overlapping a wall) is not counted. Along a
 // periodic axis nothing is outside: the part of a sphere (or cube) beyond the periodic face is
 // counted in the image cells at the other end.
@@ -39,6 +41,10 @@ double sphere_box_volume(const Vec3& c, double R, const std::array<double, 3>& l
 /// Area of the disc (centre (cx, cz), radius R) inside the rectangle [x0, x1] x [z0, z1], m^2.
 double disc_rect_area(double cx, double cz, double R, double x0, double x1, double z0, double z1);
 
+/// A cell with less gas than this is all solid to round-off (a cell inside a sphere: the
+/// cell method on cells smaller than the particles; or overlapping particles): an error.
+inline constexpr double min_porosity = 1e-6;
+
 /// [Hoomans96 eq. 49]: 3-D porosity from the 2-D (area) porosity of a disc layer.
 double porosity_2d_to_3d(double eps_2d);
 
@@ -50,7 +56,7 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
 
 /// Porosity of every interior cell into eps (size = g.size()); ghosts along periodic axes get
 /// the images, other ghosts are untouched. 2-D grids use [Hoomans96 eq. 49]. Throws
-/// InstabilityError if a cell's porosity is <= 0.
+/// InstabilityError if a cell's porosity is below min_porosity.
 void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
                       std::vector<double>& eps, const std::array<bool, 3>& periodic);
 

@@ -1,0 +1,44 @@
+// The kernel that maps gas quantities to a particle and the particle's force back to the gas
+// [Deen07 §3.5], chosen with the porosity method (coupling.porosity):
+//  - "cell": the trilinear stencils of the 4/8 nearest nodes [Hoomans96 eq. 40-41]
+//    (interpolation.hpp);
+//  - "porous_cube": the particle's porous cube of side a d [Deen07 eq. 38-39]
+//    (cube_mapping.hpp), the same cube that gives the porosity [Deen07 eq. 37]. The gas state a
+//    particle sees is the cube average of the control volumes it overlaps, and its force goes
+//    back with the same weights, so the exchange conserves momentum as with the stencils.
+// Both resolve periodic images (interpolation.hpp). An object holds scratch space: use one per
+// thread.
+#pragma once
+#include "core/coupling_settings.hpp"
+#include "core/vec3.hpp"
+#include "coupling/cube_mapping.hpp"
+#include "gas/gas_solver.hpp"
+#include <array>
+
+namespace fluidem::coupling {
+
+class ParticleMapping {
+public:
+  ParticleMapping(const gas::GasSolver& gs, const PorositySettings& porosity);
+
+  /// True if the porous cube is the kernel.
+  bool cube() const { return cube_; }
+  /// Interstitial gas velocity (m/s) and pressure gradient (Pa/m) at a particle of diameter d at
+  /// x: per component d, the values on its faces and the face gradients (p_+ - p_-)/h_d.
+  void velocity_and_pressure_gradient(const Vec3& x, double d, Vec3& u, Vec3& grad_p);
+  /// Porosity and gas density at the particle (cell-centre control volumes).
+  void porosity_and_density(const Vec3& x, double d, double& eps, double& rho);
+  /// Weights of the faces of velocity component `dir` for a particle of diameter d at x, with
+  /// periodic ghost/copy nodes replaced by their images (for the deposit of forces). Valid until
+  /// the next call.
+  const CubeWeights& face_weights(int dir, const Vec3& x, double d);
+
+private:
+  const gas::GasSolver& gs_;
+  bool cube_ = false;
+  double factor_ = 0.0; ///< cube side / particle diameter, a [Deen07 eq. 34]
+  std::array<bool, 3> periodic_{};
+  CubeWeights w_;
+};
+
+} // namespace fluidem::coupling
