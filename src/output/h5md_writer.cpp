@@ -4,6 +4,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <stdexcept>
@@ -93,12 +94,23 @@ struct H5mdWriter::Impl {
   Handle step; // shared (hard-linked) by every time-dependent element
   Handle time;
   Handle value[kCount];
-  Handle mem_vector;          // [N][3]
-  Handle mem_scalar;          // [N]
-  Handle mem_one;             // [1]
-  std::vector<double> buffer; // interleaved xyz, reused every frame
+  Handle mem_vector;              // [N][3]
+  Handle mem_scalar;              // [N]
+  Handle mem_one;                 // [1]
+  std::vector<double> buffer;     // interleaved xyz, reused every frame
+  std::vector<double> kept_times; // resume only
 
   void append_value(Element e, const void* data, hid_t mem_space);
+  void init_memory() {
+    const Builder b{path};
+    const hsize_t vec_dims[2] = {std::max<hsize_t>(n, 1), 3};
+    const hsize_t scalar_dims[1] = {std::max<hsize_t>(n, 1)};
+    const hsize_t one_dims[1] = {1};
+    mem_vector = b.simple_space(2, vec_dims);
+    mem_scalar = b.simple_space(1, scalar_dims);
+    mem_one = b.simple_space(1, one_dims);
+    buffer.resize(3 * n);
+  }
   herr_t close_all() {
     herr_t status = 0;
     for (Handle* h : {&mem_one, &mem_scalar, &mem_vector}) status = std::min(status, h->reset());
@@ -223,14 +235,113 @@ H5mdWriter::H5mdWriter(const std::string& path, std::size_t n_particles, int dim
     if (spec.unit != nullptr) b.string_attr(m.value[e].get(), "unit", spec.unit);
   }
 
-  const hsize_t vec_dims[2] = {std::max<hsize_t>(n_particles, 1), 3};
-  const hsize_t scalar_dims[1] = {std::max<hsize_t>(n_particles, 1)};
-  const hsize_t one_dims[1] = {1};
-  m.mem_vector = b.simple_space(2, vec_dims);
-  m.mem_scalar = b.simple_space(1, scalar_dims);
-  m.mem_one = b.simple_space(1, one_dims);
-  m.buffer.resize(3 * n_particles);
+  m.init_memory();
   flush();
+}
+
+H5mdWriter::H5mdWriter() : impl_(std::make_unique<Impl>()) {}
+
+H5mdWriter H5mdWriter::resume(const std::string& path, double t_keep, std::size_t n_particles,
+                              int dimension, const H5mdBox& box) {
+  const std::string who = "H5mdWriter::resume('" + path + "')";
+  if (std::isnan(t_keep)) throw std::invalid_argument(who + ": t_keep is NaN");
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  H5mdWriter w;
+  Impl& m = *w.impl_;
+  m.path = path;
+  m.n = n_particles;
+  const auto mismatch = [&](const std::string& what) {
+    throw std::runtime_error(who + ": the file does not match the run: " + what);
+  };
+
+  m.file = hdf5::open_existing(path, who);
+  const hid_t f = m.file.get();
+  { // dimension
+    Handle parameters = hdf5::open_group(f, "parameters", path);
+    Handle attr = hdf5::open_attr(parameters.get(), "dimension", path);
+    std::int32_t dim = 0;
+    check(H5Aread(attr.get(), H5T_NATIVE_INT32, &dim), path, "read attribute",
+          "/parameters dimension");
+    if (dim != dimension)
+      mismatch("dimension " + std::to_string(dim) + " in the file, " + std::to_string(dimension) +
+               " in the run");
+  }
+  Handle all = hdf5::open_group(f, "/particles/all", path);
+  { // box
+    Handle box_group = hdf5::open_group(all.get(), "box", path);
+    const auto read3 = [&](const char* name) {
+      Handle d = hdf5::open_dataset(box_group.get(), name, path);
+      const std::string full = std::string("/particles/all/box/") + name;
+      if (hdf5::extent(d.get(), path, full) != std::vector<hsize_t>{3})
+        mismatch(full + " does not hold 3 values");
+      return hdf5::read_all<double>(d.get(), H5T_NATIVE_DOUBLE, 3, path, full);
+    };
+    const std::vector<double> edges = read3("edges");
+    const std::vector<double> offset = read3("offset");
+    const std::vector<std::string> boundary =
+        hdf5::read_string_array_attr(box_group.get(), "boundary", path);
+    static const char* const axis = "xyz";
+    for (std::size_t d = 0; d < 3; ++d) {
+      const std::string a(1, axis[d]);
+      if (!hdf5::same_double(offset[d], box.lo[d]))
+        mismatch("box lower corner along " + a + ": " + std::to_string(offset[d]) +
+                 " in the file, " + std::to_string(box.lo[d]) + " in the run");
+      const double run_edge = box.hi[d] - box.lo[d];
+      if (!hdf5::same_double(edges[d], run_edge))
+        mismatch("box size along " + a + ": " + std::to_string(edges[d]) + " in the file, " +
+                 std::to_string(run_edge) + " in the run");
+      const std::string run_boundary = box.periodic[d] ? "periodic" : "none";
+      if (boundary.size() != 3 || boundary[d] != run_boundary)
+        mismatch("box boundary along " + a + ": '" + (boundary.size() == 3 ? boundary[d] : "?") +
+                 "' in the file, '" + run_boundary + "' in the run");
+    }
+  }
+  { // particle count
+    Handle index = hdf5::open_dataset(all.get(), "vertex_index", path);
+    const std::vector<hsize_t> dims = hdf5::extent(index.get(), path, kH5mdVertexIndexPath);
+    if (dims.size() != 1 || dims[0] != n_particles)
+      mismatch(std::to_string(dims.empty() ? 0 : dims[0]) + " particles in the file, " +
+               std::to_string(n_particles) + " in the run");
+  }
+
+  m.frames_attr = hdf5::open_attr(all.get(), "frames", path);
+  m.step = hdf5::open_dataset(all.get(), "position/step", path);
+  m.time = hdf5::open_dataset(all.get(), "position/time", path);
+  const std::vector<hsize_t> step_dims =
+      hdf5::extent(m.step.get(), path, "/particles/all/position/step");
+  const std::vector<hsize_t> time_dims =
+      hdf5::extent(m.time.get(), path, "/particles/all/position/time");
+  if (step_dims.size() != 1 || time_dims.size() != 1)
+    mismatch("/particles/all/position/step and time must be 1-D");
+  hsize_t complete = std::min(step_dims[0], time_dims[0]);
+  for (std::size_t e = 0; e < kCount; ++e) {
+    const ElementSpec& spec = kElements[e];
+    m.value[e] = hdf5::open_dataset(all.get(), std::string(spec.name) + "/value", path);
+    const std::vector<hsize_t> dims = hdf5::extent(m.value[e].get(), path, spec.value_path);
+    const std::vector<hsize_t> inner = spec.components == 3 ? std::vector<hsize_t>{n_particles, 3}
+                                                            : std::vector<hsize_t>{n_particles};
+    if (dims.size() != inner.size() + 1 ||
+        !std::equal(inner.begin(), inner.end(), dims.begin() + 1))
+      mismatch(std::string(spec.value_path) + " does not hold " + std::to_string(n_particles) +
+               " particles per frame");
+    complete = std::min(complete, dims[0]);
+  }
+
+  const std::vector<double> times = hdf5::read_all<double>(
+      m.time.get(), H5T_NATIVE_DOUBLE, time_dims[0], path, "/particles/all/position/time");
+  const hsize_t keep = hdf5::frames_to_keep(times, complete, t_keep);
+  hdf5::shrink_frames(m.step.get(), keep, path, "/particles/all/position/step");
+  hdf5::shrink_frames(m.time.get(), keep, path, "/particles/all/position/time");
+  for (std::size_t e = 0; e < kCount; ++e)
+    hdf5::shrink_frames(m.value[e].get(), keep, path, kElements[e].value_path);
+  m.frames = keep;
+  const std::int64_t frames64 = static_cast<std::int64_t>(keep);
+  check(H5Awrite(m.frames_attr.get(), H5T_NATIVE_INT64, &frames64), path, "write attribute",
+        "/particles/all frames");
+  m.kept_times.assign(times.begin(), times.begin() + static_cast<std::ptrdiff_t>(keep));
+  m.init_memory();
+  w.flush();
+  return w;
 }
 
 H5mdWriter::~H5mdWriter() = default;
@@ -287,7 +398,7 @@ void H5mdWriter::flush() {
 
 void H5mdWriter::close() {
   if (!impl_ || impl_->closed) return;
-  if (impl_->close_all() < 0) fail(impl_->path, "close file", nullptr);
+  if (impl_->close_all() < 0) fail(impl_->path, "close file", {});
 }
 
 std::size_t H5mdWriter::frames() const {
@@ -299,6 +410,10 @@ std::size_t H5mdWriter::n_particles() const {
 const std::string& H5mdWriter::path() const {
   static const std::string empty;
   return impl_ ? impl_->path : empty;
+}
+const std::vector<double>& H5mdWriter::kept_times() const {
+  static const std::vector<double> empty;
+  return impl_ ? impl_->kept_times : empty;
 }
 
 } // namespace fluidem

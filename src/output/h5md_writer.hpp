@@ -21,11 +21,21 @@
 // Vectors always have 3 components; in a 2-D run the y components are zero.
 // Value datasets are chunked with an unlimited first dimension; one chunk is one frame (capped at
 // about 1 MiB). Any HDF5 failure throws std::runtime_error naming the file and the operation.
+//
+// Resume (continuing a run from a checkpoint, H5mdWriter::resume): the existing file is reopened
+// read-write, checked against the run (particle count, dimension, box), and every time-dependent
+// dataset (the shared step and time, and each element's value) is shrunk (H5Dset_extent) to the
+// leading frames whose time is <= t_keep; the frames after them (written after the checkpoint,
+// or incomplete after a crash) are dropped, and write_frame appends from there. Everything else
+// (author, creator version, vertex_index) is left as it was. The space of the dropped frames
+// stays in the file (HDF5 does not shrink files; h5repack does), but is reused by the frames
+// appended while the file remains open.
 #pragma once
 #include <array>
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "particles/particle_store.hpp"
 
@@ -48,6 +58,17 @@ public:
   H5mdWriter(const std::string& path, std::size_t n_particles, int dimension,
              const std::string& creator_version, const H5mdBox& box = {},
              const std::string& author = {});
+  /// Continue the existing H5MD file `path` (written by this class) after a restart from a
+  /// checkpoint: keep the leading frames with time <= t_keep (the caller passes the checkpoint
+  /// time plus half a time step) that are complete in every dataset, drop all later ones (also
+  /// frames cut short by a crash), and append the next write_frame after them. kept_times() then
+  /// holds the kept frames' times, for rewriting the XDMF index (write_particles_xdmf).
+  /// Errors, all std::runtime_error naming `path`: the file does not exist or is not readable
+  /// HDF5; it does not match the run (n_particles, dimension, box; the message says what differs)
+  /// or lacks part of the layout. A NaN t_keep: std::invalid_argument.
+  static H5mdWriter resume(const std::string& path, double t_keep, std::size_t n_particles,
+                           int dimension, const H5mdBox& box = {});
+
   ~H5mdWriter(); ///< closes the file; errors on this path are swallowed (call close() to see them)
   H5mdWriter(H5mdWriter&&) noexcept;
   H5mdWriter& operator=(H5mdWriter&&) noexcept;
@@ -65,8 +86,11 @@ public:
   std::size_t frames() const;
   std::size_t n_particles() const;
   const std::string& path() const;
+  /// After resume(): the times of the frames kept (frames 0..kept_times().size()-1); else empty.
+  const std::vector<double>& kept_times() const;
 
 private:
+  H5mdWriter(); // an empty writer for resume() to fill
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

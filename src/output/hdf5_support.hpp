@@ -3,6 +3,8 @@
 // Internal to the output module.
 #pragma once
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -200,6 +202,112 @@ inline void append_frame(hid_t dset, int rank, const hsize_t* inner, hsize_t fra
         "select frame in", name);
   check(H5Dwrite(dset, mem_type, mem_space, space.get(), H5P_DEFAULT, data), path, "write frame to",
         name);
+}
+
+// ---- Resume: reopen an existing file, check it, drop frames written after a checkpoint. ----
+
+// Open the existing file `path` read-write without file locking (as the writers create theirs).
+// No file, or not an HDF5 file: std::runtime_error starting with `who`.
+inline Handle open_existing(const std::string& path, const std::string& who) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw std::runtime_error(who + ": cannot resume, the file does not exist");
+  const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
+  const std::string detail = hdf5_error_detail();
+  if (is_hdf5 <= 0)
+    throw std::runtime_error(who + ": cannot resume, not a readable HDF5 file" +
+                             (detail.empty() ? std::string() : " (" + detail + ")"));
+  Handle fapl{check_id(H5Pcreate(H5P_FILE_ACCESS), path, "create property list"), H5Pclose};
+#if H5_VERS_MAJOR > 1 || (H5_VERS_MAJOR == 1 && H5_VERS_MINOR >= 13) ||                            \
+    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 12 && H5_VERS_RELEASE >= 1) ||                         \
+    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7)
+  check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
+#endif
+  return {check_id(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), path, "open file for resume"),
+          H5Fclose};
+}
+
+inline Handle open_group(hid_t parent, const std::string& name, const std::string& path) {
+  return {check_id(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), path, "open group", name),
+          H5Gclose};
+}
+
+inline Handle open_dataset(hid_t parent, const std::string& name, const std::string& path) {
+  return {check_id(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), path, "open dataset", name),
+          H5Dclose};
+}
+
+inline Handle open_attr(hid_t obj, const std::string& name, const std::string& path) {
+  return {check_id(H5Aopen(obj, name.c_str(), H5P_DEFAULT), path, "open attribute", name),
+          H5Aclose};
+}
+
+// The current dimensions of a dataset.
+inline std::vector<hsize_t> extent(hid_t dset, const std::string& path, const std::string& name) {
+  Handle space{check_id(H5Dget_space(dset), path, "get dataspace of", name), H5Sclose};
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) fail(path, "get rank of", name);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  if (rank > 0 && H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) < 0)
+    fail(path, "get dimensions of", name);
+  return dims;
+}
+
+// The whole of a 1-D (or, with `n` set, any) dataset converted to `mem_type`.
+template <class T>
+std::vector<T> read_all(hid_t dset, hid_t mem_type, std::size_t n, const std::string& path,
+                        const std::string& name) {
+  std::vector<T> out(n);
+  if (n > 0)
+    check(H5Dread(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), path, "read dataset",
+          name);
+  return out;
+}
+
+// A fixed-length string array attribute (as Builder::string_array_attr writes it).
+inline std::vector<std::string> read_string_array_attr(hid_t obj, const char* name,
+                                                       const std::string& path) {
+  Handle attr = open_attr(obj, name, path);
+  Handle type{check_id(H5Aget_type(attr.get()), path, "get type of attribute", name), H5Tclose};
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) != 0)
+    throw std::runtime_error("'" + path + "': attribute '" + name +
+                             "' is not a fixed-length string array");
+  const std::size_t width = H5Tget_size(type.get());
+  Handle space{check_id(H5Aget_space(attr.get()), path, "get dataspace of attribute", name),
+               H5Sclose};
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (count < 0 || width == 0) fail(path, "get size of attribute", name);
+  std::vector<char> buffer(width * static_cast<std::size_t>(count) + 1, '\0');
+  check(H5Aread(attr.get(), type.get(), buffer.data()), path, "read attribute", name);
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
+    const char* s = buffer.data() + i * width;
+    out.emplace_back(s, std::find(s, s + width, '\0'));
+  }
+  return out;
+}
+
+// Shrink the frame axis (the first) of `dset` to `frames` (chunked datasets only; the chunks past
+// the new end are freed, a partly cut chunk keeps its allocation).
+inline void shrink_frames(hid_t dset, hsize_t frames, const std::string& path,
+                          const std::string& name) {
+  std::vector<hsize_t> dims = extent(dset, path, name);
+  if (dims.empty() || dims[0] == frames) return;
+  dims[0] = frames;
+  check(H5Dset_extent(dset, dims.data()), path, "shrink dataset", name);
+}
+
+// How many leading frames to keep on resume: those with time <= t_keep, and no more than
+// `complete` (the frames that every time-dependent dataset of the file holds).
+inline hsize_t frames_to_keep(const std::vector<double>& times, hsize_t complete, double t_keep) {
+  hsize_t k = 0;
+  while (k < complete && k < times.size() && times[k] <= t_keep) ++k;
+  return k;
+}
+
+// a == b up to rounding (for grid and box geometry written as doubles and read back).
+inline bool same_double(double a, double b) {
+  return std::fabs(a - b) <= 1e-12 * std::max({1e-300, std::fabs(a), std::fabs(b)}) || (a == b);
 }
 
 } // namespace fluidem::hdf5
