@@ -85,10 +85,29 @@ struct FieldsWriter::Impl {
   Handle time;
   std::vector<Handle> scalars;
   std::vector<Handle> vectors;
-  Handle mem_scalar;          // [1][nz][ny][nx]
-  Handle mem_vector;          // [1][nz][ny][nx][3]
-  Handle mem_one;             // [1]
-  std::vector<double> buffer; // interleaved xyz, reused every frame
+  Handle mem_scalar;              // [1][nz][ny][nx]
+  Handle mem_vector;              // [1][nz][ny][nx][3]
+  Handle mem_one;                 // [1]
+  std::vector<double> buffer;     // interleaved xyz, reused every frame
+  std::vector<double> kept_times; // resume only
+
+  void init_memory() {
+    const Builder b{path};
+    const hsize_t nx = static_cast<hsize_t>(grid.cells[0]);
+    const hsize_t ny = static_cast<hsize_t>(grid.cells[1]);
+    const hsize_t nz = static_cast<hsize_t>(grid.cells[2]);
+    inner_scalar[0] = inner_vector[0] = nz;
+    inner_scalar[1] = inner_vector[1] = ny;
+    inner_scalar[2] = inner_vector[2] = nx;
+    // Memory spaces of the frame's own shape: HDF5 then copies whole rows, not element by element.
+    const hsize_t scalar_dims[4] = {1, nz, ny, nx};
+    const hsize_t vector_dims[5] = {1, nz, ny, nx, 3};
+    const hsize_t one_dims[1] = {1};
+    mem_scalar = b.simple_space(4, scalar_dims);
+    mem_vector = b.simple_space(5, vector_dims);
+    mem_one = b.simple_space(1, one_dims);
+    if (!vector_names.empty()) buffer.resize(3 * nx * ny * nz);
+  }
 
   herr_t close_all() {
     herr_t status = 0;
@@ -121,7 +140,6 @@ FieldsWriter::FieldsWriter(const std::string& path, const FieldGrid& grid,
   const hsize_t nx = static_cast<hsize_t>(grid.cells[0]);
   const hsize_t ny = static_cast<hsize_t>(grid.cells[1]);
   const hsize_t nz = static_cast<hsize_t>(grid.cells[2]);
-  const hsize_t n = nx * ny * nz;
   m.inner_scalar[0] = m.inner_vector[0] = nz;
   m.inner_scalar[1] = m.inner_vector[1] = ny;
   m.inner_scalar[2] = m.inner_vector[2] = nx;
@@ -174,15 +192,123 @@ FieldsWriter::FieldsWriter(const std::string& path, const FieldGrid& grid,
         b.extendible(fields.get(), name.c_str(), H5T_IEEE_F64LE, 5, m.inner_vector, chunk));
   }
 
-  // Memory spaces of the frame's own shape: HDF5 then copies whole rows, not element by element.
-  const hsize_t scalar_dims[4] = {1, nz, ny, nx};
-  const hsize_t vector_dims[5] = {1, nz, ny, nx, 3};
-  const hsize_t one_dims[1] = {1};
-  m.mem_scalar = b.simple_space(4, scalar_dims);
-  m.mem_vector = b.simple_space(5, vector_dims);
-  m.mem_one = b.simple_space(1, one_dims);
-  if (!m.vector_names.empty()) m.buffer.resize(3 * n);
+  m.init_memory();
   flush();
+}
+
+FieldsWriter::FieldsWriter() : impl_(std::make_unique<Impl>()) {}
+
+FieldsWriter FieldsWriter::resume(const std::string& path, double t_keep, const FieldGrid& grid,
+                                  std::vector<std::string> scalar_names,
+                                  std::vector<std::string> vector_names) {
+  const std::string who = "FieldsWriter::resume('" + path + "')";
+  check_field_grid(grid, who);
+  check_field_names(scalar_names, vector_names, who);
+  if (std::isnan(t_keep)) throw std::invalid_argument(who + ": t_keep is NaN");
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  FieldsWriter w;
+  Impl& m = *w.impl_;
+  m.path = path;
+  m.grid = grid;
+  m.scalar_names = std::move(scalar_names);
+  m.vector_names = std::move(vector_names);
+  const auto mismatch = [&](const std::string& what) {
+    throw std::runtime_error(who + ": the file does not match the run: " + what);
+  };
+  const auto join = [](const std::vector<std::string>& names) {
+    std::string s;
+    for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+    return "[" + s + "]";
+  };
+
+  m.file = hdf5::open_existing(path, who);
+  const hid_t f = m.file.get();
+  { // grid
+    Handle g = hdf5::open_group(f, "grid", path);
+    const auto read3 = [&](const char* name, hid_t mem_type, auto* out) {
+      Handle d = hdf5::open_dataset(g.get(), name, path);
+      const std::string full = std::string("/grid/") + name;
+      if (hdf5::extent(d.get(), path, full) != std::vector<hsize_t>{3})
+        mismatch(full + " does not hold 3 values");
+      check(H5Dread(d.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out), path, "read dataset",
+            full);
+    };
+    std::int32_t cells[3] = {0, 0, 0};
+    double lo[3] = {0, 0, 0}, spacing[3] = {0, 0, 0};
+    read3("cells", H5T_NATIVE_INT32, cells);
+    read3("lo", H5T_NATIVE_DOUBLE, lo);
+    read3("spacing", H5T_NATIVE_DOUBLE, spacing);
+    static const char* const axis = "xyz";
+    for (int d = 0; d < 3; ++d) {
+      const std::string a(1, axis[d]);
+      if (cells[d] != grid.cells[d])
+        mismatch("grid cells along " + a + ": " + std::to_string(cells[d]) + " in the file, " +
+                 std::to_string(grid.cells[d]) + " in the run");
+      if (!hdf5::same_double(lo[d], grid.lo[d]))
+        mismatch("grid lower corner along " + a + ": " + std::to_string(lo[d]) + " in the file, " +
+                 std::to_string(grid.lo[d]) + " in the run");
+      if (!hdf5::same_double(spacing[d], grid.spacing[d]))
+        mismatch("grid spacing along " + a + ": " + std::to_string(spacing[d]) + " in the file, " +
+                 std::to_string(grid.spacing[d]) + " in the run");
+    }
+  }
+  Handle fields = hdf5::open_group(f, "fields", path);
+  { // names, in order (an absent attribute means none)
+    const auto names_in_file = [&](const char* attr) {
+      const htri_t exists = H5Aexists(fields.get(), attr);
+      if (exists < 0) hdf5::fail(path, "look up attribute", std::string("/fields ") + attr);
+      return exists > 0 ? hdf5::read_string_array_attr(fields.get(), attr, path)
+                        : std::vector<std::string>{};
+    };
+    const std::vector<std::string> scalars = names_in_file("scalars");
+    const std::vector<std::string> vectors = names_in_file("vectors");
+    if (scalars != m.scalar_names)
+      mismatch("scalar fields " + join(scalars) + " in the file, " + join(m.scalar_names) +
+               " in the run");
+    if (vectors != m.vector_names)
+      mismatch("vector fields " + join(vectors) + " in the file, " + join(m.vector_names) +
+               " in the run");
+  }
+  m.init_memory();
+
+  m.frames_attr = hdf5::open_attr(fields.get(), "frames", path);
+  m.step = hdf5::open_dataset(fields.get(), "step", path);
+  m.time = hdf5::open_dataset(fields.get(), "time", path);
+  const std::vector<hsize_t> step_dims = hdf5::extent(m.step.get(), path, "/fields/step");
+  const std::vector<hsize_t> time_dims = hdf5::extent(m.time.get(), path, "/fields/time");
+  if (step_dims.size() != 1 || time_dims.size() != 1)
+    mismatch("/fields/step and /fields/time must be 1-D");
+  hsize_t complete = std::min(step_dims[0], time_dims[0]);
+  const auto open_field = [&](const std::string& name, const hsize_t* inner, std::size_t rank) {
+    const std::string full = "/fields/" + name;
+    Handle d = hdf5::open_dataset(fields.get(), name, path);
+    const std::vector<hsize_t> dims = hdf5::extent(d.get(), path, full);
+    if (dims.size() != rank + 1 || !std::equal(inner, inner + rank, dims.begin() + 1))
+      mismatch(full + " does not have the grid's shape");
+    complete = std::min(complete, dims[0]);
+    return d;
+  };
+  for (const std::string& name : m.scalar_names)
+    m.scalars.push_back(open_field(name, m.inner_scalar, 3));
+  for (const std::string& name : m.vector_names)
+    m.vectors.push_back(open_field(name, m.inner_vector, 4));
+
+  const std::vector<double> times =
+      hdf5::read_all<double>(m.time.get(), H5T_NATIVE_DOUBLE, time_dims[0], path, "/fields/time");
+  const hsize_t keep = hdf5::frames_to_keep(times, complete, t_keep);
+  hdf5::shrink_frames(m.step.get(), keep, path, "/fields/step");
+  hdf5::shrink_frames(m.time.get(), keep, path, "/fields/time");
+  for (std::size_t s = 0; s < m.scalars.size(); ++s)
+    hdf5::shrink_frames(m.scalars[s].get(), keep, path, "/fields/" + m.scalar_names[s]);
+  for (std::size_t v = 0; v < m.vectors.size(); ++v)
+    hdf5::shrink_frames(m.vectors[v].get(), keep, path, "/fields/" + m.vector_names[v]);
+  m.frames = keep;
+  const std::int64_t frames64 = static_cast<std::int64_t>(keep);
+  check(H5Awrite(m.frames_attr.get(), H5T_NATIVE_INT64, &frames64), path, "write attribute",
+        "/fields frames");
+  m.kept_times.assign(times.begin(), times.begin() + static_cast<std::ptrdiff_t>(keep));
+  w.flush();
+  return w;
 }
 
 FieldsWriter::~FieldsWriter() = default;
@@ -272,6 +398,10 @@ const std::vector<std::string>& FieldsWriter::vector_names() const {
 const std::string& FieldsWriter::path() const {
   static const std::string empty;
   return impl_ ? impl_->path : empty;
+}
+const std::vector<double>& FieldsWriter::kept_times() const {
+  static const std::vector<double> empty;
+  return impl_ ? impl_->kept_times : empty;
 }
 
 } // namespace fluidem

@@ -21,6 +21,13 @@
 // Field datasets are chunked with an unlimited first dimension and no compression (write speed
 // first); a chunk is one frame, or a slab of whole x-y planes of it when a frame exceeds 16 MiB.
 // Any HDF5 failure throws std::runtime_error naming the file and the operation.
+//
+// Resume (continuing a run from a checkpoint, FieldsWriter::resume): the existing file is reopened
+// read-write, checked against the run (grid cells, lo, spacing; scalar and vector names in
+// order), and /fields/step, /fields/time and every field dataset are shrunk (H5Dset_extent) to the
+// leading frames whose time is <= t_keep; later frames (written after the checkpoint, or cut short
+// by a crash) are dropped and write_frame appends from there. The creator/version attributes are
+// left as they were. The space of dropped frames stays in the file (HDF5 does not shrink files).
 #pragma once
 #include <array>
 #include <cstddef>
@@ -58,6 +65,18 @@ public:
   FieldsWriter(const std::string& path, const FieldGrid& grid,
                std::vector<std::string> scalar_names, std::vector<std::string> vector_names,
                const std::string& program_version);
+  /// Continue the existing fields file `path` (written by this class) after a restart from a
+  /// checkpoint: keep the leading frames with time <= t_keep (the caller passes the checkpoint
+  /// time plus half a time step) that are complete in every dataset, drop all later ones, and
+  /// append the next write_frame after them. kept_times() then holds the kept frames' times, for
+  /// rewriting the XDMF index (write_fields_xdmf). Bad grid or names, NaN t_keep:
+  /// std::invalid_argument. std::runtime_error naming `path`: the file does not exist or is not
+  /// readable HDF5; it does not match the run (grid, field names; the message says what
+  /// differs) or lacks part of the layout.
+  static FieldsWriter resume(const std::string& path, double t_keep, const FieldGrid& grid,
+                             std::vector<std::string> scalar_names,
+                             std::vector<std::string> vector_names);
+
   ~FieldsWriter(); ///< closes the file; errors on this path are swallowed (call close() to see)
   FieldsWriter(FieldsWriter&&) noexcept;
   FieldsWriter& operator=(FieldsWriter&&) noexcept;
@@ -80,8 +99,11 @@ public:
   const std::vector<std::string>& scalar_names() const;
   const std::vector<std::string>& vector_names() const;
   const std::string& path() const;
+  /// After resume(): the times of the frames kept (frames 0..kept_times().size()-1); else empty.
+  const std::vector<double>& kept_times() const;
 
 private:
+  FieldsWriter(); // an empty writer for resume() to fill
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
