@@ -2,18 +2,23 @@
 
 #include <omp.h>
 
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "app/progress.hpp"
+#include "app/signals.hpp"
 #include "core/error.hpp"
 #include "fluidem_version.hpp"
 #include "integrate/simulation.hpp"
 #include "io/case_reader.hpp"
+#include "output/checkpoint_file.hpp"
 
 namespace fluidem {
 
@@ -81,6 +86,61 @@ std::string default_out_dir(const std::string& case_path) {
   return (std::filesystem::path("out") / std::filesystem::path(case_path).stem()).string();
 }
 
+/// The files a run writes to its output directory.
+const char* const kResultFiles[] = {"case.resolved.toml", "particles.h5",  "particles.xmf",
+                                    "series.csv",         "fields.h5",     "fields.xmf",
+                                    "probes.csv",         "checkpoint.h5", "checkpoint.prev.h5"};
+
+/// Before a run: the directory must not hold another run's results (unless `force`: they are
+/// removed), must be writable, and should have room for the outputs (InputError otherwise).
+void prepare_out_dir(const std::string& out_dir, bool force, bool resuming, const Simulation& sim) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!resuming) {
+    std::vector<std::string> found;
+    for (const char* f : kResultFiles)
+      if (fs::exists(fs::path(out_dir) / f, ec)) found.push_back(f);
+    if (!found.empty() && !force)
+      throw InputError(fmt::format(
+          "output directory '{}' holds the results of another run ({}); use --force to "
+          "overwrite them, --restart {}/checkpoint.h5 to continue that run, or --out elsewhere",
+          out_dir, fmt::join(found, ", "), out_dir));
+    for (const std::string& f : found) fs::remove(fs::path(out_dir) / f, ec);
+  }
+  fs::create_directories(out_dir, ec);
+  if (ec)
+    throw InputError(
+        fmt::format("cannot create the output directory '{}': {}", out_dir, ec.message()));
+  {
+    const fs::path probe = fs::path(out_dir) / ".fluidem-write-test";
+    std::FILE* f = std::fopen(probe.c_str(), "wb");
+    const bool ok = f != nullptr && std::fputs("x", f) >= 0 && std::fclose(f) == 0;
+    if (!ok)
+      throw InputError(fmt::format("cannot write to the output directory '{}': {}", out_dir,
+                                   std::strerror(errno)));
+    fs::remove(probe, ec);
+  }
+  // Room for the outputs: particle frames (about 14 values per particle), gas field frames
+  // (8 values per cell), the checkpoint twice (current and previous), with a margin of 2.
+  const CaseSpec& spec = sim.spec();
+  const double remaining = std::max(0.0, spec.simulation.end_time - sim.time());
+  const double frames = std::floor(remaining / spec.output.frame_interval) + 2.0;
+  const double n = static_cast<double>(sim.particles().size());
+  double cells = 0.0;
+  if (sim.gas()) {
+    const auto& g = sim.gas()->solver().grid();
+    cells = static_cast<double>(g.size());
+  }
+  const double need = 2.0 * (frames * (14.0 * 8.0 * n + 8.0 * 8.0 * cells) +
+                             2.0 * (26.0 * 8.0 * n + 10.0 * 8.0 * cells));
+  const fs::space_info space = fs::space(out_dir, ec);
+  if (!ec && static_cast<double>(space.available) < need)
+    throw InputError(fmt::format("not enough disk space in '{}': the run needs about {:.3g} MB "
+                                 "for its outputs, {:.3g} MB are free (write fewer frames with "
+                                 "output.frame_interval, or use --out elsewhere)",
+                                 out_dir, need / 1e6, static_cast<double>(space.available) / 1e6));
+}
+
 } // namespace
 
 int run_cli(int argc, char** argv) {
@@ -90,11 +150,19 @@ int run_cli(int argc, char** argv) {
   app.set_version_flag("--version", std::string("fluidem ") + kVersion);
   app.require_subcommand(1);
 
-  std::string case_path, out_dir;
+  std::string case_path, out_dir, restart_path;
   std::vector<std::string> overrides;
   int threads = 0;
+  bool force = false;
   auto* run = app.add_subcommand("run", "Run a case and write its results to OUT");
-  run->add_option("case", case_path, "Case file (TOML)")->required();
+  auto* case_opt = run->add_option("case", case_path, "Case file (TOML)");
+  auto* restart_opt =
+      run->add_option("--restart", restart_path,
+                      "Continue the run saved in this checkpoint (OUT/checkpoint.h5) instead of "
+                      "starting a case; --set may then change only simulation.end_time and "
+                      "output.*");
+  case_opt->excludes(restart_opt);
+  run->add_flag("--force", force, "Overwrite the results of another run in the output directory");
   run->add_option("--out,-o", out_dir, "Output directory (default: out/<case name>)");
   run->add_option("--set", overrides,
                   "Override a case value: section.key=value (repeatable), e.g. "
@@ -110,6 +178,8 @@ int run_cli(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+    if (*run && case_path.empty() && restart_path.empty())
+      throw CLI::RequiredError("a case file (or --restart CHECKPOINT)");
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
@@ -126,21 +196,55 @@ int run_cli(int argc, char** argv) {
       return 0;
     }
     if (threads > 0) omp_set_num_threads(threads);
-    if (out_dir.empty()) out_dir = default_out_dir(case_path);
-    const CaseSpec spec = read_case_file(case_path, overrides);
-    Simulation sim(spec);
+    std::unique_ptr<Simulation> sim_owner;
+    bool resuming = false;
+    if (!restart_path.empty()) {
+      const std::string ckpt_dir = std::filesystem::path(restart_path).parent_path().string();
+      if (out_dir.empty()) out_dir = ckpt_dir.empty() ? "." : ckpt_dir;
+      std::error_code ec;
+      resuming = std::filesystem::equivalent(out_dir, ckpt_dir.empty() ? "." : ckpt_dir, ec);
+      try {
+        sim_owner = Simulation::restart(restart_path, overrides);
+      } catch (const CheckpointError& e) {
+        throw InputError(e.what());
+      }
+    } else {
+      if (out_dir.empty()) out_dir = default_out_dir(case_path);
+      sim_owner = std::make_unique<Simulation>(read_case_file(case_path, overrides));
+    }
+    Simulation& sim = *sim_owner;
+    prepare_out_dir(out_dir, force, resuming, sim);
     print_report(sim.spec(), sim.report());
     fmt::print("threads            {}\noutput             {}\n", omp_get_max_threads(), out_dir);
+    if (!restart_path.empty())
+      fmt::print("restart            from {} at t = {:.6g} s (step {}){}\n", restart_path,
+                 sim.time(), sim.step_count(),
+                 resuming ? ", appending to the outputs there" : ", new output files");
     std::fflush(stdout);
     ProgressDisplay progress(stdout);
     RunSummary s;
+    RunOptions ro;
+    ro.resume = resuming;
+    ro.stop = &install_stop_handlers();
     try {
-      s = sim.run(out_dir, [&](const RunStatus& st) { progress(st); });
+      s = sim.run(
+          out_dir, [&](const RunStatus& st) { progress(st); }, ro);
     } catch (const InstabilityError&) {
+      remove_stop_handlers();
       progress.finish();
       throw;
     }
+    remove_stop_handlers();
     progress.finish();
+    if (s.stopped_by_signal != 0) {
+      const int sig = s.stopped_by_signal;
+      fmt::print(stderr,
+                 "stopped by {} at t = {:.6g} s (step {}): checkpoint {}, outputs flushed in "
+                 "{}\ncontinue with: fluidem run --restart {}\n",
+                 sig == SIGINT ? "SIGINT" : (sig == SIGTERM ? "SIGTERM" : "a signal"), sim.time(),
+                 sim.step_count(), s.checkpoint, out_dir, s.checkpoint);
+      return 128 + sig;
+    }
     fmt::print("done: {} steps in {:.3f} s wall, {:.4g} particle-steps/s\n", s.steps,
                s.wall_seconds, s.particle_steps_per_second);
     fmt::print("time in contacts {:.3f} s, integration {:.3f} s, neighbour lists {:.3f} s "
@@ -158,6 +262,8 @@ int run_cli(int argc, char** argv) {
                  s.bytes_per_particle, s.energy_drift);
     fmt::print("results: {}/particles.h5 (+ particles.xmf for ParaView), {}/series.csv\n", out_dir,
                out_dir);
+    fmt::print("         {} (continue with --restart and --set simulation.end_time=...)\n",
+               s.checkpoint);
     if (sim.gas())
       fmt::print("         {}/fields.h5 (+ fields.xmf){}\n", out_dir,
                  sim.spec().output.probes.empty() ? "" : fmt::format(", {}/probes.csv", out_dir));
@@ -166,8 +272,10 @@ int run_cli(int argc, char** argv) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;
   } catch (const InstabilityError& e) {
-    fmt::print(stderr, "error: {}\nthe outputs up to the last good frame are in {}\n", e.what(),
-               out_dir);
+    fmt::print(stderr,
+               "error: {}\nthe outputs up to the last good frame are in {}; the last good "
+               "checkpoint (if one was written) is {}/checkpoint.h5\n",
+               e.what(), out_dir, out_dir);
     return 3;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());

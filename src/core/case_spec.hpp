@@ -113,6 +113,8 @@ struct ProbeSpec {
 struct OutputSpec {
   double frame_interval = 0.01;   ///< s between particle (and gas field) frames
   double series_interval = 0.001; ///< s between rows of series.csv (and probes.csv)
+  /// s between checkpoints (OUT/checkpoint.h5); 0 (key absent): 10 frame intervals.
+  double checkpoint_interval = 0.0;
   std::vector<ProbeSpec> probes;  ///< pressure probes (coupled runs only)
 };
 

@@ -365,3 +365,45 @@ double GasSolver::pressure_at(const Vec3& x) const {
 }
 
 } // namespace fluidem::gas
+
+namespace fluidem::gas {
+
+GasSolver::State GasSolver::state() const {
+  State st;
+  st.u = u_;
+  st.p = p_;
+  st.eps = eps_;
+  st.eps_old = eps_old_;
+  st.rho = rho_;
+  st.last_iterations = last_iterations_;
+  st.last_mass_residual = last_mass_residual_;
+  st.last_velocity_change = last_velocity_change_;
+  st.boundary_outflow = boundary_outflow_;
+  return st;
+}
+
+void GasSolver::restore(const State& st) {
+  const std::size_t n = g_.size();
+  bool ok = st.p.size() == n && st.eps.size() == n && st.eps_old.size() == n && st.rho.size() == n;
+  for (int d = 0; d < 3; ++d) ok = ok && st.u[d].size() == n;
+  if (!ok)
+    throw InputError("gas: the restored state does not fit the grid (" + std::to_string(n) +
+                     " padded cells)");
+  u_ = st.u;
+  p_ = st.p;
+  eps_ = st.eps;
+  eps_old_ = st.eps_old;
+  rho_ = st.rho;
+  last_iterations_ = static_cast<int>(st.last_iterations);
+  last_mass_residual_ = st.last_mass_residual;
+  last_velocity_change_ = st.last_velocity_change;
+  boundary_outflow_ = st.boundary_outflow;
+}
+
+void GasSolver::reset_solver_history() {
+  pressure_solver_->set_options(pressure_solver_->options());
+  for (auto& m : momentum_solver_)
+    if (m) m->set_options(m->options());
+}
+
+} // namespace fluidem::gas

@@ -20,6 +20,7 @@
 #include "gas/gauss_seidel.hpp"
 #include "gas/pressure_solver.hpp"
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -87,6 +88,22 @@ public:
 
   /// Trilinear interpolation of the cell-centre pressure (ghost values at the boundary), Pa.
   double pressure_at(const Vec3& x) const;
+
+  /// What carries over from one flow step to the next (for checkpoints): velocities, pressure,
+  /// porosity (new and old), density and the last step's diagnostics.
+  struct State {
+    std::array<std::vector<double>, 3> u;
+    std::vector<double> p, eps, eps_old, rho;
+    std::int64_t last_iterations = 0;
+    double last_mass_residual = 0.0, last_velocity_change = 0.0, boundary_outflow = 0.0;
+  };
+  State state() const;
+  /// Restores a state() of a solver with the same settings (InputError if the sizes differ).
+  void restore(const State& s);
+  /// Drops what the linear solvers keep between solves (the reused multigrid set-ups), so that
+  /// the next flow step is solved as by a freshly made solver: a checkpoint is such a point in
+  /// the run that writes it, so that a run restarted from it repeats the same solves bitwise.
+  void reset_solver_history();
 
   int last_iterations() const { return last_iterations_; }
   /// sum over cells |mass imbalance of the step| / gas mass in the domain (dimensionless).

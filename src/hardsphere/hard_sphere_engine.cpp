@@ -319,3 +319,32 @@ std::size_t HardSphereEngine::bytes() const {
 }
 
 } // namespace fluidem
+
+namespace fluidem {
+
+HardSphereEngine::State HardSphereEngine::state() const {
+  State s;
+  s.last_collision = last_collision_;
+  s.built_x = built_x_;
+  s.built_y = built_y_;
+  s.built_z = built_z_;
+  s.counter = counter_;
+  s.list_builds = list_builds_;
+  s.stats = stats_;
+  s.list = nl_.state();
+  return s;
+}
+
+void HardSphereEngine::restore(const ParticleStore& p, const State& s) {
+  nl_.restore(p, s.list);
+  if (!s.list.x0.empty()) build_full_list(p);
+  last_collision_ = s.last_collision;
+  built_x_ = s.built_x;
+  built_y_ = s.built_y;
+  built_z_ = s.built_z;
+  counter_ = s.counter;
+  list_builds_ = s.list_builds;
+  stats_ = s.stats;
+}
+
+} // namespace fluidem

@@ -54,6 +54,19 @@ public:
   std::size_t bytes() const;
   long list_builds() const { return list_builds_; }
 
+  /// What a checkpoint keeps between flow steps: the time of each particle's last collision
+  /// (TC model), the collision counters, the neighbour list and its build positions, the
+  /// statistics.
+  struct State {
+    std::vector<double> last_collision, built_x, built_y, built_z;
+    std::vector<std::uint32_t> counter;
+    std::int64_t list_builds = 0;
+    HardSphereStats stats;
+    NeighbourList::State list;
+  };
+  State state() const;
+  void restore(const ParticleStore& p, const State& s);
+
 private:
   struct Event {
     double t;

@@ -51,6 +51,20 @@ public:
   void kick(ParticleStore& p, double dt) const;
 
   const gas::GasSolver& solver() const { return *gas_; }
+
+  /// Checkpoint state: the gas solver's and the force on each particle of the last flow step
+  /// (it acts until the next one: soft-sphere runs may be checkpointed between flow steps).
+  struct State {
+    gas::GasSolver::State gas;
+    std::array<std::vector<double>, 3> force;
+  };
+  State state() const { return {gas_->state(), force_}; }
+  void restore(const State& s) {
+    gas_->restore(s.gas);
+    force_ = s.force;
+  }
+  /// See gas::GasSolver::reset_solver_history (called when a checkpoint is written).
+  void reset_solver_history() { gas_->reset_solver_history(); }
   const coupling::ParticleGasForces& exchange() const { return f_; }
 
   /// Bottom-to-top pressure drop, Pa: mean pressure on the bottom face (along gravity) minus

@@ -74,10 +74,17 @@ double expected_overlap_ratio(const CaseSpec& spec, const ParticleStore& p, cons
 
 } // namespace
 
-Simulation::Simulation(CaseSpec spec) : spec_(std::move(spec)) {
+Simulation::Simulation(CaseSpec spec) : Simulation(std::move(spec), nullptr) {}
+
+Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std::move(spec)) {
   const bool hard = spec_.simulation.engine == Engine::HardSphere;
   if (!hard) table_ = std::make_unique<ContactTable>(spec_);
-  insert_particles(spec_, p_);
+  if (initial)
+    p_ = *initial;
+  else
+    insert_particles(spec_, p_);
+  if (!(spec_.output.checkpoint_interval > 0.0))
+    spec_.output.checkpoint_interval = 10.0 * spec_.output.frame_interval;
 
   double dmax = 0.0, mass = 0.0;
   for (std::size_t i = 0; i < p_.size(); ++i) {
@@ -290,7 +297,8 @@ void Simulation::advance(long n) {
 }
 
 RunSummary Simulation::run(const std::string& out_dir,
-                           const std::function<void(const RunStatus&)>& progress) {
+                           const std::function<void(const RunStatus&)>& progress,
+                           const RunOptions& options) {
   namespace fs = std::filesystem;
   fs::create_directories(out_dir);
   {
@@ -300,9 +308,17 @@ RunSummary Simulation::run(const std::string& out_dir,
              << write_case_toml(spec_);
     if (!resolved) throw std::runtime_error("cannot write " + out_dir + "/case.resolved.toml");
   }
+  const std::string checkpoint_path = (fs::path(out_dir) / "checkpoint.h5").string();
+  // Outputs are written up to (and including) the checkpoint's step before it is taken: a
+  // resumed run keeps what the old one wrote up to half a step after the checkpoint's time.
+  const double t_keep = time_ + 0.5 * dt_;
   H5mdBox hbox{spec_.domain.lo, spec_.domain.hi, spec_.domain.periodic};
-  H5mdWriter h5((fs::path(out_dir) / "particles.h5").string(), p_.size(),
-                spec_.simulation.dimension, kVersion, hbox);
+  const std::string h5_path = (fs::path(out_dir) / "particles.h5").string();
+  std::unique_ptr<H5mdWriter> h5 =
+      options.resume ? std::make_unique<H5mdWriter>(H5mdWriter::resume(
+                           h5_path, t_keep, p_.size(), spec_.simulation.dimension, hbox))
+                     : std::make_unique<H5mdWriter>(h5_path, p_.size(), spec_.simulation.dimension,
+                                                    kVersion, hbox);
   std::vector<std::string> columns{"time",
                                    "e_kin",
                                    "e_rot",
@@ -324,14 +340,18 @@ RunSummary Simulation::run(const std::string& out_dir,
     // Coupled runs: e_total then leaves out the work of the gas on the particles.
     columns.insert(columns.end(), {"pressure_drop", "bed_height", "gas_iterations"});
   }
-  SeriesWriter series((fs::path(out_dir) / "series.csv").string(), columns);
+  auto open_series = [&](const std::string& name, const std::vector<std::string>& cols) {
+    const std::string path = (fs::path(out_dir) / name).string();
+    return options.resume ? std::make_unique<SeriesWriter>(SeriesWriter::resume(path, cols, t_keep))
+                          : std::make_unique<SeriesWriter>(path, cols);
+  };
+  std::unique_ptr<SeriesWriter> series = open_series("series.csv", columns);
   std::unique_ptr<SeriesWriter> probes;
   if (gas_ && !spec_.output.probes.empty()) {
     std::vector<std::string> pc{"time"};
     for (const ProbeSpec& pr : spec_.output.probes) pc.push_back(pr.name);
-    probes = std::make_unique<SeriesWriter>((fs::path(out_dir) / "probes.csv").string(), pc);
+    probes = open_series("probes.csv", pc);
   }
-  std::vector<double> frame_times;
   const std::string xmf = (fs::path(out_dir) / "particles.xmf").string();
   // Gas fields per particle frame (fields.h5 + fields.xmf), coupled runs only.
   const std::vector<std::string> field_scalars{"porosity", "pressure"};
@@ -344,31 +364,50 @@ RunSummary Simulation::run(const std::string& out_dir,
     fgrid.cells = g.n;
     fgrid.lo = g.lo;
     fgrid.spacing = g.h;
-    fields = std::make_unique<FieldsWriter>((fs::path(out_dir) / "fields.h5").string(), fgrid,
-                                            field_scalars, field_vectors, kVersion);
+    const std::string path = (fs::path(out_dir) / "fields.h5").string();
+    fields =
+        options.resume
+            ? std::make_unique<FieldsWriter>(
+                  FieldsWriter::resume(path, t_keep, fgrid, field_scalars, field_vectors))
+            : std::make_unique<FieldsWriter>(path, fgrid, field_scalars, field_vectors, kVersion);
   }
   const std::string fields_xmf = (fs::path(out_dir) / "fields.xmf").string();
+  if (options.resume) { // the indexes list exactly the frames kept in the files
+    clock_.frame_times = h5->kept_times();
+    if (fields && fields->kept_times() != clock_.frame_times)
+      throw std::runtime_error("cannot resume the outputs in " + out_dir +
+                               ": particles.h5 and fields.h5 hold different frames");
+    write_particles_xdmf(xmf, "particles.h5", p_.size(), clock_.frame_times);
+    if (fields)
+      write_fields_xdmf(fields_xmf, "fields.h5", fgrid, field_scalars, field_vectors,
+                        clock_.frame_times);
+  } else {
+    clock_.frame_times.clear(); // new files (a restart into another directory starts them anew)
+  }
 
   // The run ends at the first step at or after end_time; outputs are written at the first step
   // at or after each multiple of their interval (no drift from rounding intervals to steps).
   const double eps = 1e-9 * dt_;
   const long total = static_cast<long>(std::ceil(spec_.simulation.end_time / dt_ - 1e-9));
-  const double frame_dt = spec_.output.frame_interval, series_dt = spec_.output.series_interval;
-  double next_frame = time_, next_series = time_;
+  const double frame_dt = spec_.output.frame_interval, series_dt = spec_.output.series_interval,
+               checkpoint_dt = spec_.output.checkpoint_interval;
+  if (!clock_.started) {
+    clock_.next_frame = clock_.next_series = time_;
+    clock_.next_checkpoint = time_ + checkpoint_dt;
+  }
   const long check_every = 100;
   const long progress_every = std::max(1L, std::min(200L, 2000000L / std::max<long>(1, p_.size())));
   double seconds_output = 0.0;
-  double e0 = 0.0, escale = 0.0;
 
   auto write_outputs = [&]() {
     const auto t0 = Clock::now();
-    if (time_ >= next_series - eps || step_ == total) {
-      while (next_series <= time_ + eps) next_series += series_dt;
+    if (time_ >= clock_.next_series - eps || step_ == total) {
+      while (clock_.next_series <= time_ + eps) clock_.next_series += series_dt;
       const Energies e = energies();
       const double tot = e.kinetic + e.rotational + e.potential + stats_.elastic_energy + e_dsp_;
-      if (step_ == 0) {
-        e0 = tot;
-        escale = std::max(std::abs(tot), 1e-300);
+      if (!clock_.started) {
+        clock_.e0 = tot;
+        clock_.escale = std::max(std::abs(tot), 1e-300);
       }
       std::vector<double> row{time_,
                               e.kinetic,
@@ -397,14 +436,14 @@ RunSummary Simulation::run(const std::string& out_dir,
           probes->write_row(prow);
         }
       }
-      series.write_row(row);
+      series->write_row(row);
     }
-    if (time_ >= next_frame - eps || step_ == total) {
-      while (next_frame <= time_ + eps) next_frame += frame_dt;
-      h5.write_frame(step_, time_, p_);
-      h5.flush();
-      frame_times.push_back(time_);
-      write_particles_xdmf(xmf, "particles.h5", p_.size(), frame_times);
+    if (time_ >= clock_.next_frame - eps || step_ == total) {
+      while (clock_.next_frame <= time_ + eps) clock_.next_frame += frame_dt;
+      h5->write_frame(step_, time_, p_);
+      h5->flush();
+      clock_.frame_times.push_back(time_);
+      write_particles_xdmf(xmf, "particles.h5", p_.size(), clock_.frame_times);
       if (fields) {
         gas_->cell_fields(p_, cells);
         auto vec = [](const std::array<std::vector<double>, 3>& v) {
@@ -413,9 +452,24 @@ RunSummary Simulation::run(const std::string& out_dir,
         fields->write_frame(step_, time_, {cells.porosity.data(), cells.pressure.data()},
                             {vec(cells.gas_velocity), vec(cells.solids_velocity)});
         write_fields_xdmf(fields_xmf, "fields.h5", fgrid, field_scalars, field_vectors,
-                          frame_times);
+                          clock_.frame_times);
       }
     }
+    clock_.started = true;
+    seconds_output += seconds_since(t0);
+  };
+  auto flush_outputs = [&]() { // (the CSV writers flush every row)
+    if (fields) fields->flush();
+    h5->flush();
+  };
+  RunSummary s;
+  // A checkpoint holds a state that passed the stability checks, with its outputs on disk.
+  auto checkpoint = [&]() {
+    const auto t0 = Clock::now();
+    check_stability();
+    flush_outputs();
+    write_checkpoint(checkpoint_path);
+    s.checkpoint = checkpoint_path;
     seconds_output += seconds_since(t0);
   };
 
@@ -432,15 +486,25 @@ RunSummary Simulation::run(const std::string& out_dir,
       write_outputs();
       if (progress && (step_ % progress_every == 0 || step_ == total))
         progress({step_, total, time_, spec_.simulation.end_time, p_.size()});
+      if (options.stop && options.stop->load() != 0) {
+        s.stopped_by_signal = options.stop->load();
+        break;
+      }
+      if (time_ >= clock_.next_checkpoint - eps && step_ < total) {
+        while (clock_.next_checkpoint <= time_ + eps) clock_.next_checkpoint += checkpoint_dt;
+        checkpoint();
+      }
     }
+    checkpoint(); // at the end, or where a signal stopped the run
   } catch (...) {
-    series.close();
+    series->close();
     if (probes) probes->close();
     if (fields) fields->flush();
-    h5.flush();
+    h5->flush();
     throw;
   }
-  RunSummary s;
+  series->close();
+  if (probes) probes->close();
   s.steps = step_ - step0;
   s.wall_seconds = seconds_since(start);
   s.particle_steps_per_second = static_cast<double>(s.steps) * static_cast<double>(p_.size()) /
@@ -459,7 +523,8 @@ RunSummary Simulation::run(const std::string& out_dir,
   }
   const Energies e = energies();
   s.energy_drift =
-      (e.kinetic + e.rotational + e.potential + stats_.elastic_energy + e_dsp_ - e0) / escale;
+      (e.kinetic + e.rotational + e.potential + stats_.elastic_energy + e_dsp_ - clock_.e0) /
+      clock_.escale;
   return s;
 }
 

@@ -6,9 +6,11 @@
 //   v += F/m dt/2, w += T/I dt/2.
 // Damping forces are evaluated with the half-step velocities.
 #pragma once
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "analysis/energies.hpp"
 #include "contact/contact_forces.hpp"
@@ -54,6 +56,27 @@ struct RunSummary {
   std::size_t bytes_per_particle = 0;
   double energy_drift = 0.0; ///< (E_total(end) - E_total(0)) / E_scale
   long collisions = 0;       ///< hard-sphere engine: collisions processed
+  int stopped_by_signal = 0; ///< SIGINT/SIGTERM that stopped the run early (0: ran to the end)
+  std::string checkpoint;    ///< the last checkpoint written
+};
+
+/// How run() starts and when it stops early.
+struct RunOptions {
+  /// Continue the output files of the run this simulation was restarted from (restart()):
+  /// frames and rows after the checkpoint are dropped, new ones appended.
+  bool resume = false;
+  /// Checked after every step: a nonzero value (the signal number) makes the run finish the
+  /// step, write a checkpoint, flush the outputs and return with stopped_by_signal set.
+  const std::atomic<int>* stop = nullptr;
+};
+
+/// The output schedule and energy reference of a run (kept in checkpoints so that a restarted
+/// run writes its next frame, row and checkpoint when the original would have).
+struct OutputClock {
+  double next_frame = 0.0, next_series = 0.0, next_checkpoint = 0.0;
+  std::vector<double> frame_times;
+  double e0 = 0.0, escale = 0.0;
+  bool started = false; ///< e0, escale and the first "next" times are set
 };
 
 class Simulation {
@@ -63,18 +86,30 @@ public:
   explicit Simulation(CaseSpec spec);
   ~Simulation();
 
+  /// The simulation saved in a checkpoint (write_checkpoint), ready to continue. `overrides`
+  /// ("section.key=value") may change only simulation.end_time and output.* intervals.
+  /// Throws CheckpointError (unreadable file) or InputError (bad override).
+  static std::unique_ptr<Simulation> restart(const std::string& checkpoint,
+                                             const std::vector<std::string>& overrides = {});
+  /// Writes the complete state atomically (output/checkpoint_file.hpp). The gas solver's
+  /// reused multigrid set-ups are dropped afterwards, so that this run and one restarted from
+  /// the checkpoint take the same (bitwise) path.
+  void write_checkpoint(const std::string& path);
+
   const CaseReport& report() const { return report_; }
   const CaseSpec& spec() const { return spec_; }
   ParticleStore& particles() { return p_; }
   const ParticleStore& particles() const { return p_; }
   double time() const { return time_; }
+  long step_count() const { return step_; }
   double time_step() const { return dt_; }
 
   /// Advance to end_time writing OUT/particles.h5, particles.xmf, series.csv and
   /// case.resolved.toml. Throws InstabilityError (after flushing the outputs) if the run
   /// goes unstable.
   RunSummary run(const std::string& out_dir,
-                 const std::function<void(const RunStatus&)>& progress = {});
+                 const std::function<void(const RunStatus&)>& progress = {},
+                 const RunOptions& options = {});
 
   /// Advance n steps without output (tests, benchmarks).
   void advance(long n);
@@ -91,6 +126,7 @@ public:
   double bed_height() const;
 
 private:
+  Simulation(CaseSpec spec, const ParticleStore* initial);
   void compute_forces();
   void step();
   void check_stability() const;
@@ -107,6 +143,7 @@ private:
   NonconservativeForces nc_;
   double dt_ = 0.0, time_ = 0.0, e_dsp_ = 0.0;
   long step_ = 0;
+  OutputClock clock_;
   double t_contacts_ = 0.0, t_integration_ = 0.0, t_neighbour_ = 0.0, t_gas_ = 0.0;
 };
 

@@ -43,7 +43,7 @@ const Keys& simulation_keys() {
   return k;
 }
 const Keys& output_keys() {
-  static const Keys k = {"frame_interval", "series_interval", "probe"};
+  static const Keys k = {"frame_interval", "series_interval", "checkpoint_interval", "probe"};
   return k;
 }
 const Keys& probe_keys() {
@@ -923,6 +923,7 @@ private:
   void read_output(const toml::table* t) {
     opt_number(t, "output", "frame_interval", kTime, spec_.output.frame_interval);
     opt_number(t, "output", "series_interval", kTime, spec_.output.series_interval);
+    opt_number(t, "output", "checkpoint_interval", kTime, spec_.output.checkpoint_interval);
   }
 
   void read_domain(const toml::table& t) {

@@ -214,6 +214,8 @@ std::string write_case_toml(const CaseSpec& spec) {
   os << "\n[output]\n"
      << "frame_interval = " << format_double(spec.output.frame_interval) << "  # s\n"
      << "series_interval = " << format_double(spec.output.series_interval) << "  # s\n";
+  if (spec.output.checkpoint_interval > 0.0)
+    os << "checkpoint_interval = " << format_double(spec.output.checkpoint_interval) << "  # s\n";
   if (spec.gas) {
     for (const ProbeSpec& p : spec.output.probes)
       os << "\n[[output.probe]]\n"

@@ -1,5 +1,8 @@
 #include "neighbour/neighbour_list.hpp"
 
+#include <stdexcept>
+#include <string>
+
 #include <algorithm>
 #include <cmath>
 
@@ -234,6 +237,51 @@ std::size_t NeighbourList::bytes() const {
          b(old_offset_) + b(old_partner_) + b(old_history_) + b(old_wall_particle_) +
          b(old_wall_face_) + b(old_wall_history_) + b(count_) + b(slab_start) + b(slab_particles) +
          b(particle_slab_);
+}
+
+} // namespace fluidem
+
+namespace fluidem {
+
+NeighbourList::State NeighbourList::state() const {
+  State s;
+  s.skin = skin_;
+  s.builds = builds_;
+  s.x0 = x0_;
+  s.y0 = y0_;
+  s.z0 = z0_;
+  s.offset = offset;
+  s.partner = partner;
+  s.wall_particle = wall_particle;
+  s.wall_face = wall_face;
+  s.history = history;
+  s.wall_history = wall_history;
+  return s;
+}
+
+void NeighbourList::restore(const ParticleStore& p, const State& s) {
+  skin_ = s.skin;
+  if (s.x0.empty()) { // never built
+    builds_ = s.builds;
+    return;
+  }
+  if (s.x0.size() != p.size() || s.y0.size() != p.size() || s.z0.size() != p.size())
+    throw std::runtime_error("neighbour list: the restored build positions are for " +
+                             std::to_string(s.x0.size()) + " particles, not " +
+                             std::to_string(p.size()));
+  ParticleStore at_build = p;
+  at_build.x = s.x0;
+  at_build.y = s.y0;
+  at_build.z = s.z0;
+  build(at_build);
+  if (offset != s.offset || partner != s.partner || wall_particle != s.wall_particle ||
+      wall_face != s.wall_face || s.history.size() != history.size() ||
+      s.wall_history.size() != wall_history.size())
+    throw std::runtime_error("neighbour list: the list rebuilt from the checkpoint's build "
+                             "positions differs from the saved one");
+  history = s.history;
+  wall_history = s.wall_history;
+  builds_ = s.builds;
 }
 
 } // namespace fluidem

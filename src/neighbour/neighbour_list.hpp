@@ -64,6 +64,21 @@ public:
   }
   const BoxGeometry& box() const { return box_; }
 
+  /// What a checkpoint keeps of the list: the positions and skin of the last build (from which
+  /// the same pairs are rebuilt), the pairs themselves (to verify that) and their history.
+  struct State {
+    double skin = 0.0;
+    std::int64_t builds = 0;
+    std::vector<double> x0, y0, z0;
+    std::vector<std::uint32_t> offset, partner, wall_particle;
+    std::vector<std::uint8_t> wall_face;
+    std::vector<double> history, wall_history;
+  };
+  State state() const;
+  /// Rebuilds the list of `s` from its build positions (the other particle data from p) and
+  /// restores its history and build count. std::runtime_error if the rebuilt pairs differ.
+  void restore(const ParticleStore& p, const State& s);
+
 private:
   void build_cells(const ParticleStore& p, double cell_size);
 

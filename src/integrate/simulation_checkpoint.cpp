@@ -1,0 +1,243 @@
+// Checkpoint and restart of a Simulation (simulation.hpp): what the state of a run is, written
+// to and read from the checkpoint file (output/checkpoint_file.hpp).
+//
+// The state: the resolved case (so the restart needs no case file), the step counter, the
+// particle arrays (positions, velocities, angular velocities, forces and torques of the last
+// step, radii, masses, inverse masses and inertias, species, ids), the contact statistics and
+// dissipated energy, the neighbour list (its build positions and skin, from which the same
+// pairs are rebuilt, and the contact histories of every pair and wall entry), the hard-sphere
+// engine's state (last-collision times of the TC model, counters, list), the gas fields
+// (velocity, pressure, porosity new and old, density) and the gas force on each particle, and
+// the output schedule. There is no random-number generator in a running simulation (random
+// insertion happens before step 0), so none is stored.
+// What is NOT stored is rebuilt from it: cell grids, the event calendar (rebuilt every flow
+// step), and the gas solver's multigrid set-ups, which the run writing the checkpoint drops
+// too (GasSolver::reset_solver_history), so both continue bitwise alike.
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "fluidem_version.hpp"
+#include "integrate/simulation.hpp"
+#include "io/case_reader.hpp"
+#include "io/case_writer.hpp"
+#include "output/checkpoint_file.hpp"
+
+namespace fluidem {
+
+namespace {
+
+void put_list(CheckpointWriter& w, const std::string& prefix, const NeighbourList::State& s) {
+  w.put_scalar(prefix + "/skin", s.skin);
+  w.put_scalar(prefix + "/builds", s.builds);
+  w.put(prefix + "/x0", s.x0);
+  w.put(prefix + "/y0", s.y0);
+  w.put(prefix + "/z0", s.z0);
+  w.put(prefix + "/offset", s.offset);
+  w.put(prefix + "/partner", s.partner);
+  w.put(prefix + "/wall_particle", s.wall_particle);
+  w.put(prefix + "/wall_face", s.wall_face);
+  w.put(prefix + "/history", s.history);
+  w.put(prefix + "/wall_history", s.wall_history);
+}
+
+NeighbourList::State get_list(const CheckpointReader& r, const std::string& prefix) {
+  NeighbourList::State s;
+  s.skin = r.scalar(prefix + "/skin");
+  s.builds = r.integer(prefix + "/builds");
+  s.x0 = r.doubles(prefix + "/x0");
+  s.y0 = r.doubles(prefix + "/y0");
+  s.z0 = r.doubles(prefix + "/z0");
+  s.offset = r.uint32s(prefix + "/offset");
+  s.partner = r.uint32s(prefix + "/partner");
+  s.wall_particle = r.uint32s(prefix + "/wall_particle");
+  s.wall_face = r.bytes(prefix + "/wall_face");
+  s.history = r.doubles(prefix + "/history");
+  s.wall_history = r.doubles(prefix + "/wall_history");
+  return s;
+}
+
+/// The particle arrays of type double, by name.
+template <class Store>
+auto double_arrays(Store& p) {
+  return std::array<std::pair<const char*, decltype(&p.x)>, 19>{{{"x", &p.x},
+                                                                 {"y", &p.y},
+                                                                 {"z", &p.z},
+                                                                 {"vx", &p.vx},
+                                                                 {"vy", &p.vy},
+                                                                 {"vz", &p.vz},
+                                                                 {"wx", &p.wx},
+                                                                 {"wy", &p.wy},
+                                                                 {"wz", &p.wz},
+                                                                 {"fx", &p.fx},
+                                                                 {"fy", &p.fy},
+                                                                 {"fz", &p.fz},
+                                                                 {"tx", &p.tx},
+                                                                 {"ty", &p.ty},
+                                                                 {"tz", &p.tz},
+                                                                 {"radius", &p.radius},
+                                                                 {"mass", &p.mass},
+                                                                 {"inv_mass", &p.inv_mass},
+                                                                 {"inv_inertia", &p.inv_inertia}}};
+}
+
+const char* const kGasVelocity[3] = {"gas/u_x", "gas/u_y", "gas/u_z"};
+const char* const kGasForce[3] = {"gas/force_x", "gas/force_y", "gas/force_z"};
+
+} // namespace
+
+void Simulation::write_checkpoint(const std::string& path) {
+  CheckpointWriter w(path);
+  w.put_string("meta/fluidem_version", kVersion);
+  w.put_string("case/resolved", write_case_toml(spec_));
+  w.put_scalar("run/step", static_cast<std::int64_t>(step_));
+  w.put_scalar("run/time", time_);
+  w.put_scalar("run/dt", dt_);
+  w.put_scalar("run/e_dsp", e_dsp_);
+  w.put_scalar("run/clock/next_frame", clock_.next_frame);
+  w.put_scalar("run/clock/next_series", clock_.next_series);
+  w.put_scalar("run/clock/next_checkpoint", clock_.next_checkpoint);
+  w.put_scalar("run/clock/e0", clock_.e0);
+  w.put_scalar("run/clock/escale", clock_.escale);
+  w.put_scalar("run/clock/started", static_cast<std::int64_t>(clock_.started));
+  w.put("run/clock/frame_times", clock_.frame_times);
+  w.put_scalar("stats/n_contacts", static_cast<std::int64_t>(stats_.n_contacts));
+  w.put_scalar("stats/max_overlap_ratio", stats_.max_overlap_ratio);
+  w.put_scalar("stats/max_overlap_particle",
+               static_cast<std::int64_t>(stats_.max_overlap_particle));
+  w.put_scalar("stats/elastic_energy", stats_.elastic_energy);
+  w.put_scalar("stats/spring_losses", stats_.spring_losses);
+  for (const auto& [name, v] : double_arrays(p_)) w.put(std::string("particles/") + name, *v);
+  w.put("particles/species", p_.species);
+  w.put("particles/id", p_.id);
+  put_list(w, "neighbour", nl_->state());
+  if (hard_) {
+    const HardSphereEngine::State h = hard_->state();
+    w.put("hardsphere/last_collision", h.last_collision);
+    w.put("hardsphere/built_x", h.built_x);
+    w.put("hardsphere/built_y", h.built_y);
+    w.put("hardsphere/built_z", h.built_z);
+    w.put("hardsphere/counter", h.counter);
+    w.put_scalar("hardsphere/list_builds", h.list_builds);
+    w.put("hardsphere/stats/counts",
+          std::vector<std::int64_t>{h.stats.collisions, h.stats.wall_collisions, h.stats.tc_elastic,
+                                    h.stats.slow_elastic, h.stats.events_last_step});
+    w.put("hardsphere/stats/energies",
+          std::vector<double>{h.stats.dissipated, h.stats.tc_energy_kept});
+    put_list(w, "hardsphere/list", h.list);
+  }
+  if (gas_) {
+    const GasCoupling::State g = gas_->state();
+    for (int d = 0; d < 3; ++d) {
+      w.put(kGasVelocity[d], g.gas.u[static_cast<std::size_t>(d)]);
+      w.put(kGasForce[d], g.force[static_cast<std::size_t>(d)]);
+    }
+    w.put("gas/p", g.gas.p);
+    w.put("gas/eps", g.gas.eps);
+    w.put("gas/eps_old", g.gas.eps_old);
+    w.put("gas/rho", g.gas.rho);
+    w.put_scalar("gas/last_iterations", g.gas.last_iterations);
+    w.put("gas/diagnostics",
+          std::vector<double>{g.gas.last_mass_residual, g.gas.last_velocity_change,
+                              g.gas.boundary_outflow});
+  }
+  w.commit();
+  // A synchronisation point: the run that continues from here and one restarted from the
+  // file both start the next flow step with fresh linear-solver set-ups.
+  if (gas_) gas_->reset_solver_history();
+}
+
+std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
+                                                const std::vector<std::string>& overrides) {
+  const CheckpointReader r(checkpoint);
+  for (const std::string& o : overrides) {
+    const std::string key = o.substr(0, o.find('='));
+    if (key != "simulation.end_time" && key.rfind("output.", 0) != 0)
+      throw InputError(fmt::format("--set {}: a restarted run continues the checkpointed one; "
+                                   "only simulation.end_time and output.* may change",
+                                   o));
+  }
+  CaseSpec spec = read_case_string(r.string("case/resolved"), checkpoint, overrides);
+  ParticleStore p;
+  for (const auto& [name, v] : double_arrays(p)) *v = r.doubles(std::string("particles/") + name);
+  p.species = r.int32s("particles/species");
+  p.id = r.int64s("particles/id");
+  for (const auto& [name, v] : double_arrays(p))
+    if (v->size() != p.id.size() || p.species.size() != p.id.size())
+      throw CheckpointError(fmt::format("checkpoint '{}': particle array '{}' has {} entries for "
+                                        "{} particles",
+                                        checkpoint, name, v->size(), p.id.size()));
+  std::unique_ptr<Simulation> sim(new Simulation(std::move(spec), &p));
+  Simulation& s = *sim;
+  const double dt = r.scalar("run/dt");
+  if (dt != s.dt_)
+    throw CheckpointError(fmt::format("checkpoint '{}': its time step {:.17g} s differs from the "
+                                      "one its case gives, {:.17g} s",
+                                      checkpoint, dt, s.dt_));
+  s.p_ = p; // the constructor computed forces and moved nothing; the saved arrays win
+  s.step_ = static_cast<long>(r.integer("run/step"));
+  s.time_ = static_cast<double>(s.step_) * s.dt_;
+  s.e_dsp_ = r.scalar("run/e_dsp");
+  s.clock_.next_frame = r.scalar("run/clock/next_frame");
+  s.clock_.next_series = r.scalar("run/clock/next_series");
+  s.clock_.next_checkpoint = r.scalar("run/clock/next_checkpoint");
+  s.clock_.e0 = r.scalar("run/clock/e0");
+  s.clock_.escale = r.scalar("run/clock/escale");
+  s.clock_.started = r.integer("run/clock/started") != 0;
+  s.clock_.frame_times = r.doubles("run/clock/frame_times");
+  s.stats_.n_contacts = static_cast<long>(r.integer("stats/n_contacts"));
+  s.stats_.max_overlap_ratio = r.scalar("stats/max_overlap_ratio");
+  s.stats_.max_overlap_particle = static_cast<long>(r.integer("stats/max_overlap_particle"));
+  s.stats_.elastic_energy = r.scalar("stats/elastic_energy");
+  s.stats_.spring_losses = r.scalar("stats/spring_losses");
+  try {
+    s.nl_->restore(s.p_, get_list(r, "neighbour"));
+    if (s.hard_) {
+      HardSphereEngine::State h;
+      h.last_collision = r.doubles("hardsphere/last_collision");
+      h.built_x = r.doubles("hardsphere/built_x");
+      h.built_y = r.doubles("hardsphere/built_y");
+      h.built_z = r.doubles("hardsphere/built_z");
+      h.counter = r.uint32s("hardsphere/counter");
+      h.list_builds = r.integer("hardsphere/list_builds");
+      const auto c = r.int64s("hardsphere/stats/counts");
+      const auto e = r.doubles("hardsphere/stats/energies");
+      if (c.size() != 5 || e.size() != 2)
+        throw CheckpointError("checkpoint '" + checkpoint + "': bad hard-sphere statistics");
+      h.stats.collisions = static_cast<long>(c[0]);
+      h.stats.wall_collisions = static_cast<long>(c[1]);
+      h.stats.tc_elastic = static_cast<long>(c[2]);
+      h.stats.slow_elastic = static_cast<long>(c[3]);
+      h.stats.events_last_step = static_cast<long>(c[4]);
+      h.stats.dissipated = e[0];
+      h.stats.tc_energy_kept = e[1];
+      h.list = get_list(r, "hardsphere/list");
+      s.hard_->restore(s.p_, h);
+    }
+    if (s.gas_) {
+      GasCoupling::State g;
+      for (int d = 0; d < 3; ++d) {
+        g.gas.u[static_cast<std::size_t>(d)] = r.doubles(kGasVelocity[d]);
+        g.force[static_cast<std::size_t>(d)] = r.doubles(kGasForce[d]);
+      }
+      g.gas.p = r.doubles("gas/p");
+      g.gas.eps = r.doubles("gas/eps");
+      g.gas.eps_old = r.doubles("gas/eps_old");
+      g.gas.rho = r.doubles("gas/rho");
+      g.gas.last_iterations = r.integer("gas/last_iterations");
+      const auto diag = r.doubles("gas/diagnostics");
+      if (diag.size() != 3)
+        throw CheckpointError("checkpoint '" + checkpoint + "': bad gas diagnostics");
+      g.gas.last_mass_residual = diag[0];
+      g.gas.last_velocity_change = diag[1];
+      g.gas.boundary_outflow = diag[2];
+      s.gas_->restore(g);
+    }
+  } catch (const CheckpointError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw CheckpointError("checkpoint '" + checkpoint + "': " + e.what());
+  }
+  return sim;
+}
+
+} // namespace fluidem

@@ -1,0 +1,213 @@
+// Restart identity (issue "Runs that never lose data"): a run to 2T that writes a checkpoint at
+// T, and a run to T followed by `restart` from its checkpoint and a run on to 2T, must end in
+// bitwise-identical particle arrays (positions, velocities, angular velocities, forces,
+// torques) and gas fields (velocity, pressure, porosity), and the continued run's output files
+// must equal the uninterrupted run's: series.csv and probes.csv byte for byte, the particle and
+// field frames (times and positions) of particles.h5 the same frames with the same values, the
+// XDMF indexes byte for byte (no duplicated, no missing frame).
+// Engines: soft spheres (Hoomans pouring, 500 discs, with tangential-spring history in the
+// contacts), hard spheres (the same with the event-driven engine), and both coupled to the gas
+// (the Tsuji column of tests/common, 200 particles). The time step is fixed explicitly (an
+// automatic step depends on end_time). T is short (a few hundred steps): identity must hold
+// from any state.
+// Also: a checkpoint truncated or with a flipped byte is rejected with a message naming the
+// file (CheckpointError), and the previous checkpoint (checkpoint.prev.h5) still loads.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <hdf5.h>
+
+#include "../../common/tsuji_column.hpp"
+#include "integrate/simulation.hpp"
+#include "io/case_reader.hpp"
+#include "output/checkpoint_file.hpp"
+
+namespace fluidem {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::vector<double> read_h5_doubles(const fs::path& file, const char* dataset) {
+  std::vector<double> v;
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return v;
+  const hid_t d = H5Dopen2(f, dataset, H5P_DEFAULT);
+  if (d >= 0) {
+    const hid_t s = H5Dget_space(d);
+    v.resize(static_cast<std::size_t>(H5Sget_simple_extent_npoints(s)));
+    if (!v.empty()) H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Sclose(s);
+    H5Dclose(d);
+  }
+  H5Fclose(f);
+  return v;
+}
+
+void expect_same_arrays(const Simulation& a, const Simulation& b) {
+  const ParticleStore& p = a.particles();
+  const ParticleStore& q = b.particles();
+  ASSERT_EQ(p.size(), q.size());
+  const std::pair<const char*, std::pair<const std::vector<double>*, const std::vector<double>*>>
+      arrays[] = {{"x", {&p.x, &q.x}},    {"y", {&p.y, &q.y}},    {"z", {&p.z, &q.z}},
+                  {"vx", {&p.vx, &q.vx}}, {"vy", {&p.vy, &q.vy}}, {"vz", {&p.vz, &q.vz}},
+                  {"wx", {&p.wx, &q.wx}}, {"wy", {&p.wy, &q.wy}}, {"wz", {&p.wz, &q.wz}},
+                  {"fx", {&p.fx, &q.fx}}, {"fy", {&p.fy, &q.fy}}, {"fz", {&p.fz, &q.fz}},
+                  {"tx", {&p.tx, &q.tx}}, {"ty", {&p.ty, &q.ty}}, {"tz", {&p.tz, &q.tz}}};
+  for (const auto& [name, v] : arrays) {
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < v.first->size(); ++i)
+      if ((*v.first)[i] != (*v.second)[i]) ++differ; // bitwise (no NaN expected)
+    EXPECT_EQ(differ, 0u) << "particle array " << name << ": " << differ << " entries differ";
+  }
+  ASSERT_EQ(a.gas() != nullptr, b.gas() != nullptr);
+  if (a.gas()) {
+    const gas::GasSolver& g = a.gas()->solver();
+    const gas::GasSolver& h = b.gas()->solver();
+    EXPECT_TRUE(g.pressure() == h.pressure()) << "gas pressure differs";
+    EXPECT_TRUE(g.porosity() == h.porosity()) << "gas porosity differs";
+    for (int d = 0; d < 3; ++d)
+      EXPECT_TRUE(g.velocity(d) == h.velocity(d)) << "gas velocity component " << d << " differs";
+  }
+}
+
+void expect_same_outputs(const fs::path& a, const fs::path& b, bool gas) {
+  std::vector<std::string> texts{"series.csv", "particles.xmf"};
+  if (gas) {
+    texts.push_back("fields.xmf");
+  }
+  for (const std::string& f : texts) {
+    const std::string ta = slurp(a / f), tb = slurp(b / f);
+    EXPECT_FALSE(ta.empty()) << f;
+    EXPECT_TRUE(ta == tb) << f << " differs between the uninterrupted and the restarted run";
+  }
+  for (const char* ds : {"particles/all/position/time", "particles/all/position/value",
+                         "particles/all/velocity/value"}) {
+    const auto va = read_h5_doubles(a / "particles.h5", ds);
+    const auto vb = read_h5_doubles(b / "particles.h5", ds);
+    EXPECT_FALSE(va.empty()) << ds;
+    EXPECT_TRUE(va == vb) << "particles.h5 " << ds << ": " << va.size() << " vs " << vb.size()
+                          << " values, or values differ";
+  }
+  if (gas) {
+    const auto ta = read_h5_doubles(a / "fields.h5", "fields/time");
+    const auto tb = read_h5_doubles(b / "fields.h5", "fields/time");
+    EXPECT_FALSE(ta.empty());
+    EXPECT_TRUE(ta == tb) << "fields.h5 frame times differ";
+  }
+}
+
+/// Runs `spec` to 2T in one go (checkpoint every T) and as T + restart + T; compares.
+void check_restart_identity(CaseSpec spec, double T, const std::string& name) {
+  const fs::path root = fs::temp_directory_path() / ("fluidem_restart_" + name);
+  fs::remove_all(root);
+  const fs::path one = root / "one", two = root / "two";
+  spec.simulation.end_time = 2.0 * T;
+  spec.output.checkpoint_interval = T;
+  spec.output.frame_interval = T / 4.0;
+  spec.output.series_interval = T / 20.0;
+  Simulation a(spec);
+  a.run(one.string());
+
+  spec.simulation.end_time = T;
+  Simulation b(spec);
+  b.run(two.string());
+  ASSERT_TRUE(fs::exists(two / "checkpoint.h5"));
+  auto c = Simulation::restart((two / "checkpoint.h5").string(),
+                               {fmt::format("simulation.end_time={:.17g}", 2.0 * T)});
+  EXPECT_EQ(c->step_count(), b.step_count());
+  RunOptions resume;
+  resume.resume = true;
+  c->run(two.string(), {}, resume);
+  EXPECT_EQ(a.step_count(), c->step_count());
+  expect_same_arrays(a, *c);
+  expect_same_outputs(one, two, spec.gas.has_value());
+  fs::remove_all(root);
+}
+
+CaseSpec pouring(Engine engine) {
+  CaseSpec spec =
+      read_case_file(std::string(FLUIDEM_SOURCE_DIR) + "/cases/hoomans96/" +
+                     (engine == Engine::HardSphere ? "pouring_hard.toml" : "pouring_soft.toml"));
+  // The auto step of the 1 s case, fixed (an automatic step depends on end_time).
+  Simulation probe(spec);
+  spec.simulation.time_step = probe.time_step();
+  return spec;
+}
+
+TEST(Restart, SoftSpheresContinueBitwise) {
+  check_restart_identity(pouring(Engine::SoftSphere), 0.1, "soft");
+}
+
+TEST(Restart, HardSpheresContinueBitwise) {
+  check_restart_identity(pouring(Engine::HardSphere), 0.1, "hard");
+}
+
+TEST(Restart, CoupledSoftSpheresContinueBitwise) {
+  test::TsujiColumn c;
+  c.engine = Engine::SoftSphere;
+  c.count = 200;
+  CaseSpec spec = test::tsuji_column(c);
+  spec.simulation.time_step = 2.5e-5;
+  check_restart_identity(spec, 0.02, "coupled_soft");
+}
+
+TEST(Restart, CoupledHardSpheresContinueBitwise) {
+  test::TsujiColumn c;
+  c.engine = Engine::HardSphere;
+  c.count = 200;
+  check_restart_identity(test::tsuji_column(c), 0.02, "coupled_hard");
+}
+
+TEST(Restart, DamagedCheckpointIsRejectedAndThePreviousOneLoads) {
+  CaseSpec spec = pouring(Engine::SoftSphere);
+  const fs::path out = fs::temp_directory_path() / "fluidem_restart_damaged";
+  fs::remove_all(out);
+  spec.simulation.end_time = 0.02;
+  spec.output.checkpoint_interval = 0.01; // two checkpoints: current and previous
+  Simulation a(spec);
+  a.run(out.string());
+  const fs::path cur = out / "checkpoint.h5", prev = out / "checkpoint.prev.h5";
+  ASSERT_TRUE(fs::exists(prev));
+  const std::string good = slurp(cur);
+  // Truncated to half.
+  {
+    std::ofstream f(cur, std::ios::binary | std::ios::trunc);
+    f.write(good.data(), static_cast<std::streamsize>(good.size() / 2));
+  }
+  try {
+    Simulation::restart(cur.string());
+    ADD_FAILURE() << "a truncated checkpoint was accepted";
+  } catch (const CheckpointError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(cur.string()), std::string::npos) << m;
+    EXPECT_NE(m.find("checkpoint.prev.h5"), std::string::npos) << m;
+  }
+  // One byte flipped in the middle of the particle data (the file still opens).
+  std::string bad = good;
+  const std::size_t at = bad.size() / 2;
+  bad[at] = static_cast<char>(bad[at] ^ 0x5a);
+  {
+    std::ofstream f(cur, std::ios::binary | std::ios::trunc);
+    f.write(bad.data(), static_cast<std::streamsize>(bad.size()));
+  }
+  EXPECT_THROW(Simulation::restart(cur.string()), CheckpointError);
+  // The previous checkpoint loads, at the earlier time.
+  auto p = Simulation::restart(prev.string());
+  EXPECT_NEAR(p->time(), 0.01, 0.5 * p->time_step());
+  fs::remove_all(out);
+}
+
+} // namespace
+} // namespace fluidem
