@@ -936,6 +936,15 @@ private:
       (std::string(key) == "lo" ? d.lo : d.hi) = vec3(*e, path, any_m);
     }
     check_box(spec_.where("domain.hi"), "domain.hi", d.lo, d.hi);
+    for (std::size_t i = 0; i < 3; ++i) {
+      // Both ends finite but the width is not (lo = -1e308, hi = 1e308): insertion and the
+      // neighbour grid divide the width into cells.
+      if (!std::isfinite(d.hi[i] - d.lo[i]))
+        throw InputError(spec_.where("domain.hi"), "domain.hi",
+                         "the width hi[" + std::to_string(i) + "] - lo[" + std::to_string(i) +
+                             "] = " + format_double(d.hi[i]) + " - " + format_double(d.lo[i]) +
+                             " is not a finite number (allowed: a box of finite width, in m)");
+    }
     if (const auto e = find(t, "periodic", "domain.periodic")) {
       const std::string what = "an array of 3 booleans";
       const toml::array* a = e->node->as_array();
@@ -1029,7 +1038,8 @@ private:
                          "not allowed with placement = \"file\" (the file lists the particles)");
       if (!from_file) {
         if (!count) missing(t, p, shown, "count", "an integer >= 1");
-        in.count = static_cast<long>(integer(*count, p + ".count", 1, "an integer >= 1"));
+        // At most INT_MAX: insertion counts attempts as a multiple of the count.
+        in.count = int_value(*count, p + ".count", 1, "an integer >= 1, at most 2147483647");
       }
 
       const auto file = find(*t, "file", p + ".file");
