@@ -144,6 +144,8 @@ void validate(const GasSettings& s) {
   if (!(s.linear_tolerance > 0.0 && s.linear_tolerance < 1.0))
     bad("gas.solver.linear_tolerance", "must be in (0, 1)");
   if (s.linear_max_iterations < 1) bad("gas.solver.linear_max_iterations", "must be >= 1");
+  if (!(s.max_courant > 0.0) || !std::isfinite(s.max_courant))
+    bad("gas.solver.max_courant", "must be > 0");
 }
 
 std::string to_string(BoundaryType t) {

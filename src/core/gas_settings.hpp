@@ -116,6 +116,10 @@ struct GasSettings {
   double linear_tolerance = 1e-10;  ///< `gas.solver.linear_tolerance`: relative residual of the
                                     ///< linear solves (Gauss-Seidel momentum, hypre pressure)
   int linear_max_iterations = 200;  ///< `gas.solver.linear_max_iterations`
+  /// `gas.solver.max_courant`: largest |u| DT / h on any face after a flow step; above it the
+  /// gas crosses more than this many cells per step (the explicit porosity and coupling update
+  /// loses accuracy, the run has usually gone wrong): the run stops as unstable.
+  double max_courant = 1.0;
 };
 
 /// Throws fluidem::InputError naming the key of the first bad setting.

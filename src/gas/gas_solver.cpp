@@ -318,6 +318,32 @@ void GasSolver::step(double time, double dt) {
   eps_old_ = eps_;
 }
 
+void GasSolver::check_courant(double t_new, double dt) const {
+  double worst = 0.0;
+  int wd = 0;
+  std::size_t wq = 0;
+  for (int d = 0; d < 3; ++d) {
+    const double f = dt / g_.h[d];
+    for (std::size_t q = 0; q < u_[d].size(); ++q)
+      if (role_[d][q] != none && std::abs(u_[d][q]) * f > worst) {
+        worst = std::abs(u_[d][q]) * f;
+        wd = d;
+        wq = q;
+      }
+  }
+  if (!(worst > s_.max_courant)) return;
+  const long q = static_cast<long>(wq);
+  const long i = q % g_.padded[0], j = (q / g_.padded[0]) % g_.padded[1],
+             k = q / (static_cast<long>(g_.padded[0]) * g_.padded[1]);
+  std::ostringstream m;
+  m << "gas: Courant number " << worst << " above gas.solver.max_courant = " << s_.max_courant
+    << " at t = " << t_new << " s: velocity component " << "xyz"[wd] << " = " << u_[wd][wq]
+    << " m/s on the high face of cell (" << i << ", " << j << ", " << k
+    << ") (the gas crosses more than that many cells per flow step DT = " << dt
+    << " s; reduce the flow step)";
+  throw InstabilityError(m.str());
+}
+
 std::vector<double> GasSolver::applied_source(int d) const {
   std::vector<double> s(g_.size(), 0.0);
   for (std::size_t q = 0; q < s.size(); ++q)

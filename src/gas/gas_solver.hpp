@@ -105,6 +105,12 @@ public:
   /// the run that writes it, so that a run restarted from it repeats the same solves bitwise.
   void reset_solver_history();
 
+  /// InstabilityError naming the face and time if |u| dt / h exceeds gas.solver.max_courant on
+  /// a face (called by the coupled run after each flow step; the solver itself, backward Euler
+  /// with upwinding, is stable at any Courant number, and its tests take large steps to steady
+  /// states).
+  void check_courant(double t_new, double dt) const;
+
   int last_iterations() const { return last_iterations_; }
   /// sum over cells |mass imbalance of the step| / gas mass in the domain (dimensionless).
   double last_mass_residual() const { return last_mass_residual_; }

@@ -67,6 +67,7 @@ void GasCoupling::step(const ParticleStore& p, double time, double dt) {
   coupling::compute_particle_forces(*gas_, p, settings_, f_);
   coupling::deposit_momentum_source(*gas_, p, f_);
   gas_->step(time, dt);
+  gas_->check_courant(time + dt, dt);
   coupling::update_particle_forces(*gas_, p, f_);
   const std::size_t n = p.size();
   for (auto& f : force_) f.resize(n);

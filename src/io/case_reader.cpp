@@ -120,7 +120,7 @@ const Keys& gas_keys() {
 const Keys& gas_solver_keys() {
   static const Keys k = {
       "tolerance",           "velocity_tolerance", "max_iterations",       "velocity_relaxation",
-      "pressure_relaxation", "linear_tolerance",   "linear_max_iterations"};
+      "pressure_relaxation", "linear_tolerance",   "linear_max_iterations", "max_courant"};
   return k;
 }
 const Keys& gas_side_keys() {
@@ -1255,6 +1255,7 @@ private:
       opt_number(st, sp, "pressure_relaxation", {Bound::Any, ""}, g.pressure_relaxation);
       opt_number(st, sp, "linear_tolerance", {Bound::Any, ""}, g.linear_tolerance);
       opt_int(st, sp, "linear_max_iterations", g.linear_max_iterations);
+      opt_number(st, sp, "max_courant", {Bound::Any, ""}, g.max_courant);
     }
 
     read_gas_boundaries(*t, g);

@@ -154,7 +154,8 @@ void write_gas(std::ostream& os, const gas::GasSettings& g, Engine engine) {
      << "velocity_relaxation = " << format_double(g.velocity_relaxation) << "\n"
      << "pressure_relaxation = " << format_double(g.pressure_relaxation) << "\n"
      << "linear_tolerance = " << format_double(g.linear_tolerance) << "\n"
-     << "linear_max_iterations = " << g.linear_max_iterations << "\n";
+     << "linear_max_iterations = " << g.linear_max_iterations << "\n"
+     << "max_courant = " << format_double(g.max_courant) << "\n";
 
   for (std::size_t f = 0; f < gas::side_names.size(); ++f) {
     // The 2-D gas is one cell thick: front and back are free-slip walls, not keys.
