@@ -403,6 +403,9 @@ RunSummary Simulation::run(const std::string& out_dir,
 
   auto write_outputs = [&]() {
     const auto t0 = Clock::now();
+    // Nothing unstable reaches the files: check before any row or frame is written.
+    if (time_ >= clock_.next_series - eps || time_ >= clock_.next_frame - eps || step_ == total)
+      check_stability();
     if (time_ >= clock_.next_series - eps || step_ == total) {
       while (clock_.next_series <= time_ + eps) clock_.next_series += series_dt;
       const Energies e = energies();
