@@ -193,6 +193,9 @@ CheckpointReader::CheckpointReader(std::string path) : path_(std::move(path)) {
     return CheckpointError("checkpoint '" + path_ + "' " + what + hint);
   };
   if (!fs::exists(path_)) throw bad("does not exist");
+  std::error_code size_ec;
+  const auto file_bytes = fs::file_size(path_, size_ec);
+  if (size_ec) throw bad("cannot be read: " + size_ec.message());
   QuietHdf5 quiet;
   if (H5Fis_hdf5(path_.c_str()) <= 0)
     throw bad("is not a readable HDF5 file (truncated or corrupted)");
@@ -246,6 +249,11 @@ CheckpointReader::CheckpointReader(std::string path) : path_(std::move(path)) {
     if (t < 0) throw bad("has array '" + name + "' of an unknown type");
     const hssize_t count = H5Sget_simple_extent_npoints(space.get());
     if (count < 0) throw bad("has an unreadable array '" + name + "'");
+    // Uncompressed arrays cannot hold more bytes than the file (a corrupted size would
+    // otherwise ask for any amount of memory).
+    if (static_cast<double>(count) * static_cast<double>(type_size(t)) >
+        static_cast<double>(file_bytes))
+      throw bad("is corrupted: array '" + name + "' claims more data than the file holds");
     Array a;
     a.type = t;
     a.count = static_cast<std::size_t>(count);
