@@ -1,8 +1,14 @@
 #!/usr/bin/env bash
-# Install what is missing, build fluidem with its tests, run the tests (labels unit, regression).
+# Install what is missing, build fluidem with its tests, run the tests (labels unit, regression);
+# then the unit tests under ASan + UBSan (tools/ci-sanitizers.sh, build-asan) and 60 s of fuzzing
+# of the case reader (tools/ci-fuzz.sh, build-fuzz). FLUIDEM_QUICK=1 skips those two.
 set -euo pipefail
 cd "$(dirname "$0")"
 tools/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$(nproc)"
 ctest --test-dir build --output-on-failure -j"$(nproc)" -L "unit|regression" "$@"
+if [ "${FLUIDEM_QUICK:-0}" != 1 ]; then
+  tools/ci-sanitizers.sh
+  tools/ci-fuzz.sh
+fi

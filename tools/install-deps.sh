@@ -3,7 +3,9 @@
 set -euo pipefail
 packages=(cmake ninja-build g++ libomp-dev libtomlplusplus-dev libcli11-dev libfmt-dev
           libhdf5-dev hdf5-tools libhypre-dev libgtest-dev libgmock-dev libbenchmark-dev
-          python3-matplotlib python3-h5py python3-numpy)
+          python3-matplotlib python3-h5py python3-numpy
+          # tools/ci-fuzz.sh: clang 14, libFuzzer + sanitizer runtimes, llvm-symbolizer
+          clang libclang-rt-14-dev llvm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
