@@ -279,19 +279,9 @@ void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const Poros
       }
   // Periodic axes: the ghost cells hold the images (ghost 0 = cell n, ghost n + 1 = cell 1), as
   // the gas solver keeps them, so that the cell-centre stencil may read them.
-  for (int d = 0; d < 3; ++d) {
-    if (!periodic[d] || (g.dimension == 2 && d == 1)) continue;
-    const long sd = g.stride[d], nd = g.n[d];
-    for (int k = 0; k < g.padded[2]; ++k)
-      for (int j = 0; j < g.padded[1]; ++j)
-        for (int i = 0; i < g.padded[0]; ++i) {
-          const int c[3] = {i, j, k};
-          if (c[d] != 0) continue;
-          const auto q = static_cast<std::size_t>(g.idx(i, j, k));
-          eps[q] = eps[q + static_cast<std::size_t>(nd * sd)];
-          eps[q + static_cast<std::size_t>((nd + 1) * sd)] = eps[q + static_cast<std::size_t>(sd)];
-        }
-  }
+  std::array<bool, 3> wrap = periodic;
+  if (g.dimension == 2) wrap[1] = false;
+  gas::fill_periodic_ghosts(g, wrap, eps);
 }
 
 } // namespace fluidem::coupling

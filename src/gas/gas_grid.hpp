@@ -13,6 +13,7 @@
 #include "core/vec3.hpp"
 #include <array>
 #include <cstddef>
+#include <vector>
 
 namespace fluidem::gas {
 
@@ -59,5 +60,10 @@ struct GasGrid {
     return c;
   }
 };
+
+/// Periodic axes: the ghost layer holds the images (ghost 0 = cell n, ghost n + 1 = cell 1,
+/// along every axis of the padded array; for a face array along its own axis, face 0 = face n).
+void fill_periodic_ghosts(const GasGrid& g, const std::array<bool, 3>& periodic,
+                          std::vector<double>& a);
 
 } // namespace fluidem::gas

@@ -212,15 +212,20 @@ void GasSolver::build_boundary_lists() {
 }
 
 void GasSolver::fill_periodic(std::vector<double>& a) const {
+  fill_periodic_ghosts(g_, {bc_.periodic(0), bc_.periodic(1), bc_.periodic(2)}, a);
+}
+
+void fill_periodic_ghosts(const GasGrid& g, const std::array<bool, 3>& periodic,
+                          std::vector<double>& a) {
   for (int d = 0; d < 3; ++d) {
-    if (!bc_.periodic(d)) continue;
-    const long sd = g_.stride[d], nd = g_.n[d];
-    for (int k = 0; k < g_.padded[2]; ++k)
-      for (int j = 0; j < g_.padded[1]; ++j)
-        for (int i = 0; i < g_.padded[0]; ++i) {
+    if (!periodic[d]) continue;
+    const long sd = g.stride[d], nd = g.n[d];
+    for (int k = 0; k < g.padded[2]; ++k)
+      for (int j = 0; j < g.padded[1]; ++j)
+        for (int i = 0; i < g.padded[0]; ++i) {
           const int c[3] = {i, j, k};
           if (c[d] != 0) continue;
-          const long q = g_.idx(i, j, k);
+          const long q = g.idx(i, j, k);
           a[q] = a[q + nd * sd];
           a[q + (nd + 1) * sd] = a[q + sd];
         }
@@ -337,9 +342,9 @@ void GasSolver::check_courant(double t_new, double dt) const {
              k = q / (static_cast<long>(g_.padded[0]) * g_.padded[1]);
   std::ostringstream m;
   m << "gas: Courant number " << worst << " above gas.solver.max_courant = " << s_.max_courant
-    << " at t = " << t_new << " s: velocity component " << "xyz"[wd] << " = " << u_[wd][wq]
-    << " m/s on the high face of cell (" << i << ", " << j << ", " << k
-    << ") (the gas crosses more than that many cells per flow step DT = " << dt
+    << " at t = " << t_new << " s: velocity component "
+    << "xyz"[wd] << " = " << u_[wd][wq] << " m/s on the high face of cell (" << i << ", " << j
+    << ", " << k << ") (the gas crosses more than that many cells per flow step DT = " << dt
     << " s; reduce the flow step)";
   throw InstabilityError(m.str());
 }
