@@ -29,6 +29,17 @@ double seconds_since(Clock::time_point t0) {
 
 /// At least this many particle steps per contact: below it the run is refused unless forced.
 constexpr double kMinStepsPerContact = 10.0;
+/// A run of more steps than this would not end in any useful time: refused.
+constexpr double kMaxSteps = 1e12;
+
+void check_step_count(const CaseSpec& spec, double dt) {
+  const double steps = spec.simulation.end_time / dt;
+  if (!(dt > 0.0) || !std::isfinite(steps) || steps > kMaxSteps)
+    throw InputError(spec.where("simulation.time_step"), "simulation.time_step",
+                     fmt::format("{:.4g} s gives {:.3g} steps to simulation.end_time = {:.4g} s "
+                                 "(allowed: at most {:.0e} steps)",
+                                 dt, steps, spec.simulation.end_time, kMaxSteps));
+}
 
 BoxGeometry box_from(const CaseSpec& spec) {
   BoxGeometry b;
@@ -105,6 +116,7 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
     if (!sim.time_step && sim.end_time > 0.0) dt_ = sim.end_time / std::ceil(sim.end_time / dt_);
     spec_.simulation.time_step = dt_;
     report_.chosen_time_step = dt_;
+    check_step_count(spec_, dt_);
     nl_ = std::make_unique<NeighbourList>(box_from(spec_), skin, 0);
     hard_ = std::make_unique<HardSphereEngine>(spec_, box_from(spec_));
     if (spec_.gas) {
@@ -146,6 +158,7 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
     report_.steps_per_flow_step = steps_per_flow_;
   }
   spec_.simulation.time_step = dt_; // the resolved case reproduces this run
+  check_step_count(spec_, dt_);
 
   report_.durations = table_->durations();
   report_.characteristic_velocity = table_->characteristic_velocity();

@@ -1,5 +1,7 @@
 #include "particles/insertion.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -39,7 +41,11 @@ public:
   }
 
 private:
-  long coord(double v) const { return static_cast<long>(std::floor(v / cell_)); }
+  /// Cell coordinate; clamped to +-2^60 so that far-away points cannot overflow (they only
+  /// share a cell key, which makes the overlap search do more work, not give a wrong answer).
+  long coord(double v) const {
+    return static_cast<long>(std::clamp(std::floor(v / cell_), -1.0e18, 1.0e18));
+  }
   static std::uint64_t pack(long a, long b, long c) {
     return (static_cast<std::uint64_t>(a & 0x1FFFFF) << 42) |
            (static_cast<std::uint64_t>(b & 0x1FFFFF) << 21) |
@@ -108,6 +114,20 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
   for (const auto& s : spec.species) dmax = std::max(dmax, s.diameter);
   InsertionGrid grid(std::max(dmax, 1e-12));
   const double tol = spec.simulation.insertion_overlap_tolerance;
+  // Memory: about 1 kB per particle in a run (arrays, neighbour list, contact history, output
+  // buffers); more particles than the machine's memory holds is an input error, not a crash.
+  {
+    double requested = 0.0;
+    for (const auto& ins : spec.inserts)
+      if (ins.placement != Placement::File) requested += static_cast<double>(ins.count);
+    const double ram = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                       static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+    if (ram > 0.0 && requested * 1000.0 > ram)
+      throw InputError(spec.where("insert"), "insert.count",
+                       fmt::format("{:.3g} particles need about {:.3g} GB of memory, this "
+                                   "machine has {:.3g} GB",
+                                   requested, requested * 1e-6, ram * 1e-9));
+  }
 
   for (std::size_t k = 0; k < spec.inserts.size(); ++k) {
     const auto& ins = spec.inserts[k];
@@ -166,11 +186,18 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
       }
     } else if (ins.placement == Placement::Lattice) {
       // Simple cubic (square in 2-D) lattice of spacing d, filled x fastest, then y, then z.
+      // Sites per axis and the capacity in double first: a tiny diameter in a large region
+      // would overflow the integers (the count is at most 2^31 - 1, so a capacity above that
+      // is enough and is clamped).
       std::array<long, 3> m{};
-      for (int a = 0; a < 3; ++a)
-        m[a] = static_cast<long>(std::floor((hi[a] - lo[a]) / sp.diameter * (1 + 1e-12))) + 1;
-      if (two_d) m[1] = 1;
-      const long capacity = m[0] * m[1] * m[2];
+      double sites = 1.0;
+      for (int a = 0; a < 3; ++a) {
+        const double ma = std::floor((hi[a] - lo[a]) / sp.diameter * (1 + 1e-12)) + 1.0;
+        const double axis_sites = (two_d && a == 1) ? 1.0 : ma;
+        sites *= axis_sites;
+        m[a] = static_cast<long>(std::min(axis_sites, 4.0e9));
+      }
+      const long capacity = static_cast<long>(std::min(sites, 4.0e18));
       if (capacity < ins.count) {
         throw InputError(spec.where(key + ".count"), key + ".count",
                          fmt::format("the region holds at most {} particles of diameter {} m on "

@@ -299,3 +299,35 @@ TEST(RunSafety, ParticleLeavingTheDomainExits3) {
 }
 
 } // namespace
+
+namespace {
+
+// Found with the sanitizer build (issue "Runs that never lose data", fuzzing): a time step so
+// small the run would never end, and a lattice of tiny particles in a large region, were
+// accepted (the second overflowed a long). The first is exit 2 naming the key, the second is
+// computed without overflow; more particles than the memory holds is exit 2.
+TEST(RunSafety, EndlessRunIsRefused) {
+  TempDir dir;
+  const fs::path c =
+      dir.write("endless.toml", replace(kLong, "time_step = 2e-5\n", "time_step = 4.9e-324\n"));
+  const Result r = fluidem({"check", c.string()}, dir.path);
+  EXPECT_EQ(r.code, 2) << r.out << r.err;
+  EXPECT_TRUE(contains(r.err, "simulation.time_step")) << r.err;
+}
+
+TEST(RunSafety, LatticeOfTinyParticlesInAHugeRegionDoesNotOverflow) {
+  TempDir dir;
+  std::string text = replace(kLong, "hi = [0.04, 0.004, 0.04]", "hi = [1.0e6, 0.004, 1.0e6]");
+  text = replace(text, "diameter = 0.004", "diameter = 1e-7");
+  text = replace(text, "time_step = 2e-5\n", "time_step = 2e-5\nforce_time_step = true\n");
+  // 10 particles: the lattice capacity (about 1e26 sites) is computed without overflow.
+  const Result ok = fluidem({"check", dir.write("tiny.toml", text).string()}, dir.path);
+  EXPECT_EQ(ok.code, 0) << ok.out << ok.err;
+  // 2e9 particles: more than the machine's memory holds, an input error naming the key.
+  text = replace(text, "count = 10", "count = 2000000000");
+  const Result r = fluidem({"check", dir.write("huge.toml", text).string()}, dir.path);
+  EXPECT_EQ(r.code, 2) << r.out << r.err;
+  EXPECT_TRUE(contains(r.err, "memory")) << r.err;
+}
+
+} // namespace
