@@ -21,11 +21,18 @@ double rayleigh_speed_density(double c) {
   return c < 0.0 ? 0.0 : c * std::exp(-0.5 * c * c);
 }
 
-VelocityDistribution velocity_distribution(const ParticleStore& p, const std::array<double, 3>& lo,
-                                           const std::array<double, 3>& hi,
-                                           const VelocityDistributionOptions& o) {
+namespace {
+void check_options(const VelocityDistributionOptions& o) {
   if (o.bins < 1 || !(o.range > 0.0))
     throw std::invalid_argument("velocity_distribution: need bins >= 1 and range > 0");
+}
+} // namespace
+
+void append_velocity_fluctuations(const ParticleStore& p, const std::array<double, 3>& lo,
+                                  const std::array<double, 3>& hi,
+                                  const VelocityDistributionOptions& o,
+                                  std::vector<std::array<double, 3>>& C) {
+  check_options(o);
   std::array<int, 3> nc = o.cells;
   for (int d = 0; d < 3; ++d)
     if (nc[d] < 1 || !(hi[d] > lo[d]))
@@ -53,13 +60,8 @@ VelocityDistribution velocity_distribution(const ParticleStore& p, const std::ar
     mv[2][q] += p.mass[i] * p.vz[i];
     ++count[q];
   }
-  const int h1 = o.vertical_axis == 0 ? 1 : 0, h2 = o.vertical_axis == 2 ? 1 : 2;
-  std::array<int, 3> comps{0, 1, 2};
-  const int ncomp = o.two_d ? 2 : 3;
-  if (o.two_d) comps = {0, 2, 1};
-  // Fluctuations (mass-weighted local mean), then moments.
-  std::vector<std::array<double, 3>> C;
-  C.reserve(n);
+  // Fluctuations about the mass-weighted local mean.
+  C.reserve(C.size() + n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t q = cell[i];
     if (count[q] < 2) continue;
@@ -68,6 +70,15 @@ VelocityDistribution velocity_distribution(const ParticleStore& p, const std::ar
     for (int d = 0; d < 3; ++d) c[d] = v[d] - mv[d][q] / mass[q];
     C.push_back(c);
   }
+}
+
+VelocityDistribution fluctuation_distribution(const std::vector<std::array<double, 3>>& C,
+                                              const VelocityDistributionOptions& o) {
+  check_options(o);
+  const int h1 = o.vertical_axis == 0 ? 1 : 0, h2 = o.vertical_axis == 2 ? 1 : 2;
+  std::array<int, 3> comps{0, 1, 2};
+  const int ncomp = o.two_d ? 2 : 3;
+  if (o.two_d) comps = {0, 2, 1};
   if (C.size() < 2)
     throw std::invalid_argument("velocity_distribution: fewer than 2 particles share a cell");
   VelocityDistribution r;
@@ -113,7 +124,10 @@ VelocityDistribution velocity_distribution(const ParticleStore& p, const std::ar
     const double s = std::sqrt(r.variance[d]);
     for (const auto& c : C) {
       const int b = static_cast<int>(std::floor((c[d] / s + o.range) / w));
-      if (b >= 0 && b < o.bins) h[static_cast<std::size_t>(b)] += 1.0 / (ns * w);
+      if (b >= 0 && b < o.bins)
+        h[static_cast<std::size_t>(b)] += 1.0 / (ns * w);
+      else
+        r.outside[d] += 1.0 / ns;
     }
   }
   const double st = std::sqrt(r.granular_temperature);
@@ -121,9 +135,20 @@ VelocityDistribution velocity_distribution(const ParticleStore& p, const std::ar
     double c2 = 0.0;
     for (int k = 0; k < ncomp; ++k) c2 += c[comps[k]] * c[comps[k]];
     const int b = static_cast<int>(std::floor(std::sqrt(c2) / st / ws));
-    if (b >= 0 && b < o.bins) r.speed_density[static_cast<std::size_t>(b)] += 1.0 / (ns * ws);
+    if (b >= 0 && b < o.bins)
+      r.speed_density[static_cast<std::size_t>(b)] += 1.0 / (ns * ws);
+    else
+      r.speed_outside += 1.0 / ns;
   }
   return r;
+}
+
+VelocityDistribution velocity_distribution(const ParticleStore& p, const std::array<double, 3>& lo,
+                                           const std::array<double, 3>& hi,
+                                           const VelocityDistributionOptions& o) {
+  std::vector<std::array<double, 3>> C;
+  append_velocity_fluctuations(p, lo, hi, o, C);
+  return fluctuation_distribution(C, o);
 }
 
 } // namespace fluidem

@@ -27,6 +27,10 @@ struct VelocityDistribution {
   std::array<std::vector<double>, 3> density; ///< histogram of C_d / s_d as a pdf
   std::vector<double> speed_centres;          ///< of |C| / sqrt(theta), [0, range]
   std::vector<double> speed_density;          ///< histogram of |C| / sqrt(theta) as a pdf
+  /// Fraction of the samples outside the histogram range (per component; speed): the densities
+  /// integrate to 1 minus this.
+  std::array<double, 3> outside{};
+  double speed_outside = 0.0;
   long samples = 0;
 };
 
@@ -45,6 +49,21 @@ struct VelocityDistributionOptions {
 VelocityDistribution velocity_distribution(const ParticleStore& p, const std::array<double, 3>& lo,
                                            const std::array<double, 3>& hi,
                                            const VelocityDistributionOptions& o = {});
+
+/// The fluctuation velocities C_i (as velocity_distribution defines them, cells with a single
+/// particle left out) of the particles of `p`, appended to `out`: to pool several frames (each
+/// frame with its own local means) into one distribution. Throws for bad options as
+/// velocity_distribution does.
+void append_velocity_fluctuations(const ParticleStore& p, const std::array<double, 3>& lo,
+                                  const std::array<double, 3>& hi,
+                                  const VelocityDistributionOptions& o,
+                                  std::vector<std::array<double, 3>>& out);
+
+/// The distribution of the fluctuation velocities `C` (from append_velocity_fluctuations, one
+/// or many frames): moments, granular temperature, anisotropy and histograms as above.
+/// std::invalid_argument when `C` has fewer than 2 samples or a variance is zero.
+VelocityDistribution fluctuation_distribution(const std::vector<std::array<double, 3>>& C,
+                                              const VelocityDistributionOptions& o = {});
 
 /// Reference densities for unit variance per component: the standard normal
 /// exp(-x^2/2)/sqrt(2 pi); the Maxwell speed density sqrt(2/pi) c^2 exp(-c^2/2) (3-D, <c^2> = 3);

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "app/analyse.hpp"
 #include "app/progress.hpp"
 #include "app/signals.hpp"
 #include "core/error.hpp"
@@ -175,6 +176,7 @@ int run_cli(int argc, char** argv) {
   auto* check = app.add_subcommand("check", "Validate a case and print its derived quantities");
   check->add_option("case", check_path, "Case file (TOML)")->required();
   check->add_option("--set", check_overrides, "Override a case value: section.key=value");
+  const auto analysis = add_analysis_commands(app); // analyse, plot (app/analyse.hpp)
 
   try {
     app.parse(argc, argv);
@@ -188,6 +190,7 @@ int run_cli(int argc, char** argv) {
   }
 
   try {
+    if (analysis->selected()) return analysis->run(argv[0]);
     if (*check) {
       const CaseSpec spec = read_case_file(check_path, check_overrides);
       Simulation sim(spec);

@@ -1,0 +1,170 @@
+#!/usr/bin/python3
+"""Pictures of `fluidem analyse OUTDIR` (docs/analysis.md).
+
+Usage: /usr/bin/python3 python/fluidem_analysis_plot.py OUTDIR
+
+Reads OUTDIR/analysis/*.csv (written by `fluidem analyse`) and OUTDIR/probes.csv, and writes into
+OUTDIR/analysis/:
+  spectrum_<probe>.png      the probe's pressure fluctuation over the analysis window (top) and
+                            its power spectral density with the dominant frequency marked
+                            (bottom), as [Chang08 Fig. 10];
+  velocity_distribution.png the density of each velocity fluctuation component C/s against the
+                            standard normal density, and of the speed |C|/sqrt(theta) against the
+                            Maxwell (3-D) or Rayleigh (2-D) density, as [Deen07 Fig. 10];
+  segregation.png           the degree of segregation s against time [Deen07 eq. 49], when
+                            segregation.csv exists.
+Exit codes: 0 done; 2 bad input (no OUTDIR/analysis: run `fluidem analyse OUTDIR` first; an
+unreadable CSV); 3 matplotlib or numpy is missing.
+"""
+import csv
+import glob
+import os
+import sys
+
+
+def fail(message, code=2):
+    print(f"fluidem_analysis_plot: {message}", file=sys.stderr)
+    sys.exit(code)
+
+
+try:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt  # noqa: E402
+    import numpy as np  # noqa: E402
+except ImportError as e:
+    fail(f"{sys.executable} cannot import {e.name} ({e}); install python3-matplotlib and "
+         "python3-numpy (Debian) or run with an interpreter that has them", 3)
+
+
+def read_columns(path):
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.reader(f))
+    except OSError as e:
+        fail(f"cannot read {path}: {e.strerror}")
+    if not rows:
+        fail(f"{path} is empty")
+    header, body = rows[0], [r for r in rows[1:] if r]
+    try:
+        data = np.array([[float(v) for v in r] for r in body], dtype=float)
+    except ValueError:
+        fail(f"{path}: a row is not all numbers")
+    if data.size == 0:
+        data = np.zeros((0, len(header)))
+    if data.shape[1] != len(header):
+        fail(f"{path}: rows do not have {len(header)} columns")
+    return {name: data[:, i] for i, name in enumerate(header)}
+
+
+def read_summary(path):
+    out = {}
+    try:
+        with open(path, newline="") as f:
+            for row in csv.DictReader(f):
+                out[row["name"]] = float(row["value"])
+    except (OSError, KeyError, ValueError) as e:
+        fail(f"cannot read {path}: {e}")
+    return out
+
+
+def plot_spectrum(outdir, adir, summary, probes, path):
+    name = os.path.basename(path)[len("spectrum_"):-len(".csv")]
+    spec = read_columns(path)
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 7))
+    t0, t1 = summary.get("window_start"), summary.get("window_end")
+    if probes is not None and name in probes and t0 is not None:
+        t = probes["time"]
+        sel = (t >= t0) & (t <= t1)
+        p = probes[name][sel]
+        ax1.plot(t[sel], (p - p.mean()) / 1e3, lw=0.8)
+        ax1.set_title(f"probe {name}: pressure fluctuation (mean {p.mean() / 1e3:.4g} kPa)")
+    ax1.set_xlabel("time (s)")
+    ax1.set_ylabel("p - <p> (kPa)")
+    f, psd = spec["frequency"], spec["psd"]
+    ax2.semilogy(f[1:], psd[1:], lw=1.0)
+    fd = summary.get("dominant_frequency_" + name)
+    if fd is not None:
+        ax2.axvline(fd, color="r", ls="--", lw=1.0, label=f"dominant {fd:.3g} Hz")
+        ax2.legend()
+    ax2.set_xlim(0, min(f[-1], max(10 * (fd or 1.0), 20.0)))
+    ax2.set_xlabel("frequency (Hz)")
+    ax2.set_ylabel("PSD (Pa$^2$/Hz)")
+    ax2.set_title("Welch power spectral density [Chang08 §4.2]")
+    fig.tight_layout()
+    fig.savefig(os.path.join(adir, f"spectrum_{name}.png"), dpi=100)
+    plt.close(fig)
+
+
+def plot_velocities(adir, summary):
+    d = read_columns(os.path.join(adir, "velocity_distribution.csv"))
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
+    x = d["bin_centre"]
+    for comp in ("x", "y", "z"):
+        key = "density_" + comp
+        if key in d:
+            k = summary.get("velocity_kurtosis_" + comp)
+            label = f"C$_{comp}$/s$_{comp}$" + (f" (kurtosis {k:.2f})" if k is not None else "")
+            ax1.plot(x, d[key], "o-", ms=3, lw=0.8, label=label)
+    ax1.plot(x, d["normal"], "k-", lw=1.5, label="normal")
+    ax1.set_xlabel("C / s")
+    ax1.set_ylabel("probability density")
+    ax1.legend(fontsize=8)
+    ax1.set_title("velocity fluctuation components [Deen07 §6.2]")
+    ref = "maxwell" if "maxwell" in d else "rayleigh"
+    ax2.plot(d["speed"], d["speed_density"], "o-", ms=3, lw=0.8, label="|C| / sqrt(theta)")
+    ax2.plot(d["speed"], d[ref], "k-", lw=1.5, label=ref.capitalize())
+    ax2.set_xlabel("|C| / sqrt(theta)")
+    ax2.set_ylabel("probability density")
+    theta = summary.get("granular_temperature")
+    ax2.set_title("speed" + (f", theta = {theta:.3g} m$^2$/s$^2$" if theta is not None else ""))
+    ax2.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(adir, "velocity_distribution.png"), dpi=100)
+    plt.close(fig)
+
+
+def plot_segregation(adir):
+    d = read_columns(os.path.join(adir, "segregation.csv"))
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.plot(d["time"], d["s"], lw=1.0)
+    ax.axhline(0.0, color="k", lw=0.5)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("degree of segregation s")
+    ax.set_title("segregation [Deen07 eq. 49]: 0 mixed, 1 segregated")
+    fig.tight_layout()
+    fig.savefig(os.path.join(adir, "segregation.png"), dpi=100)
+    plt.close(fig)
+
+
+def main(argv):
+    if len(argv) != 1 or argv[0] in ("-h", "--help"):
+        print(__doc__)
+        return 0 if argv and argv[0] in ("-h", "--help") else 2
+    outdir = argv[0]
+    adir = os.path.join(outdir, "analysis")
+    if not os.path.isdir(adir):
+        fail(f"no {adir}: run `fluidem analyse {outdir}` first")
+    summary_path = os.path.join(adir, "summary.csv")
+    summary = read_summary(summary_path) if os.path.exists(summary_path) else {}
+    probes_path = os.path.join(outdir, "probes.csv")
+    probes = read_columns(probes_path) if os.path.exists(probes_path) else None
+    written = 0
+    for path in sorted(glob.glob(os.path.join(adir, "spectrum_*.csv"))):
+        plot_spectrum(outdir, adir, summary, probes, path)
+        written += 1
+    if os.path.exists(os.path.join(adir, "velocity_distribution.csv")):
+        plot_velocities(adir, summary)
+        written += 1
+    if os.path.exists(os.path.join(adir, "segregation.csv")):
+        plot_segregation(adir)
+        written += 1
+    if written == 0:
+        fail(f"{adir} holds no analysis CSV: run `fluidem analyse {outdir}`")
+    print(f"fluidem_analysis_plot: {written} pictures in {adir}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,417 @@
+#include "app/analyse.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "analysis/segregation.hpp"
+#include "analysis/spectrum.hpp"
+#include "analysis/velocity_distribution.hpp"
+#include "core/error.hpp"
+#include "io/case_reader.hpp"
+#include "output/h5md_reader.hpp"
+
+namespace fluidem {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Table {
+  std::vector<std::string> columns;
+  std::vector<std::vector<double>> data; ///< data[column][row]
+};
+
+// A CSV written by SeriesWriter: a header line, then rows of numbers.
+Table read_csv(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in)
+    throw InputError(fmt::format("cannot read '{}': {}", path.string(), std::strerror(errno)));
+  Table t;
+  std::string line;
+  if (!std::getline(in, line)) throw InputError(fmt::format("'{}' is empty", path.string()));
+  {
+    std::istringstream h(line);
+    std::string c;
+    while (std::getline(h, c, ',')) t.columns.push_back(c);
+  }
+  if (t.columns.empty() || t.columns[0] != "time")
+    throw InputError(fmt::format("'{}': the first column is not 'time'", path.string()));
+  t.data.resize(t.columns.size());
+  for (long n = 2; std::getline(in, line); ++n) {
+    if (line.empty()) continue;
+    std::vector<double> row;
+    const char* s = line.c_str();
+    while (true) {
+      char* end = nullptr;
+      row.push_back(std::strtod(s, &end));
+      if (end == s) break;
+      s = end;
+      if (*s != ',') break;
+      ++s;
+    }
+    if (row.size() != t.columns.size() || *s != '\0') {
+      if (in.peek() == EOF) break; // an incomplete last line of a live run
+      throw InputError(
+          fmt::format("'{}' line {}: not {} numbers", path.string(), n, t.columns.size()));
+    }
+    for (std::size_t c = 0; c < row.size(); ++c) t.data[c].push_back(row[c]);
+  }
+  return t;
+}
+
+struct SummaryRow {
+  std::string name;
+  double value;
+  std::string unit;
+};
+
+std::ofstream open_out(const fs::path& p) {
+  std::ofstream f(p);
+  if (!f) throw InputError(fmt::format("cannot write '{}': {}", p.string(), std::strerror(errno)));
+  return f;
+}
+
+std::string g(double v) {
+  return fmt::format("{:.10g}", v);
+}
+
+// The particle analyses of the run in `out` into `dir`; true when segregation.csv was written.
+bool analyse_particles(const fs::path& particles_path, const fs::path& out, const fs::path& dir,
+                       double t0, double t1, std::vector<SummaryRow>& summary) {
+  std::unique_ptr<H5mdReader> reader;
+  try {
+    reader = std::make_unique<H5mdReader>(particles_path.string());
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
+  const bool two_d = reader->dimension() == 2;
+  const H5mdBox& box = reader->box();
+  VelocityDistributionOptions vo;
+  vo.two_d = two_d;
+  std::array<double, 3> lo = box.lo, hi = box.hi;
+  std::string cells_note = "one cell (the whole box)";
+  try { // local means per gas cell when the resolved case has a gas grid
+    const CaseSpec spec = read_case_file((out / "case.resolved.toml").string());
+    if (spec.gas) {
+      vo.cells = spec.gas->cells;
+      if (two_d) vo.cells[1] = 1;
+      lo = {spec.gas->lo.x, spec.gas->lo.y, spec.gas->lo.z};
+      hi = {spec.gas->hi.x, two_d ? std::max(spec.gas->hi.y, box.hi[1]) : spec.gas->hi.y,
+            spec.gas->hi.z};
+      if (two_d && !(hi[1] > lo[1])) hi[1] = lo[1] + 1.0;
+      cells_note =
+          fmt::format("the gas cells ({} x {} x {})", vo.cells[0], vo.cells[1], vo.cells[2]);
+    }
+  } catch (const std::exception&) {
+  }
+  for (int d = 0; d < 3; ++d)
+    if (!(hi[d] > lo[d])) hi[d] = lo[d] + 1.0; // a flat box (2-D without depth)
+  std::vector<std::array<double, 3>> C;
+  ParticleStore p;
+  long frames_used = 0;
+  const auto& ft = reader->times();
+  try {
+    for (std::size_t k = 0; k < reader->frames(); ++k) {
+      if (ft[k] < t0 || ft[k] > t1) continue;
+      reader->read_frame(k, p);
+      append_velocity_fluctuations(p, lo, hi, vo, C);
+      ++frames_used;
+    }
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
+  if (frames_used == 0)
+    throw InputError(fmt::format("'{}' has no frame in [{}, {}] s (its {} frames cover {} to {} s)",
+                                 particles_path.string(), g(t0), g(t1), reader->frames(),
+                                 ft.empty() ? "-" : g(ft.front()),
+                                 ft.empty() ? "-" : g(ft.back())));
+  VelocityDistribution vd;
+  try {
+    vd = fluctuation_distribution(C, vo);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(fmt::format("velocity distribution over {} frames of '{}': {}", frames_used,
+                                 particles_path.string(), e.what()));
+  }
+  {
+    std::ofstream f = open_out(dir / "velocity_distribution.csv");
+    f << (two_d ? "bin_centre,density_x,density_z,normal,speed,speed_density,rayleigh\n"
+                : "bin_centre,density_x,density_y,density_z,normal,speed,speed_density,maxwell\n");
+    for (std::size_t b = 0; b < vd.bin_centres.size(); ++b) {
+      f << g(vd.bin_centres[b]) << ',' << g(vd.density[0][b]) << ',';
+      if (!two_d) f << g(vd.density[1][b]) << ',';
+      f << g(vd.density[2][b]) << ',' << g(normal_density(vd.bin_centres[b])) << ','
+        << g(vd.speed_centres[b]) << ',' << g(vd.speed_density[b]) << ','
+        << g(two_d ? rayleigh_speed_density(vd.speed_centres[b])
+                   : maxwell_speed_density(vd.speed_centres[b]))
+        << '\n';
+    }
+  }
+  fmt::print("velocities         {} frames, {} fluctuation samples, local means over {}\n",
+             frames_used, vd.samples, cells_note);
+  summary.push_back({"velocity_frames", static_cast<double>(frames_used), "1"});
+  summary.push_back({"velocity_samples", static_cast<double>(vd.samples), "1"});
+  const char* axis = "xyz";
+  for (int d = 0; d < 3; ++d) {
+    if (two_d && d == 1) continue;
+    const std::string a(1, axis[d]);
+    summary.push_back({"velocity_variance_" + a, vd.variance[d], "m^2/s^2"});
+    summary.push_back({"velocity_skewness_" + a, vd.skewness[d], "1"});
+    summary.push_back({"velocity_kurtosis_" + a, vd.kurtosis[d], "1"});
+    summary.push_back({"velocity_outside_range_" + a, vd.outside[d], "1"});
+    fmt::print("  {}: variance {:.4g} m^2/s^2, skewness {:.3f}, kurtosis {:.3f} (Gaussian: 0, 3)\n",
+               a, vd.variance[d], vd.skewness[d], vd.kurtosis[d]);
+  }
+  summary.push_back({"speed_outside_range", vd.speed_outside, "1"});
+  summary.push_back({"anisotropy", vd.anisotropy, "1"});
+  summary.push_back({"granular_temperature", vd.granular_temperature, "m^2/s^2"});
+  fmt::print("  granular temperature {:.4g} m^2/s^2, anisotropy {:.3f} (vertical / horizontal "
+             "variance)\n",
+             vd.granular_temperature, vd.anisotropy);
+
+  // Segregation when the particles have exactly two sizes.
+  std::set<double> radii;
+  if (reader->frames() > 0) {
+    reader->read_frame(0, p);
+    radii.insert(p.radius.begin(), p.radius.end());
+  }
+  if (radii.size() == 2) {
+    const double split = *radii.begin() + *radii.rbegin(); // the mean of the two diameters
+    std::ofstream f = open_out(dir / "segregation.csv");
+    f << "time,s\n";
+    double sum = 0.0, last = 0.0;
+    long in_window = 0;
+    for (std::size_t k = 0; k < reader->frames(); ++k) {
+      reader->read_frame(k, p);
+      const Segregation s = segregation(p, split, 2, box.lo[2], true, two_d);
+      f << g(ft[k]) << ',' << g(s.s) << '\n';
+      last = s.s;
+      if (ft[k] >= t0 && ft[k] <= t1) sum += s.s, ++in_window;
+    }
+    summary.push_back({"segregation_last_frame", last, "1"});
+    if (in_window > 0)
+      summary.push_back({"segregation_mean_window", sum / static_cast<double>(in_window), "1"});
+    fmt::print("segregation        s = {:.4f} at the last frame (diameters {:.4g} and {:.4g} m)\n",
+               last, 2.0 * *radii.begin(), 2.0 * *radii.rbegin());
+  }
+
+  return radii.size() == 2;
+}
+
+} // namespace
+
+int analyse(const AnalyseOptions& o) {
+  const fs::path out(o.out_dir);
+  std::error_code ec;
+  if (!fs::is_directory(out, ec))
+    throw InputError(
+        fmt::format("'{}' is not a directory (the output directory of a run)", o.out_dir));
+  const fs::path probes_path = out / "probes.csv";
+  if (!fs::exists(probes_path, ec))
+    throw InputError(fmt::format("'{}' does not exist: the run has no pressure probes (a case "
+                                 "with [gas] and [[output.probe]] writes it)",
+                                 probes_path.string()));
+  const Table probes = read_csv(probes_path);
+  const std::vector<double>& time = probes.data[0];
+  if (time.size() < 2 || probes.columns.size() < 2)
+    throw InputError(fmt::format("'{}' holds {} rows and {} probes: too few to analyse",
+                                 probes_path.string(), time.size(), probes.columns.size() - 1));
+  std::vector<std::size_t> chosen;
+  for (std::size_t c = 1; c < probes.columns.size(); ++c)
+    if (o.probe.empty() || probes.columns[c] == o.probe) chosen.push_back(c);
+  if (chosen.empty()) {
+    std::vector<std::string> names(probes.columns.begin() + 1, probes.columns.end());
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw InputError(
+        fmt::format("no probe '{}' in '{}' (its probes: {})", o.probe, probes_path.string(), list));
+  }
+
+  // The window [T0, T1]: default the second half of the run.
+  const double t_first = time.front(), t_last = time.back();
+  const double t0 = o.from.value_or(t_first + 0.5 * (t_last - t_first));
+  const double t1 = o.to.value_or(t_last);
+  if (!(t1 > t0))
+    throw InputError(fmt::format("empty window: --from {} must be before --to {} (the run covers "
+                                 "{} to {} s)",
+                                 g(t0), g(t1), g(t_first), g(t_last)));
+  std::vector<std::size_t> rows;
+  for (std::size_t i = 0; i < time.size(); ++i)
+    if (time[i] >= t0 && time[i] <= t1) rows.push_back(i);
+  const std::size_t n = rows.size();
+  if (n < 32)
+    throw InputError(fmt::format("too few samples: {} rows of '{}' in [{}, {}] s, at least 32 "
+                                 "needed for a spectrum (a longer run, or a wider --from/--to)",
+                                 n, probes_path.string(), g(t0), g(t1)));
+  const double dt = (time[rows.back()] - time[rows.front()]) / static_cast<double>(n - 1);
+  for (std::size_t k = 1; k < n; ++k)
+    if (std::fabs(time[rows[k]] - time[rows[k - 1]] - dt) > 1e-3 * dt)
+      throw InputError(fmt::format("'{}': the rows are not evenly spaced in time near t = {} s "
+                                   "(a spectrum needs a constant sampling interval)",
+                                   probes_path.string(), g(time[rows[k]])));
+  const double fs_rate = 1.0 / dt;
+  std::size_t segment = 0;
+  if (o.segment_seconds > 0.0) {
+    segment = static_cast<std::size_t>(std::llround(o.segment_seconds * fs_rate));
+    segment -= segment % 2;
+    if (segment < 8 || segment > n)
+      throw InputError(fmt::format("--segment {} s is {} samples at {} Hz; it must be between 8 "
+                                   "and the {} samples of the window",
+                                   g(o.segment_seconds), segment, g(fs_rate), n));
+  } else {
+    segment = 8;
+    while (segment * 2 <= n / 4) segment *= 2;
+    if (segment > n / 4)
+      throw InputError(fmt::format("too few samples: {} in the window, at least 32 needed", n));
+  }
+
+  const fs::path dir = out / "analysis";
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(fmt::format("cannot create '{}': {}", dir.string(), ec.message()));
+  std::vector<SummaryRow> summary;
+  summary.push_back({"window_start", time[rows.front()], "s"});
+  summary.push_back({"window_end", time[rows.back()], "s"});
+  summary.push_back({"probe_sample_rate", fs_rate, "Hz"});
+  summary.push_back({"probe_samples", static_cast<double>(n), "1"});
+  summary.push_back({"spectrum_segment_length", static_cast<double>(segment), "1"});
+  fmt::print("window             {} to {} s ({} probe samples at {:.6g} Hz)\n",
+             g(time[rows.front()]), g(time[rows.back()]), n, fs_rate);
+  for (std::size_t c : chosen) {
+    const std::string& name = probes.columns[c];
+    std::vector<double> signal(n);
+    for (std::size_t k = 0; k < n; ++k) signal[k] = probes.data[c][rows[k]];
+    Spectrum s;
+    try {
+      s = welch_psd(signal, fs_rate, segment);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(fmt::format("probe '{}': {}", name, e.what()));
+    }
+    double mean = 0.0, var = 0.0;
+    for (double v : signal) mean += v / static_cast<double>(n);
+    for (double v : signal) var += (v - mean) * (v - mean) / static_cast<double>(n);
+    std::ofstream f = open_out(dir / ("spectrum_" + name + ".csv"));
+    f << "frequency,psd\n";
+    for (std::size_t k = 0; k < s.psd.size(); ++k)
+      f << g(s.frequency[k]) << ',' << g(s.psd[k]) << '\n';
+    fmt::print("probe {:<12} dominant frequency {:.4g} Hz (resolution {:.3g} Hz, {} segments of "
+               "{} samples; variance {:.4g} Pa^2, PSD power {:.4g} Pa^2)\n",
+               name, s.dominant_frequency, s.resolution, s.segments, segment, var, s.power());
+    if (s.power() < 0.9 * var)
+      fmt::print("  note: the spectrum holds {:.0f}% of the variance; the rest varies slower than "
+                 "one segment ({:.3g} s): use a longer window (--from) or --segment\n",
+                 100.0 * s.power() / var, static_cast<double>(segment) / fs_rate);
+    summary.push_back({"dominant_frequency_" + name, s.dominant_frequency, "Hz"});
+    summary.push_back({"spectrum_resolution_" + name, s.resolution, "Hz"});
+    summary.push_back({"pressure_variance_" + name, var, "Pa^2"});
+    summary.push_back({"psd_power_" + name, s.power(), "Pa^2"});
+  }
+
+  // Particles: velocity distribution over the frames in the window, segregation over all.
+  const fs::path particles_path = out / "particles.h5";
+  bool two_sizes = false;
+  if (fs::exists(particles_path, ec))
+    two_sizes = analyse_particles(particles_path, out, dir, t0, t1, summary);
+  else
+    fmt::print("particles          no {}: velocity distribution and segregation left out\n",
+               particles_path.string());
+
+  std::ofstream f = open_out(dir / "summary.csv");
+  f << "name,value,unit\n";
+  for (const auto& r : summary) f << r.name << ',' << g(r.value) << ',' << r.unit << '\n';
+  fmt::print("written            {}/ (summary.csv, velocity_distribution.csv, spectrum_*.csv{})\n",
+             dir.string(), two_sizes ? ", segregation.csv" : "");
+  return 0;
+}
+
+namespace {
+
+fs::path find_script_dir(const char* argv0) {
+  std::error_code ec;
+  std::vector<fs::path> candidates;
+  if (const char* env = std::getenv("FLUIDEM_PYTHON_DIR")) candidates.emplace_back(env);
+  // This file is <source>/src/app/analyse.cpp; CMake compiles it by its absolute path.
+  candidates.push_back(fs::path(__FILE__).parent_path().parent_path().parent_path() / "python");
+  if (argv0 != nullptr) {
+    const fs::path self = fs::canonical("/proc/self/exe", ec);
+    const fs::path bin = ec ? fs::path(argv0).parent_path() : self.parent_path();
+    candidates.push_back(bin / ".." / "share" / "fluidem" / "python");
+  }
+  for (const auto& c : candidates)
+    if (fs::exists(c / "fluidem_analysis_plot.py", ec)) return c;
+  std::string list;
+  for (const auto& c : candidates) list += "\n  " + c.string();
+  throw InputError("cannot find the plotting scripts (fluidem_plot.py, "
+                   "fluidem_analysis_plot.py); looked in:" +
+                   list + "\nset FLUIDEM_PYTHON_DIR to the python/ folder of the fluidem sources");
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+} // namespace
+
+int plot(const std::string& out_dir, const char* argv0) {
+  std::error_code ec;
+  if (!fs::is_directory(out_dir, ec))
+    throw InputError(
+        fmt::format("'{}' is not a directory (the output directory of a run)", out_dir));
+  const fs::path dir = find_script_dir(argv0);
+  const char* env = std::getenv("FLUIDEM_PYTHON");
+  const std::string python = env != nullptr && env[0] != '\0' ? env : "/usr/bin/python3";
+  std::fflush(stdout);
+  for (const char* script : {"fluidem_plot.py", "fluidem_analysis_plot.py"}) {
+    const std::string cmd =
+        quote(python) + " " + quote((dir / script).string()) + " " + quote(out_dir);
+    const int status = std::system(cmd.c_str());
+    const int code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : 1;
+    if (code != 0) {
+      fmt::print(stderr, "error: {} failed (exit code {}): {}\n", script, code, cmd);
+      return code;
+    }
+  }
+  fmt::print("pictures: {}/snapshot.png, {}/analysis/*.png\n", out_dir, out_dir);
+  return 0;
+}
+
+int AnalysisCommands::run(const char* argv0) const {
+  if (*analyse) return fluidem::analyse(options);
+  return fluidem::plot(plot_dir, argv0);
+}
+
+std::unique_ptr<AnalysisCommands> add_analysis_commands(CLI::App& app) {
+  auto c = std::make_unique<AnalysisCommands>();
+  AnalyseOptions& o = c->options;
+  c->analyse = app.add_subcommand(
+      "analyse", "Analyse a run's outputs into OUT/analysis/: probe spectra, velocity "
+                 "distributions, segregation, summary.csv (docs/analysis.md)");
+  c->analyse->add_option("out", o.out_dir, "Output directory of a run")->required();
+  c->analyse->add_option("--probe", o.probe, "Only this probe of probes.csv (default: all)");
+  c->analyse
+      ->add_option("--segment", o.segment_seconds,
+                   "Welch segment length, s (default: the largest power of two of "
+                   "samples not above a quarter of the window)")
+      ->check(CLI::PositiveNumber);
+  c->analyse->add_option("--from", o.from, "Window start T0, s (default: half the run)");
+  c->analyse->add_option("--to", o.to, "Window end T1, s (default: the end of the run)");
+  c->plot = app.add_subcommand("plot", "Draw a run's pictures: OUT/snapshot.png and, from "
+                                       "`fluidem analyse`, OUT/analysis/*.png");
+  c->plot->add_option("out", c->plot_dir, "Output directory of a run")->required();
+  return c;
+}
+
+} // namespace fluidem
