@@ -36,13 +36,19 @@ import argparse
 import os
 import sys
 
-import matplotlib
+try:
+    import matplotlib
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.collections import PatchCollection  # noqa: E402
-from matplotlib.patches import Circle, Patch, Rectangle  # noqa: E402
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt  # noqa: E402
+    import numpy as np  # noqa: E402
+    from matplotlib.collections import PatchCollection  # noqa: E402
+    from matplotlib.patches import Circle, Patch, Rectangle  # noqa: E402
+except ImportError as e:
+    sys.exit(
+        f"fluidem_plot: {e.name or 'a module'} is missing: install python3-matplotlib and "
+        "python3-numpy (apt-get) and run with /usr/bin/python3"
+    )
 
 ENERGY_COLUMNS = ["e_kin", "e_rot", "e_pot", "e_el", "e_dsp"]
 ENERGY_LABELS = {
