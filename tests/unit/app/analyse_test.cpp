@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "../../common/cli_runner.hpp"
 #include "output/h5md_reader.hpp"
 
 namespace {
@@ -35,40 +36,12 @@ fs::path temp_dir(const std::string& name) {
   return p;
 }
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
+using fluidem::test::fluidem;
+using fluidem::test::quote;
+using fluidem::test::read_file;
+using fluidem::test::Result;
 Result run(const std::string& command, const fs::path& cwd) {
-  const fs::path out = cwd / ".stdout", err = cwd / ".stderr";
-  const std::string cmd = "cd " + quote(cwd.string()) + " && " + command + " > " +
-                          quote(out.string()) + " 2> " + quote(err.string());
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(out);
-  r.err = read_file(err);
-  return r;
-}
-
-Result fluidem(const std::vector<std::string>& args, const fs::path& cwd) {
-  std::string cmd = quote(FLUIDEM_BINARY);
-  for (const auto& a : args) cmd += " " + quote(a);
-  return run(cmd, cwd);
+  return fluidem::test::run_command(command, cwd);
 }
 
 struct Csv {

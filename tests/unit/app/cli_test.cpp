@@ -16,66 +16,19 @@
 #include <string>
 #include <vector>
 
+#include "../../common/cli_runner.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-/// A fresh folder per test (tests may run in parallel under ctest -j), removed afterwards.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() / ("fluidem_cli_" + std::string(info->test_suite_name()) +
-                                        "_" + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path p = path / name;
-    std::ofstream(p) << text;
-    return p;
-  }
-};
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-/// Runs `fluidem ARGS...` in `cwd`, capturing both streams through files.
-Result fluidem(const std::vector<std::string>& args, const fs::path& cwd) {
-  std::string cmd = "cd " + quote(cwd.string()) + " && " + quote(FLUIDEM_BINARY);
-  for (const auto& a : args) cmd += " " + quote(a);
-  const fs::path out = cwd / ".stdout", err = cwd / ".stderr";
-  cmd += " > " + quote(out.string()) + " 2> " + quote(err.string());
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(out);
-  r.err = read_file(err);
-  return r;
-}
-
-bool contains(const std::string& text, const std::string& what) {
-  return text.find(what) != std::string::npos;
-}
+using fluidem::test::contains;
+using fluidem::test::fluidem;
+using fluidem::test::quote;
+using fluidem::test::read_file;
+using fluidem::test::replace;
+using fluidem::test::Result;
+using fluidem::test::TempDir;
 
 /// 1-based line of the first line of `text` that starts with `marker` (0 if none).
 long line_of(const std::string& text, const std::string& marker) {
@@ -84,13 +37,6 @@ long line_of(const std::string& text, const std::string& marker) {
   for (long n = 1; std::getline(in, line); ++n)
     if (line.rfind(marker, 0) == 0) return n;
   return 0;
-}
-
-std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto pos = text.find(from);
-  EXPECT_NE(pos, std::string::npos) << "not in the case text: " << from;
-  if (pos != std::string::npos) text.replace(pos, from.size(), to);
-  return text;
 }
 
 // A valid 2-D case: ten 4 mm glass discs on a lattice in a 40 x 40 mm box, linear k = 800 N/m

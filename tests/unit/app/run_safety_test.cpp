@@ -25,40 +25,20 @@
 #include <thread>
 #include <vector>
 
+#include "../../common/cli_runner.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() /
-           ("fluidem_safety_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path p = path / name;
-    std::ofstream(p) << text;
-    return p;
-  }
-};
+using fluidem::test::contains;
+using fluidem::test::read_file;
+using fluidem::test::replace;
+using fluidem::test::Result;
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-struct Result {
-  int code = -1;
-  std::string out, err;
+/// A fresh folder per test.
+struct TempDir : fluidem::test::TempDir {
+  TempDir() : fluidem::test::TempDir("fluidem_safety") {}
 };
 
 /// Starts `fluidem ARGS...` in `cwd` with stdout/stderr to files; returns the pid.
@@ -93,10 +73,6 @@ Result finish(pid_t pid, const fs::path& cwd) {
 
 Result fluidem(const std::vector<std::string>& args, const fs::path& cwd) {
   return finish(start(args, cwd), cwd);
-}
-
-bool contains(const std::string& text, const std::string& what) {
-  return text.find(what) != std::string::npos;
 }
 
 std::vector<double> series_times(const fs::path& csv) {
@@ -258,13 +234,6 @@ TEST(RunSafety, RestartCannotChangeThePhysics) {
               dir.path);
   EXPECT_EQ(r.code, 2) << r.out << r.err;
   EXPECT_TRUE(contains(r.err, "simulation.end_time")) << r.err;
-}
-
-std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto pos = text.find(from);
-  EXPECT_NE(pos, std::string::npos) << from;
-  if (pos != std::string::npos) text.replace(pos, from.size(), to);
-  return text;
 }
 
 void expect_guard(const std::string& text, const std::string& what_regex) {
