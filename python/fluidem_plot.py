@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Snapshot picture of a fluidem run.
 
-Usage: /usr/bin/python3 python/fluidem_plot.py OUTDIR [--frame -1] [--color-by species|speed|id]
-                                                      [--out PNG]
+Usage: /usr/bin/python3 python/fluidem_plot.py OUTDIR [--frame -1]
+                                   [--color-by|--color species|speed|id|layer] [--out PNG]
 
 Reads OUTDIR/particles.h5 (H5MD, written by fluidem's H5mdWriter) and draws one frame's particles
 as circles of their true radius in the x-z plane (axes in mm). For 3-D data (a spread in y) only
@@ -10,6 +10,12 @@ the particles of the slab |y - y_mid| < 2 r_max are drawn (y_mid: middle of the 
 particles when the file has no box), and the title says so. If OUTDIR/series.csv exists, a second
 panel shows the energies over time (the columns e_kin, e_rot, e_pot, e_el, e_dsp that are present,
 and their sum, "total"). Writes OUTDIR/snapshot.png unless --out is given.
+
+Colours (--color-by, or its synonym --color): "species" (one colour per species), "speed" or "id"
+(a colour bar), "layer": the horizontal layer of the initial bed each particle started in
+(/particles/all/layer, written when the case sets output.layers > 0), drawn as alternating black
+and white bands like the coloured layers of [Hoomans96 Figs. 10, 12], to show mixing. The default
+is "layer" when the file holds layers, else "species"; "layer" on a file without them exits 2.
 
 Coupled runs (with a gas phase) add:
   * OUTDIR/fields.h5 (FieldsWriter): a panel next to the particles with the porosity (gas volume
@@ -75,7 +81,10 @@ def parse_args(argv):
                    help="run output directory (holds particles.h5, series.csv; fields.h5, "
                         "probes.csv for coupled runs)")
     p.add_argument("--frame", type=int, default=-1, help="frame index, negative from the end")
-    p.add_argument("--color-by", choices=["species", "speed", "id"], default="species")
+    p.add_argument("--color-by", "--color", dest="color_by",
+                   choices=["species", "speed", "id", "layer"], default=None,
+                   help="particle colours (default: layer when the file holds layers, else "
+                        "species)")
     p.add_argument("--out", default=None, help="PNG to write (default OUTDIR/snapshot.png)")
     return p.parse_args(argv)
 
@@ -105,6 +114,7 @@ def read_frame(h5_path, frame):
                 "radius": np.asarray(all_["radius/value"][k], dtype=float),
                 "species": np.asarray(all_["species/value"][k]),
                 "id": np.asarray(all_["id/value"][k]),
+                "layer": (np.asarray(all_["layer/value"][k]) if "layer/value" in all_ else None),
                 "time": float(all_["position/time"][k]),
                 "step": int(all_["position/step"][k]),
                 "box": None,
@@ -207,6 +217,10 @@ def read_series(csv_path):
     return {name: np.atleast_1d(data[name]) for name in data.dtype.names}
 
 
+# Alternating colours of the initial layers (layer 0 at the bottom is black).
+LAYER_COLOURS = ("black", "white")
+
+
 def draw_particles(ax, fig, d, color_by, narrow=False):
     pos, r = d["position"], d["radius"]
     n_total = len(r)
@@ -227,7 +241,15 @@ def draw_particles(ax, fig, d, color_by, narrow=False):
     circles = [Circle((x, z), rr) for x, z, rr in zip(x_mm, z_mm, r_mm)]
     coll = PatchCollection(circles, linewidths=0.2, edgecolors="k")
 
-    if color_by == "species":
+    if color_by == "layer":
+        layer = d["layer"][keep].astype(int)
+        coll.set_facecolor([LAYER_COLOURS[k % 2] for k in layer])
+        n_layers = int(d["layer"].max()) + 1 if len(d["layer"]) > 0 else 0
+        handles = [Patch(facecolor=LAYER_COLOURS[k], edgecolor="k",
+                         label=f"{'even' if k == 0 else 'odd'} layers") for k in (0, 1)]
+        ax.legend(handles=handles, loc="upper right", fontsize="small",
+                  title=f"{n_layers} initial layers", title_fontsize="small")
+    elif color_by == "species":
         species = d["species"][keep].astype(int)
         kinds = np.unique(d["species"].astype(int))
         cmap = plt.get_cmap("tab10")
@@ -380,6 +402,10 @@ def make_figure(args):
     if not os.path.isfile(h5_path):
         fail(f"no such file: {h5_path} (is {args.outdir} a fluidem output directory?)")
     d = read_frame(h5_path, args.frame)
+    if args.color_by is None:
+        args.color_by = "layer" if d["layer"] is not None else "species"
+    elif args.color_by == "layer" and d["layer"] is None:
+        fail(f"{h5_path} holds no layers (/particles/all/layer; set output.layers in the case)")
     series = read_series(os.path.join(args.outdir, "series.csv"))
 
     fd = None
@@ -431,7 +457,7 @@ def make_figure(args):
     map_height = 6.3  # inches, of a figure 8 inches high
     map_width = float(np.clip(map_height * aspect, 3.0, 9.0)) + 1.0  # + tick labels
     colour_bar = 1.3
-    widths = [map_width + (colour_bar if args.color_by != "species" else 0.0)]
+    widths = [map_width + (colour_bar if args.color_by not in ("species", "layer") else 0.0)]
     if fd is not None:
         widths.append(map_width + colour_bar)
     if rows:

@@ -115,7 +115,10 @@ struct OutputSpec {
   double series_interval = 0.001; ///< s between rows of series.csv (and probes.csv)
   /// s between checkpoints (OUT/checkpoint.h5); 0 (key absent): 10 frame intervals.
   double checkpoint_interval = 0.0;
-  std::vector<ProbeSpec> probes;  ///< pressure probes (coupled runs only)
+  /// Number of horizontal layers the initial bed is split into (0 = off): each particle keeps
+  /// the index of the band its centre started in (ParticleStore::layer), written to particles.h5.
+  int layers = 0;
+  std::vector<ProbeSpec> probes; ///< pressure probes (coupled runs only)
 };
 
 struct NeighbourSpec {

@@ -90,10 +90,16 @@ Simulation::Simulation(CaseSpec spec) : Simulation(std::move(spec), nullptr) {}
 Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std::move(spec)) {
   const bool hard = spec_.simulation.engine == Engine::HardSphere;
   if (!hard) table_ = std::make_unique<ContactTable>(spec_);
-  if (initial)
+  if (initial) {
     p_ = *initial;
-  else
+  } else {
     insert_particles(spec_, p_);
+    // Coloured layers [Hoomans96 Figs. 10, 12]: bands of the initial bed along gravity's axis.
+    int up = 2;
+    for (int a = 0; a < 3; ++a)
+      if (std::abs(spec_.simulation.gravity[a]) > std::abs(spec_.simulation.gravity[up])) up = a;
+    assign_layers(p_, up, spec_.output.layers);
+  }
   if (!(spec_.output.checkpoint_interval > 0.0))
     spec_.output.checkpoint_interval = 10.0 * spec_.output.frame_interval;
 
@@ -330,10 +336,12 @@ RunSummary Simulation::run(const std::string& out_dir,
   H5mdBox hbox{spec_.domain.lo, spec_.domain.hi, spec_.domain.periodic};
   const std::string h5_path = (fs::path(out_dir) / "particles.h5").string();
   std::unique_ptr<H5mdWriter> h5 =
-      options.resume ? std::make_unique<H5mdWriter>(H5mdWriter::resume(
-                           h5_path, t_keep, p_.size(), spec_.simulation.dimension, hbox))
-                     : std::make_unique<H5mdWriter>(h5_path, p_.size(), spec_.simulation.dimension,
-                                                    kVersion, hbox);
+      options.resume
+          ? std::make_unique<H5mdWriter>(H5mdWriter::resume(h5_path, t_keep, p_.size(),
+                                                            spec_.simulation.dimension, hbox,
+                                                            spec_.output.layers > 0))
+          : std::make_unique<H5mdWriter>(h5_path, p_.size(), spec_.simulation.dimension, kVersion,
+                                         hbox, std::string(), spec_.output.layers > 0);
   std::vector<std::string> columns{"time",
                                    "e_kin",
                                    "e_rot",

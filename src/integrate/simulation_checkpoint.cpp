@@ -3,8 +3,8 @@
 //
 // The state: the resolved case (so the restart needs no case file), the step counter, the
 // particle arrays (positions, velocities, angular velocities, forces and torques of the last
-// step, radii, masses, inverse masses and inertias, species, ids), the contact statistics and
-// dissipated energy, the neighbour list (its build positions and skin, from which the same
+// step, radii, masses, inverse masses and inertias, species, ids, layers), the contact statistics
+// and dissipated energy, the neighbour list (its build positions and skin, from which the same
 // pairs are rebuilt, and the contact histories of every pair and wall entry), the hard-sphere
 // engine's state (last-collision times of the TC model, counters, list), the gas fields
 // (velocity, pressure, porosity new and old, density) and the gas force on each particle, and
@@ -109,6 +109,7 @@ void Simulation::write_checkpoint(const std::string& path) {
   for (const auto& [name, v] : double_arrays(p_)) w.put(std::string("particles/") + name, *v);
   w.put("particles/species", p_.species);
   w.put("particles/id", p_.id);
+  w.put("particles/layer", p_.layer);
   put_list(w, "neighbour", nl_->state());
   if (hard_) {
     const HardSphereEngine::State h = hard_->state();
@@ -155,14 +156,22 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
       throw InputError(fmt::format("--set {}: a restarted run continues the checkpointed one; "
                                    "only simulation.end_time and output.* may change",
                                    o));
+    if (key == "output.layers") // the layers are those of t = 0, kept in the checkpoint
+      throw InputError(fmt::format("--set {}: the layers are assigned at t = 0; a restarted run "
+                                   "keeps those of the checkpointed one",
+                                   o));
   }
   CaseSpec spec = read_case_string(r.string("case/resolved"), checkpoint, overrides);
   ParticleStore p;
   for (const auto& [name, v] : double_arrays(p)) *v = r.doubles(std::string("particles/") + name);
   p.species = r.int32s("particles/species");
   p.id = r.int64s("particles/id");
+  // Checkpoints written before layers existed hold none: every particle in layer 0.
+  p.layer = r.has("particles/layer") ? r.int32s("particles/layer")
+                                     : std::vector<std::int32_t>(p.id.size(), 0);
   for (const auto& [name, v] : double_arrays(p))
-    if (v->size() != p.id.size() || p.species.size() != p.id.size())
+    if (v->size() != p.id.size() || p.species.size() != p.id.size() ||
+        p.layer.size() != p.id.size())
       throw CheckpointError(fmt::format("checkpoint '{}': particle array '{}' has {} entries for "
                                         "{} particles",
                                         checkpoint, name, v->size(), p.id.size()));

@@ -43,7 +43,8 @@ const Keys& simulation_keys() {
   return k;
 }
 const Keys& output_keys() {
-  static const Keys k = {"frame_interval", "series_interval", "checkpoint_interval", "probe"};
+  static const Keys k = {"frame_interval", "series_interval", "checkpoint_interval", "layers",
+                         "probe"};
   return k;
 }
 const Keys& probe_keys() {
@@ -924,6 +925,9 @@ private:
     opt_number(t, "output", "frame_interval", kTime, spec_.output.frame_interval);
     opt_number(t, "output", "series_interval", kTime, spec_.output.series_interval);
     opt_number(t, "output", "checkpoint_interval", kTime, spec_.output.checkpoint_interval);
+    if (t != nullptr)
+      if (const auto e = find(*t, "layers", "output.layers"))
+        spec_.output.layers = int_value(*e, "output.layers", 0, "an integer >= 0 (0: off)");
   }
 
   void read_domain(const toml::table& t) {

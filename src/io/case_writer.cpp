@@ -217,6 +217,7 @@ std::string write_case_toml(const CaseSpec& spec) {
      << "series_interval = " << format_double(spec.output.series_interval) << "  # s\n";
   if (spec.output.checkpoint_interval > 0.0)
     os << "checkpoint_interval = " << format_double(spec.output.checkpoint_interval) << "  # s\n";
+  if (spec.output.layers > 0) os << "layers = " << spec.output.layers << "\n";
   if (spec.gas) {
     for (const ProbeSpec& p : spec.output.probes)
       os << "\n[[output.probe]]\n"

@@ -26,6 +26,7 @@ struct H5mdReader::Impl {
   std::size_t n = 0;
   std::size_t frames = 0;
   int dimension = 3;
+  bool layer = false; // /particles/all/layer present
   H5mdBox box;
   std::vector<double> times;
   std::vector<long> steps;
@@ -136,6 +137,8 @@ H5mdReader::H5mdReader(const std::string& path) : impl_(std::make_unique<Impl>()
   const char* const names[] = {"position", "velocity", "angular_velocity",
                                "radius",   "species",  "id"};
   for (const char* name : names) frames_of(std::string("/particles/all/") + name + "/value");
+  m.layer = exists("/particles/all/layer");
+  if (m.layer) frames_of("/particles/all/layer/value");
   frames_of("/particles/all/position/time");
   frames_of("/particles/all/position/step");
   m.frames = complete;
@@ -173,6 +176,9 @@ const std::vector<double>& H5mdReader::times() const {
 const std::vector<long>& H5mdReader::steps() const {
   return impl_->steps;
 }
+bool H5mdReader::has_layer() const {
+  return impl_->layer;
+}
 const std::string& H5mdReader::path() const {
   return impl_->path;
 }
@@ -201,6 +207,10 @@ void H5mdReader::read_frame(std::size_t k, ParticleStore& out) const {
   m.read_value("radius", 1, H5T_NATIVE_DOUBLE, k, out.radius);
   m.read_value("species", 1, H5T_NATIVE_INT32, k, out.species);
   m.read_value("id", 1, H5T_NATIVE_INT64, k, out.id);
+  if (m.layer)
+    m.read_value("layer", 1, H5T_NATIVE_INT32, k, out.layer);
+  else
+    out.layer.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const double r = out.radius[i];
     out.mass[i] = sphere_mass(r, 1.0);

@@ -39,6 +39,7 @@ enum Element : std::size_t {
   kRadius,
   kSpecies,
   kId,
+  kLayer, // only when the run keeps layers (output.layers > 0)
   kCount
 };
 
@@ -79,6 +80,7 @@ const ElementSpec kElements[kCount] = {
     {"radius", "/particles/all/radius/value", 1, f64le, native_double, 8, "m"},
     {"species", "/particles/all/species/value", 1, i32le, native_i32, 4, nullptr},
     {"id", "/particles/all/id/value", 1, i64le, native_i64, 8, nullptr},
+    {"layer", "/particles/all/layer/value", 1, i32le, native_i32, 4, nullptr},
 };
 
 } // namespace
@@ -88,6 +90,8 @@ struct H5mdWriter::Impl {
   std::size_t n = 0;
   std::size_t frames = 0;
   bool closed = false;
+  bool layer = false; // the file holds /particles/all/layer
+  std::size_t elements() const { return layer ? kCount : kLayer; }
   // Declaration order = reverse close order: the file is closed last.
   Handle file;
   Handle frames_attr;
@@ -134,7 +138,7 @@ void H5mdWriter::Impl::append_value(Element e, const void* data, hid_t mem_space
 
 H5mdWriter::H5mdWriter(const std::string& path, std::size_t n_particles, int dimension,
                        const std::string& creator_version, const H5mdBox& box,
-                       const std::string& author)
+                       const std::string& author, bool layer)
     : impl_(std::make_unique<Impl>()) {
   if (dimension != 2 && dimension != 3)
     throw std::invalid_argument("H5mdWriter('" + path + "'): dimension must be 2 or 3, not " +
@@ -145,6 +149,7 @@ H5mdWriter::H5mdWriter(const std::string& path, std::size_t n_particles, int dim
   Impl& m = *impl_;
   m.path = path;
   m.n = n_particles;
+  m.layer = layer;
   const Builder b{m.path};
 
   Handle fapl{check_id(H5Pcreate(H5P_FILE_ACCESS), path, "create property list"), H5Pclose};
@@ -204,7 +209,7 @@ H5mdWriter::H5mdWriter(const std::string& path, std::size_t n_particles, int dim
                     index.data());
   }
 
-  for (std::size_t e = 0; e < kCount; ++e) {
+  for (std::size_t e = 0; e < m.elements(); ++e) {
     const ElementSpec& spec = kElements[e];
     Handle group = b.group(all.get(), spec.name);
     if (e == 0) {
@@ -242,7 +247,7 @@ H5mdWriter::H5mdWriter(const std::string& path, std::size_t n_particles, int dim
 H5mdWriter::H5mdWriter() : impl_(std::make_unique<Impl>()) {}
 
 H5mdWriter H5mdWriter::resume(const std::string& path, double t_keep, std::size_t n_particles,
-                              int dimension, const H5mdBox& box) {
+                              int dimension, const H5mdBox& box, bool layer) {
   const std::string who = "H5mdWriter::resume('" + path + "')";
   if (std::isnan(t_keep)) throw std::invalid_argument(who + ": t_keep is NaN");
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -314,7 +319,16 @@ H5mdWriter H5mdWriter::resume(const std::string& path, double t_keep, std::size_
   if (step_dims.size() != 1 || time_dims.size() != 1)
     mismatch("/particles/all/position/step and time must be 1-D");
   hsize_t complete = std::min(step_dims[0], time_dims[0]);
-  for (std::size_t e = 0; e < kCount; ++e) {
+  { // layers: the file holds them exactly when the run keeps them
+    const htri_t has = H5Lexists(all.get(), "layer", H5P_DEFAULT);
+    hdf5::hdf5_error_detail(); // clear the stack of a failed lookup
+    if ((has > 0) != layer)
+      mismatch(std::string(has > 0 ? "the file holds" : "the file lacks") +
+               " /particles/all/layer, the run " + (layer ? "keeps" : "does not keep") +
+               " layers (output.layers)");
+    m.layer = layer;
+  }
+  for (std::size_t e = 0; e < m.elements(); ++e) {
     const ElementSpec& spec = kElements[e];
     m.value[e] = hdf5::open_dataset(all.get(), std::string(spec.name) + "/value", path);
     const std::vector<hsize_t> dims = hdf5::extent(m.value[e].get(), path, spec.value_path);
@@ -332,7 +346,7 @@ H5mdWriter H5mdWriter::resume(const std::string& path, double t_keep, std::size_
   const hsize_t keep = hdf5::frames_to_keep(times, complete, t_keep);
   hdf5::shrink_frames(m.step.get(), keep, path, "/particles/all/position/step");
   hdf5::shrink_frames(m.time.get(), keep, path, "/particles/all/position/time");
-  for (std::size_t e = 0; e < kCount; ++e)
+  for (std::size_t e = 0; e < m.elements(); ++e)
     hdf5::shrink_frames(m.value[e].get(), keep, path, kElements[e].value_path);
   m.frames = keep;
   const std::int64_t frames64 = static_cast<std::int64_t>(keep);
@@ -354,7 +368,8 @@ void H5mdWriter::write_frame(long step, double time, const ParticleStore& p) {
   const std::size_t n = m.n;
   for (const std::size_t size :
        {p.x.size(), p.y.size(), p.z.size(), p.vx.size(), p.vy.size(), p.vz.size(), p.wx.size(),
-        p.wy.size(), p.wz.size(), p.radius.size(), p.species.size(), p.id.size()}) {
+        p.wy.size(), p.wz.size(), p.radius.size(), p.species.size(), p.id.size(),
+        m.layer ? p.layer.size() : n}) {
     if (size != n)
       throw std::invalid_argument("H5mdWriter('" + m.path + "'): frame has " +
                                   std::to_string(size) + " particles, the file holds " +
@@ -383,6 +398,7 @@ void H5mdWriter::write_frame(long step, double time, const ParticleStore& p) {
   m.append_value(kRadius, p.radius.data(), m.mem_scalar.get());
   m.append_value(kSpecies, p.species.data(), m.mem_scalar.get());
   m.append_value(kId, p.id.data(), m.mem_scalar.get());
+  if (m.layer) m.append_value(kLayer, p.layer.data(), m.mem_scalar.get());
 
   ++m.frames;
   const std::int64_t frames64 = static_cast<std::int64_t>(m.frames);

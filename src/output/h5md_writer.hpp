@@ -16,6 +16,12 @@
 //        /radius               /step, /time, /value float64[F][N]
 //        /species              /step, /time, /value int32[F][N]
 //        /id                   /step, /time, /value int64[F][N]
+//        /layer                /step, /time, /value int32[F][N]; only when the run keeps layers
+//                              (output.layers > 0): the index of the horizontal band of the
+//                              initial bed the particle started in (ParticleStore::layer).
+//                              Written every frame like species and id, although it does not
+//                              change, so that row i of every quantity of frame k is one particle
+//                              (a time-independent dataset would break if the store is reordered)
 //        /vertex_index         int64[N] = 0..N-1 (time-independent; the XDMF Polyvertex
 //                              connectivity, see xdmf_writer.hpp)
 // Vectors always have 3 components; in a 2-D run the y components are zero.
@@ -54,20 +60,21 @@ inline constexpr const char* kH5mdVertexIndexPath = "/particles/all/vertex_index
 class H5mdWriter {
 public:
   /// Create (truncate) `path` and write the static part of the layout. `dimension` is 2 or 3.
-  /// `author` defaults to $USER (or "unknown").
+  /// `author` defaults to $USER (or "unknown"). `layer`: also write ParticleStore::layer.
   H5mdWriter(const std::string& path, std::size_t n_particles, int dimension,
              const std::string& creator_version, const H5mdBox& box = {},
-             const std::string& author = {});
+             const std::string& author = {}, bool layer = false);
   /// Continue the existing H5MD file `path` (written by this class) after a restart from a
   /// checkpoint: keep the leading frames with time <= t_keep (the caller passes the checkpoint
   /// time plus half a time step) that are complete in every dataset, drop all later ones (also
   /// frames cut short by a crash), and append the next write_frame after them. kept_times() then
   /// holds the kept frames' times, for rewriting the XDMF index (write_particles_xdmf).
   /// Errors, all std::runtime_error naming `path`: the file does not exist or is not readable
-  /// HDF5; it does not match the run (n_particles, dimension, box; the message says what differs)
+  /// HDF5; it does not match the run (n_particles, dimension, box, whether it holds /layer as
+  /// `layer` asks; the message says what differs)
   /// or lacks part of the layout. A NaN t_keep: std::invalid_argument.
   static H5mdWriter resume(const std::string& path, double t_keep, std::size_t n_particles,
-                           int dimension, const H5mdBox& box = {});
+                           int dimension, const H5mdBox& box = {}, bool layer = false);
 
   ~H5mdWriter(); ///< closes the file; errors on this path are swallowed (call close() to see them)
   H5mdWriter(H5mdWriter&&) noexcept;

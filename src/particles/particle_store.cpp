@@ -1,5 +1,7 @@
 #include "particles/particle_store.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 
 namespace fluidem {
@@ -9,7 +11,7 @@ template <class F>
 void for_each_array(ParticleStore& p, F&& f) {
   f(p.x), f(p.y), f(p.z), f(p.vx), f(p.vy), f(p.vz), f(p.wx), f(p.wy), f(p.wz);
   f(p.fx), f(p.fy), f(p.fz), f(p.tx), f(p.ty), f(p.tz);
-  f(p.radius), f(p.mass), f(p.inv_mass), f(p.inv_inertia), f(p.species), f(p.id);
+  f(p.radius), f(p.mass), f(p.inv_mass), f(p.inv_inertia), f(p.species), f(p.id), f(p.layer);
 }
 } // namespace
 
@@ -39,6 +41,21 @@ void ParticleStore::add(const Vec3& p, const Vec3& v, double r, double rho, std:
   inv_inertia.push_back(1.0 / (0.4 * m * r * r)); // solid sphere I = 2/5 m r^2
   species.push_back(s);
   id.push_back(pid);
+  layer.push_back(0);
+}
+
+void assign_layers(ParticleStore& p, int axis, int n_layers) {
+  const std::vector<double>& h = axis == 0 ? p.x : axis == 1 ? p.y : p.z;
+  p.layer.assign(p.size(), 0);
+  if (n_layers <= 1 || p.size() == 0) return;
+  const auto [lo, hi] = std::minmax_element(h.begin(), h.end());
+  const double bottom = *lo, range = *hi - *lo;
+  if (!(range > 0.0)) return;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    // + 1e-9 slice: a lattice row meant to lie on a boundary is not lost to rounding
+    const double k = std::floor((h[i] - bottom) / range * n_layers + 1e-9);
+    p.layer[i] = static_cast<std::int32_t>(std::clamp(k, 0.0, static_cast<double>(n_layers - 1)));
+  }
 }
 
 void ParticleStore::zero_forces() {

@@ -26,6 +26,9 @@ public:
   // Species index into the species table; unique id (stable across sorting)
   std::vector<std::int32_t> species;
   std::vector<std::int64_t> id;
+  // Index (0 .. output.layers-1) of the horizontal band of the initial bed the particle started
+  // in (assign_layers); 0 for every particle when output.layers is 0. Constant during a run.
+  std::vector<std::int32_t> layer;
 
   std::size_t size() const { return x.size(); }
   void reserve(std::size_t n);
@@ -50,5 +53,12 @@ public:
 
 /// Mass of a solid sphere of radius r and density rho, kg.
 double sphere_mass(double r, double rho);
+
+/// Set p.layer: split [lowest, highest] particle centre coordinate along `axis` (0, 1, 2 = x, y,
+/// z) into n_layers equal slices and give each particle the index of its slice, 0 at the low
+/// end; a centre on a boundary (within 1e-9 of a slice height) goes to the upper slice, the
+/// highest one to the last.
+/// All particles at one height (or n_layers <= 1): every index 0.
+void assign_layers(ParticleStore& p, int axis, int n_layers);
 
 } // namespace fluidem

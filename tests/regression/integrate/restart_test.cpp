@@ -4,7 +4,8 @@
 // torques) and gas fields (velocity, pressure, porosity), and the continued run's output files
 // must equal the uninterrupted run's: series.csv and probes.csv byte for byte, the particle and
 // field frames (times and positions) of particles.h5 the same frames with the same values, the
-// XDMF indexes byte for byte (no duplicated, no missing frame).
+// XDMF indexes byte for byte (no duplicated, no missing frame). The runs keep 4 initial layers
+// (output.layers): the layer array and particles.h5's layer frames must be identical too.
 // Engines: soft spheres (Hoomans pouring, 500 discs, with tangential-spring history in the
 // contacts), hard spheres (the same with the event-driven engine), and both coupled to the gas
 // (the Tsuji column of tests/common, 200 particles). The time step is fixed explicitly (an
@@ -14,6 +15,7 @@
 // file (CheckpointError), and the previous checkpoint (checkpoint.prev.h5) still loads.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -71,6 +73,9 @@ void expect_same_arrays(const Simulation& a, const Simulation& b) {
       if ((*v.first)[i] != (*v.second)[i]) ++differ; // bitwise (no NaN expected)
     EXPECT_EQ(differ, 0u) << "particle array " << name << ": " << differ << " entries differ";
   }
+  // The initial layers (output.layers = 4 in these runs): kept exactly, and not all alike.
+  EXPECT_TRUE(p.layer == q.layer) << "particle array layer differs";
+  EXPECT_NE(std::count(p.layer.begin(), p.layer.end(), 3), 0) << "no particle in layer 3";
   ASSERT_EQ(a.gas() != nullptr, b.gas() != nullptr);
   if (a.gas()) {
     const gas::GasSolver& g = a.gas()->solver();
@@ -93,7 +98,7 @@ void expect_same_outputs(const fs::path& a, const fs::path& b, bool gas) {
     EXPECT_TRUE(ta == tb) << f << " differs between the uninterrupted and the restarted run";
   }
   for (const char* ds : {"particles/all/position/time", "particles/all/position/value",
-                         "particles/all/velocity/value"}) {
+                         "particles/all/velocity/value", "particles/all/layer/value"}) {
     const auto va = read_h5_doubles(a / "particles.h5", ds);
     const auto vb = read_h5_doubles(b / "particles.h5", ds);
     EXPECT_FALSE(va.empty()) << ds;
@@ -117,6 +122,7 @@ void check_restart_identity(CaseSpec spec, double T, const std::string& name) {
   spec.output.checkpoint_interval = T;
   spec.output.frame_interval = T / 4.0;
   spec.output.series_interval = T / 20.0;
+  spec.output.layers = 4;
   Simulation a(spec);
   a.run(one.string());
 

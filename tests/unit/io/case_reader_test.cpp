@@ -776,5 +776,17 @@ TEST(CaseReaderOverrides, BadPaths) {
   EXPECT_EQ(msg.rfind("--set: species[x].friction: malformed key", 0), 0u) << msg;
 }
 
+// output.layers: an integer >= 0; negative, fractional or text values are errors at the key.
+TEST(CaseReader, OutputLayersMustBeANonNegativeInteger) {
+  const std::string base = "[simulation]\nend_time = 1\n"
+                           "[domain]\nlo = [0, 0, 0]\nhi = [1, 1, 1]\n"
+                           "[[species]]\nname = \"s\"\ndiameter = 0.1\ndensity = 1\n"
+                           "[[insert]]\nspecies = \"s\"\ncount = 1\n[output]\n";
+  EXPECT_EQ(read_case_string(base + "layers = 0\n", "case.toml").output.layers, 0);
+  EXPECT_EQ(read_case_string(base + "layers = 12\n", "case.toml").output.layers, 12);
+  for (const char* bad : {"layers = -1", "layers = 2.5", "layers = \"4\"", "layers = 3000000000"})
+    expect_error_at(base + bad + "\n", bad, "output.layers", "integer >= 0");
+}
+
 } // namespace
 } // namespace fluidem

@@ -60,6 +60,7 @@ void expect_same(const CaseSpec& a, const CaseSpec& b) {
                         b.simulation.insertion_overlap_tolerance));
   EXPECT_TRUE(same_bits(a.output.frame_interval, b.output.frame_interval));
   EXPECT_TRUE(same_bits(a.output.series_interval, b.output.series_interval));
+  EXPECT_EQ(a.output.layers, b.output.layers);
   expect_same(a.domain.lo, b.domain.lo, "domain.lo");
   expect_same(a.domain.hi, b.domain.hi, "domain.hi");
   EXPECT_EQ(a.domain.periodic, b.domain.periodic);
@@ -317,6 +318,29 @@ TEST(CaseWriter, DefaultsAndEveryKeyWritten) {
   EXPECT_EQ(text.find("file ="), std::string::npos) << text;      // random: no file
   EXPECT_EQ(text.find("[walls."), std::string::npos) << text;     // all faces alike
   expect_same(a, read_case_string(text, "case.toml"));
+}
+
+// output.layers: read as given, written only when > 0, read back identical.
+TEST(CaseWriter, RoundTripOutputLayers) {
+  const std::string minimal = "[simulation]\nend_time = 1\n"
+                              "[domain]\nlo = [0, 0, 0]\nhi = [1, 1, 1]\n"
+                              "[[species]]\nname = \"s\"\ndiameter = 0.1\ndensity = 1\n"
+                              "[[insert]]\nspecies = \"s\"\ncount = 1\n";
+  const CaseSpec off = read_case_string(minimal, "case.toml");
+  EXPECT_EQ(off.output.layers, 0); // default: off
+  EXPECT_EQ(write_case_toml(off).find("layers"), std::string::npos) << write_case_toml(off);
+  for (const int n : {1, 7, 2147483647}) {
+    SCOPED_TRACE(n);
+    const CaseSpec a =
+        read_case_string(minimal + "[output]\nlayers = " + std::to_string(n) + "\n", "case.toml");
+    EXPECT_EQ(a.output.layers, n);
+    const std::string text = write_case_toml(a);
+    EXPECT_NE(text.find("layers = " + std::to_string(n) + "\n"), std::string::npos) << text;
+    const CaseSpec b = read_case_string(text, "resolved.toml");
+    EXPECT_EQ(b.output.layers, n);
+    expect_same(a, b);
+    EXPECT_EQ(write_case_toml(b), text);
+  }
 }
 
 TEST(CaseWriter, RoundTripEachEngine) {
