@@ -80,6 +80,8 @@ double relative_residual(const Box& b, const StencilSystem& s, const std::vector
       const int period = b.hi[a] - b.lo[a] + 1;
       if (b.periodic[a] && c[a] < b.lo[a]) c[a] += period;
       if (b.periodic[a] && c[a] > b.hi[a]) c[a] -= period;
+      // Outside the array (a box starting at index 0): the coefficient there is 0, read nothing.
+      if (c[a] < 0 || c[a] >= b.padded[a]) return 0.0;
     }
     return x[b.idx(c[0], c[1], c[2])];
   };
