@@ -120,7 +120,7 @@ const Keys& gas_keys() {
 }
 const Keys& gas_solver_keys() {
   static const Keys k = {
-      "tolerance",           "velocity_tolerance", "max_iterations",       "velocity_relaxation",
+      "tolerance",           "velocity_tolerance", "max_iterations",        "velocity_relaxation",
       "pressure_relaxation", "linear_tolerance",   "linear_max_iterations", "max_courant"};
   return k;
 }
