@@ -1,0 +1,31 @@
+// One step's contacts, recorded on request by the contact loop for the analyses that need the
+// individual contacts: collision statistics (overlap extents, contact births and ends) and the
+// discrete-to-continuum contact and couple stresses [Zhu07 Tables 5-6].
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.hpp"
+
+namespace fluidem {
+
+/// One touching contact at the end of a step's force evaluation.
+struct ContactSample {
+  std::int64_t id_i = 0;  ///< particle id (ParticleStore::id) of i
+  std::int64_t id_j = -1; ///< particle id of the partner; for a wall: -1 - face (face 0..5)
+  std::int32_t i = 0;     ///< index of i in the ParticleStore at this step
+  std::int32_t j = -1;    ///< index of the partner particle; -1 for a wall
+  double overlap = 0.0;   ///< m, > 0
+  Vec3 normal;            ///< unit normal from i towards the partner
+  Vec3 force;             ///< total contact force on i from the partner, N (partner: -force)
+  Vec3 torque_roll;       ///< rolling torque on i, N m (partner particle: -torque_roll)
+  Vec3 contact_point;     ///< m: x_i + (r_i - overlap/2) n for pairs, on the wall for walls
+};
+
+/// The record the contact loop fills when `enabled`; cleared by the loop at each call.
+struct ContactRecord {
+  bool enabled = false;
+  std::vector<ContactSample> samples; ///< ordered by (i, partner) so runs do not depend on threads
+};
+
+} // namespace fluidem
