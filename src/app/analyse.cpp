@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -19,6 +20,8 @@
 #include "analysis/segregation.hpp"
 #include "analysis/spectrum.hpp"
 #include "analysis/velocity_distribution.hpp"
+#include "app/analyse_bed.hpp"
+#include "app/analysis_table.hpp"
 #include "core/error.hpp"
 #include "io/case_reader.hpp"
 #include "output/h5md_reader.hpp"
@@ -28,65 +31,6 @@ namespace fluidem {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Table {
-  std::vector<std::string> columns;
-  std::vector<std::vector<double>> data; ///< data[column][row]
-};
-
-// A CSV written by SeriesWriter: a header line, then rows of numbers.
-Table read_csv(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in)
-    throw InputError(fmt::format("cannot read '{}': {}", path.string(), std::strerror(errno)));
-  Table t;
-  std::string line;
-  if (!std::getline(in, line)) throw InputError(fmt::format("'{}' is empty", path.string()));
-  {
-    std::istringstream h(line);
-    std::string c;
-    while (std::getline(h, c, ',')) t.columns.push_back(c);
-  }
-  if (t.columns.empty() || t.columns[0] != "time")
-    throw InputError(fmt::format("'{}': the first column is not 'time'", path.string()));
-  t.data.resize(t.columns.size());
-  for (long n = 2; std::getline(in, line); ++n) {
-    if (line.empty()) continue;
-    std::vector<double> row;
-    const char* s = line.c_str();
-    while (true) {
-      char* end = nullptr;
-      row.push_back(std::strtod(s, &end));
-      if (end == s) break;
-      s = end;
-      if (*s != ',') break;
-      ++s;
-    }
-    if (row.size() != t.columns.size() || *s != '\0') {
-      if (in.peek() == EOF) break; // an incomplete last line of a live run
-      throw InputError(
-          fmt::format("'{}' line {}: not {} numbers", path.string(), n, t.columns.size()));
-    }
-    for (std::size_t c = 0; c < row.size(); ++c) t.data[c].push_back(row[c]);
-  }
-  return t;
-}
-
-struct SummaryRow {
-  std::string name;
-  double value;
-  std::string unit;
-};
-
-std::ofstream open_out(const fs::path& p) {
-  std::ofstream f(p);
-  if (!f) throw InputError(fmt::format("cannot write '{}': {}", p.string(), std::strerror(errno)));
-  return f;
-}
-
-std::string g(double v) {
-  return fmt::format("{:.10g}", v);
-}
 
 // The particle analyses of the run in `out` into `dir`; true when segregation.csv was written.
 bool analyse_particles(const fs::path& particles_path, const fs::path& out, const fs::path& dir,
@@ -212,22 +156,35 @@ bool analyse_particles(const fs::path& particles_path, const fs::path& out, cons
 
 } // namespace
 
-int analyse(const AnalyseOptions& o) {
-  const fs::path out(o.out_dir);
+namespace {
+
+// The time span of the run's results: probes.csv, else series.csv, else particles.h5.
+std::pair<double, double> run_time_span(const fs::path& out, const std::optional<Table>& probes) {
   std::error_code ec;
-  if (!fs::is_directory(out, ec))
-    throw InputError(
-        fmt::format("'{}' is not a directory (the output directory of a run)", o.out_dir));
-  const fs::path probes_path = out / "probes.csv";
-  if (!fs::exists(probes_path, ec))
-    throw InputError(fmt::format("'{}' does not exist: the run has no pressure probes (a case "
-                                 "with [gas] and [[output.probe]] writes it)",
-                                 probes_path.string()));
-  const Table probes = read_csv(probes_path);
+  if (probes) return {probes->data[0].front(), probes->data[0].back()};
+  if (fs::exists(out / "series.csv", ec)) {
+    const Table s = read_csv(out / "series.csv");
+    if (!s.data[0].empty()) return {s.data[0].front(), s.data[0].back()};
+  }
+  if (fs::exists(out / "particles.h5", ec)) {
+    try {
+      const H5mdReader r((out / "particles.h5").string());
+      if (r.frames() > 0) return {r.times().front(), r.times().back()};
+    } catch (const std::runtime_error& e) {
+      throw InputError(e.what());
+    }
+  }
+  throw InputError(fmt::format("'{}' holds no results of a run (probes.csv, series.csv or "
+                               "particles.h5)",
+                               out.string()));
+}
+
+// The Welch spectra of the probes of probes.csv over [t0, t1] [Chang08 §4.2].
+// Returns the times of the first and last samples in the window.
+std::pair<double, double> analyse_probes(const Table& probes, const fs::path& probes_path,
+                                         const AnalyseOptions& o, double t0, double t1,
+                                         const fs::path& dir, std::vector<SummaryRow>& summary) {
   const std::vector<double>& time = probes.data[0];
-  if (time.size() < 2 || probes.columns.size() < 2)
-    throw InputError(fmt::format("'{}' holds {} rows and {} probes: too few to analyse",
-                                 probes_path.string(), time.size(), probes.columns.size() - 1));
   std::vector<std::size_t> chosen;
   for (std::size_t c = 1; c < probes.columns.size(); ++c)
     if (o.probe.empty() || probes.columns[c] == o.probe) chosen.push_back(c);
@@ -238,15 +195,6 @@ int analyse(const AnalyseOptions& o) {
     throw InputError(
         fmt::format("no probe '{}' in '{}' (its probes: {})", o.probe, probes_path.string(), list));
   }
-
-  // The window [T0, T1]: default the second half of the run.
-  const double t_first = time.front(), t_last = time.back();
-  const double t0 = o.from.value_or(t_first + 0.5 * (t_last - t_first));
-  const double t1 = o.to.value_or(t_last);
-  if (!(t1 > t0))
-    throw InputError(fmt::format("empty window: --from {} must be before --to {} (the run covers "
-                                 "{} to {} s)",
-                                 g(t0), g(t1), g(t_first), g(t_last)));
   std::vector<std::size_t> rows;
   for (std::size_t i = 0; i < time.size(); ++i)
     if (time[i] >= t0 && time[i] <= t1) rows.push_back(i);
@@ -277,12 +225,6 @@ int analyse(const AnalyseOptions& o) {
       throw InputError(fmt::format("too few samples: {} in the window, at least 32 needed", n));
   }
 
-  const fs::path dir = out / "analysis";
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError(fmt::format("cannot create '{}': {}", dir.string(), ec.message()));
-  std::vector<SummaryRow> summary;
-  summary.push_back({"window_start", time[rows.front()], "s"});
-  summary.push_back({"window_end", time[rows.back()], "s"});
   summary.push_back({"probe_sample_rate", fs_rate, "Hz"});
   summary.push_back({"probe_samples", static_cast<double>(n), "1"});
   summary.push_back({"spectrum_segment_length", static_cast<double>(segment), "1"});
@@ -317,6 +259,52 @@ int analyse(const AnalyseOptions& o) {
     summary.push_back({"pressure_variance_" + name, var, "Pa^2"});
     summary.push_back({"psd_power_" + name, s.power(), "Pa^2"});
   }
+  return {time[rows.front()], time[rows.back()]};
+}
+
+} // namespace
+
+int analyse(const AnalyseOptions& o) {
+  const fs::path out(o.out_dir);
+  std::error_code ec;
+  if (!fs::is_directory(out, ec))
+    throw InputError(
+        fmt::format("'{}' is not a directory (the output directory of a run)", o.out_dir));
+  const fs::path probes_path = out / "probes.csv";
+  std::optional<Table> probes;
+  if (fs::exists(probes_path, ec)) {
+    probes = read_csv(probes_path);
+    if (probes->data[0].size() < 2 || probes->columns.size() < 2)
+      throw InputError(fmt::format("'{}' holds {} rows and {} probes: too few to analyse",
+                                   probes_path.string(), probes->data[0].size(),
+                                   probes->columns.size() - 1));
+  } else if (!o.probe.empty()) {
+    throw InputError(fmt::format("'{}' does not exist: the run has no pressure probes (a case "
+                                 "with [gas] and [[output.probe]] writes it)",
+                                 probes_path.string()));
+  }
+
+  // The window [T0, T1]: default the second half of the run.
+  const auto [t_first, t_last] = run_time_span(out, probes);
+  const double t0 = o.from.value_or(t_first + 0.5 * (t_last - t_first));
+  const double t1 = o.to.value_or(t_last);
+  if (!(t1 > t0))
+    throw InputError(fmt::format("empty window: --from {} must be before --to {} (the run covers "
+                                 "{} to {} s)",
+                                 g(t0), g(t1), g(t_first), g(t_last)));
+
+  const fs::path dir = out / "analysis";
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(fmt::format("cannot create '{}': {}", dir.string(), ec.message()));
+  std::vector<SummaryRow> summary;
+  std::pair<double, double> window{t0, std::min(t1, t_last)};
+  if (probes)
+    window = analyse_probes(*probes, probes_path, o, t0, t1, dir, summary);
+  else
+    fmt::print("probes             no {}: no pressure spectra\n", probes_path.string());
+  summary.insert(summary.begin(),
+                 {{"window_start", window.first, "s"}, {"window_end", window.second, "s"}});
+  analyse_bed(out, t0, t1, summary);
 
   // Particles: velocity distribution over the frames in the window, segregation over all.
   const fs::path particles_path = out / "particles.h5";

@@ -287,6 +287,40 @@ void SegregationMatchesDeen07Eq49() {
   }
 }
 
+// The bed rows against the case: W = sum m g / (width x depth) from the counts, diameters and
+// density of kCase (solid spheres, also in 2-D), the pressure drop's window mean and standard
+// deviation and the collision rate computed here from series.csv over the window of the summary.
+void BedQuantitiesMatchTheCase() {
+  const auto s = read_summary(analysis() / "summary.csv");
+  const double pi = std::numbers::pi;
+  const double mass = 150 * 2500.0 * pi / 6.0 * (std::pow(0.004, 3) + std::pow(0.003, 3));
+  const double W = mass * 9.81 / (0.06 * 0.004);
+  EXPECT_NEAR(s.at("bed_weight_per_area"), W, 1e-9 * W);
+  const Csv series = read_csv(out() / "series.csv");
+  const auto& t = series.col.at("time");
+  const auto& dp = series.col.at("pressure_drop");
+  const auto& nc = series.col.at("n_collisions");
+  const double t0 = s.at("window_start"), t1 = s.at("window_end");
+  double sum = 0.0, sum2 = 0.0, n = 0.0, c0 = -1.0, c1 = 0.0, ta = 0.0, tb = 0.0;
+  for (std::size_t r = 0; r < t.size(); ++r) {
+    if (t[r] < t0 || t[r] > t1) continue;
+    sum += dp[r], sum2 += dp[r] * dp[r], n += 1.0;
+    if (c0 < 0.0) c0 = nc[r], ta = t[r];
+    c1 = nc[r], tb = t[r];
+  }
+  const double mean = sum / n, sd = std::sqrt(std::max(0.0, sum2 / n - mean * mean));
+  EXPECT_NEAR(s.at("pressure_drop_mean"), mean, 1e-6 * std::fabs(mean));
+  EXPECT_NEAR(s.at("pressure_drop_std"), sd, 1e-4 * sd);
+  EXPECT_NEAR(s.at("pressure_drop_over_weight"), mean / W, 1e-6);
+  EXPECT_NEAR(s.at("collisions_per_second"), (c1 - c0) / (tb - ta), 1e-6 * (c1 - c0) / (tb - ta));
+  EXPECT_EQ(s.at("bed_height_initial"), series.col.at("bed_height").front());
+  // A fluidised bed at twice u_mf carries its weight: the window mean within 15% of W
+  // [Kunii & Levenspiel, ch. 3]; the distributor's own drop is not in pressure_drop.
+  EXPECT_NEAR(s.at("pressure_drop_over_weight"), 1.0, 0.15);
+  std::printf("bed: W = %.2f Pa, pressure drop %.2f Pa = %.4f W, collisions %.4g /s\n", W, mean,
+              mean / W, s.at("collisions_per_second"));
+}
+
 void ErrorsAreClearAndExitTwo() {
   Result r = fluidem({"analyse", "out", "--probe", "p_nowhere"}, dir_);
   EXPECT_EQ(r.code, 2);
@@ -295,7 +329,10 @@ void ErrorsAreClearAndExitTwo() {
   r = fluidem({"analyse", "no_such_dir"}, dir_);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("'no_such_dir' is not a directory"), std::string::npos) << r.err;
-  r = fluidem({"analyse", "."}, dir_); // the case folder: no probes.csv
+  r = fluidem({"analyse", "."}, dir_); // the case folder: no results of a run
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("holds no results of a run"), std::string::npos) << r.err;
+  r = fluidem({"analyse", ".", "--probe", "p_top"}, dir_); // a probe asked for, no probes.csv
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("probes.csv' does not exist"), std::string::npos) << r.err;
   r = fluidem({"analyse", "out", "--from", "0.99"}, dir_); // 11 samples
@@ -371,6 +408,10 @@ TEST(CoupledRun, RunAnalyseAndPlot) {
   {
     SCOPED_TRACE("SegregationMatchesDeen07Eq49");
     SegregationMatchesDeen07Eq49();
+  }
+  {
+    SCOPED_TRACE("BedQuantitiesMatchTheCase");
+    BedQuantitiesMatchTheCase();
   }
   {
     SCOPED_TRACE("ErrorsAreClearAndExitTwo");
