@@ -86,7 +86,17 @@ def parse_args(argv):
                    help="particle colours (default: layer when the file holds layers, else "
                         "species)")
     p.add_argument("--out", default=None, help="PNG to write (default OUTDIR/snapshot.png)")
-    return p.parse_args(argv)
+    p.add_argument("--movie", action="store_true",
+                   help="draw every frame (or every --every-th) to OUTDIR/movie_frames/ and "
+                        "join them into OUTDIR/movie.mp4 with ffmpeg")
+    p.add_argument("--every", type=int, default=1, help="with --movie: every N-th frame")
+    p.add_argument("--fps", type=float, default=20.0, help="with --movie: frames per second")
+    a = p.parse_args(argv)
+    if a.every < 1:
+        p.error(f"--every {a.every}: must be at least 1")
+    if not a.fps > 0:
+        p.error(f"--fps {a.fps}: must be positive")
+    return a
 
 
 def read_frame(h5_path, frame):
@@ -489,8 +499,55 @@ def make_figure(args):
     return fig, d
 
 
+def make_movie(args):
+    """Every --every-th frame as OUTDIR/movie_frames/frame_NNNNN.png (the snapshot's layout,
+    at 80 dpi), then OUTDIR/movie.mp4 (H.264, even pixel sizes) when ffmpeg is installed. Without
+    ffmpeg the frames stay and the exit code is 3, with the command to install it."""
+    import shutil
+    import subprocess
+
+    frames_dir = os.path.join(args.outdir, "movie_frames")
+    os.makedirs(frames_dir, exist_ok=True)
+    for old in os.listdir(frames_dir):
+        if old.startswith("frame_") and old.endswith(".png"):
+            os.remove(os.path.join(frames_dir, old))
+    args.frame = 0
+    colour = args.color_by
+    n_frames = None
+    k = 0
+    written = 0
+    while n_frames is None or k < n_frames:
+        args.frame = k
+        args.color_by = colour
+        fig, d = make_figure(args)
+        n_frames = d["frames"]
+        if fig.get_layout_engine() is None:
+            fig.tight_layout()
+        fig.savefig(os.path.join(frames_dir, f"frame_{written:05d}.png"), dpi=80)
+        plt.close(fig)
+        written += 1
+        k += args.every
+    print(f"{written} frames in {frames_dir}")
+    ffmpeg = shutil.which("ffmpeg")
+    if ffmpeg is None:
+        print("fluidem_plot: ffmpeg is not installed (Debian: apt-get install ffmpeg); the frames "
+              f"are in {frames_dir}, no movie written", file=sys.stderr)
+        return 3
+    movie = os.path.join(args.outdir, "movie.mp4")
+    cmd = [ffmpeg, "-loglevel", "error", "-y", "-framerate", str(args.fps), "-i",
+           os.path.join(frames_dir, "frame_%05d.png"), "-vf",
+           "scale=trunc(iw/2)*2:trunc(ih/2)*2", "-pix_fmt", "yuv420p", "-c:v", "libx264", movie]
+    if subprocess.run(cmd).returncode != 0:
+        print(f"fluidem_plot: ffmpeg failed: {' '.join(cmd)}", file=sys.stderr)
+        return 1
+    print(movie)
+    return 0
+
+
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
+    if args.movie:
+        return make_movie(args)
     fig, _ = make_figure(args)
     if fig.get_layout_engine() is None:  # the coupled layout is constrained already
         fig.tight_layout()

@@ -22,6 +22,7 @@
 #include "analysis/velocity_distribution.hpp"
 #include "app/analyse_bed.hpp"
 #include "app/analysis_table.hpp"
+#include "app/python_scripts.hpp"
 #include "core/error.hpp"
 #include "io/case_reader.hpp"
 #include "output/h5md_reader.hpp"
@@ -323,62 +324,24 @@ int analyse(const AnalyseOptions& o) {
   return 0;
 }
 
-namespace {
-
-fs::path find_script_dir(const char* argv0) {
-  std::error_code ec;
-  std::vector<fs::path> candidates;
-  if (const char* env = std::getenv("FLUIDEM_PYTHON_DIR")) candidates.emplace_back(env);
-  // This file is <source>/src/app/analyse.cpp; CMake compiles it by its absolute path.
-  candidates.push_back(fs::path(__FILE__).parent_path().parent_path().parent_path() / "python");
-  if (argv0 != nullptr) {
-    const fs::path self = fs::canonical("/proc/self/exe", ec);
-    const fs::path bin = ec ? fs::path(argv0).parent_path() : self.parent_path();
-    candidates.push_back(bin / ".." / "share" / "fluidem" / "python");
-  }
-  for (const auto& c : candidates)
-    if (fs::exists(c / "fluidem_analysis_plot.py", ec)) return c;
-  std::string list;
-  for (const auto& c : candidates) list += "\n  " + c.string();
-  throw InputError("cannot find the plotting scripts (fluidem_plot.py, "
-                   "fluidem_analysis_plot.py); looked in:" +
-                   list + "\nset FLUIDEM_PYTHON_DIR to the python/ folder of the fluidem sources");
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-} // namespace
-
-int plot(const std::string& out_dir, const char* argv0) {
+int plot(const std::string& out_dir, const char* argv0, int movie_every) {
   std::error_code ec;
   if (!fs::is_directory(out_dir, ec))
     throw InputError(
         fmt::format("'{}' is not a directory (the output directory of a run)", out_dir));
-  const fs::path dir = find_script_dir(argv0);
-  const char* env = std::getenv("FLUIDEM_PYTHON");
-  const std::string python = env != nullptr && env[0] != '\0' ? env : "/usr/bin/python3";
-  std::fflush(stdout);
-  for (const char* script : {"fluidem_plot.py", "fluidem_analysis_plot.py"}) {
-    const std::string cmd =
-        quote(python) + " " + quote((dir / script).string()) + " " + quote(out_dir);
-    const int status = std::system(cmd.c_str());
-    const int code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : 1;
-    if (code != 0) {
-      fmt::print(stderr, "error: {} failed (exit code {}): {}\n", script, code, cmd);
-      return code;
-    }
-  }
+  const fs::path dir = find_python_script_dir("fluidem_analysis_plot.py", argv0);
+  if (movie_every > 0)
+    return run_python_script(dir / "fluidem_plot.py",
+                             {out_dir, "--movie", "--every", std::to_string(movie_every)});
+  for (const char* script : {"fluidem_plot.py", "fluidem_analysis_plot.py"})
+    if (const int code = run_python_script(dir / script, {out_dir}); code != 0) return code;
   fmt::print("pictures: {}/snapshot.png, {}/analysis/*.png\n", out_dir, out_dir);
   return 0;
 }
 
 int AnalysisCommands::run(const char* argv0) const {
   if (*analyse) return fluidem::analyse(options);
-  return fluidem::plot(plot_dir, argv0);
+  return fluidem::plot(plot_dir, argv0, movie ? movie_every : 0);
 }
 
 std::unique_ptr<AnalysisCommands> add_analysis_commands(CLI::App& app) {
@@ -399,6 +362,11 @@ std::unique_ptr<AnalysisCommands> add_analysis_commands(CLI::App& app) {
   c->plot = app.add_subcommand("plot", "Draw a run's pictures: OUT/snapshot.png and, from "
                                        "`fluidem analyse`, OUT/analysis/*.png");
   c->plot->add_option("out", c->plot_dir, "Output directory of a run")->required();
+  c->plot->add_flag("--movie", c->movie,
+                    "Every frame as a picture (OUT/movie_frames/) joined into OUT/movie.mp4 "
+                    "(needs ffmpeg)");
+  c->plot->add_option("--every", c->movie_every, "With --movie: every N-th frame")
+      ->check(CLI::PositiveNumber);
   return c;
 }
 

@@ -37,7 +37,9 @@ struct AnalyseOptions {
 int analyse(const AnalyseOptions& o);
 
 /// Draw the run's pictures (the scripts above). Returns 0 or the failing script's exit code.
-int plot(const std::string& out_dir, const char* argv0);
+/// With `movie_every` > 0 it draws every movie_every-th frame instead and joins them into
+/// OUT/movie.mp4 (fluidem_plot.py --movie; exit 3 without ffmpeg, the frames kept).
+int plot(const std::string& out_dir, const char* argv0, int movie_every = 0);
 
 /// The `analyse` and `plot` subcommands registered on the fluidem App.
 struct AnalysisCommands {
@@ -45,6 +47,8 @@ struct AnalysisCommands {
   CLI::App* plot = nullptr;
   AnalyseOptions options;
   std::string plot_dir;
+  bool movie = false;
+  int movie_every = 1;
   bool selected() const { return *analyse || *plot; }
   int run(const char* argv0) const;
 };

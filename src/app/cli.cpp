@@ -15,6 +15,7 @@
 #include "app/analyse.hpp"
 #include "app/progress.hpp"
 #include "app/signals.hpp"
+#include "app/validate.hpp"
 #include "core/error.hpp"
 #include "fluidem_version.hpp"
 #include "integrate/simulation.hpp"
@@ -177,6 +178,7 @@ int run_cli(int argc, char** argv) {
   check->add_option("case", check_path, "Case file (TOML)")->required();
   check->add_option("--set", check_overrides, "Override a case value: section.key=value");
   const auto analysis = add_analysis_commands(app); // analyse, plot (app/analyse.hpp)
+  const auto validate = add_validate_command(app);  // validate (app/validate.hpp)
 
   try {
     app.parse(argc, argv);
@@ -191,6 +193,7 @@ int run_cli(int argc, char** argv) {
 
   try {
     if (analysis->selected()) return analysis->run(argv[0]);
+    if (validate->selected()) return validate->run(argv[0]);
     if (*check) {
       const CaseSpec spec = read_case_file(check_path, check_overrides);
       Simulation sim(spec);

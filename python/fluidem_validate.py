@@ -1,0 +1,458 @@
+#!/usr/bin/python3
+"""fluidem's validation report: run the seeds' cases, compare with the published numbers.
+
+Called by `fluidem validate [--quick]` (docs/validation/README.md says how to read the report):
+
+    fluidem_validate.py --fluidem BIN [--quick] [--work DIR] [--report FILE] [--only TEXT]
+                        [--threads N] [--list]
+
+Each run is `fluidem run CASE --set ...` into WORK/<run>, then `fluidem analyse` (and `fluidem
+plot` for the pictures); each compared quantity is read from the run's outputs (the
+summary.csv rows of `fluidem analyse`, series.csv, fields.h5) and set beside the published
+value with the criterion it is judged by. The report is a Markdown file with one table and the
+pictures copied beside it. Full runs (the default) write docs/validation/README.md of the source
+tree; `--quick` runs short versions (ctest label `regression`): their numbers are not comparable
+with the papers and the report says so; the quick mode checks that every run completes and every
+quantity is extracted.
+
+Exit status: 0 when every run completed and every quantity was extracted (whether or not it
+agrees: disagreement is a result, reported with its reason); 1 when a run failed or a quantity
+could not be computed; 2 for bad arguments.
+"""
+
+import argparse
+import csv
+import datetime
+import math
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SOURCE = os.path.dirname(HERE)
+CASES = os.path.join(SOURCE, "cases")
+
+
+class Run:
+    """One `fluidem run` of a shipped case: full and quick overrides (--set key=value)."""
+
+    def __init__(self, name, case, full=(), quick=(), analyse=(), plot=True):
+        self.name = name
+        self.case = case
+        self.full = list(full)
+        self.quick = list(quick)
+        self.analyse = list(analyse)
+        self.plot = plot
+
+
+class Quantity:
+    """A compared quantity: value(outputs) -> float; agrees(value) -> bool or None."""
+
+    def __init__(self, case, paper, quantity, published, value, agrees, criterion, note="",
+                 runs=(), fmt="{:.4g}"):
+        self.case = case
+        self.paper = paper
+        self.quantity = quantity
+        self.published = published
+        self.value = value
+        self.agrees = agrees
+        self.criterion = criterion
+        self.note = note
+        self.runs = list(runs)
+        self.fmt = fmt
+
+
+class NotRun:
+    """A seed case the report lists but cannot run (yet), with the reason."""
+
+    def __init__(self, case, paper, quantity, published, reason):
+        self.case = case
+        self.paper = paper
+        self.quantity = quantity
+        self.published = published
+        self.reason = reason
+
+
+class Outputs:
+    """The output directories of the runs, and readers of their files."""
+
+    def __init__(self, work):
+        self.work = work
+
+    def dir(self, run):
+        return os.path.join(self.work, run)
+
+    def summary(self, run, name):
+        path = os.path.join(self.dir(run), "analysis", "summary.csv")
+        with open(path) as f:
+            for row in csv.DictReader(f):
+                if row["name"] == name:
+                    return float(row["value"])
+        raise KeyError(f"{path} has no row '{name}'")
+
+    def series(self, run, name="series.csv"):
+        path = os.path.join(self.dir(run), name)
+        with open(path) as f:
+            rows = list(csv.reader(f))
+        cols = {h: [] for h in rows[0]}
+        for r in rows[1:]:
+            if len(r) != len(rows[0]):
+                continue
+            for h, v in zip(rows[0], r):
+                cols[h].append(float(v))
+        return cols
+
+    def bubble_fraction(self, run, threshold=0.8):
+        """Mean over the frames of the analysis window of the fraction of the gas cells below
+        the bed height (series.csv `bed_height`, interpolated to the frame) whose porosity
+        exceeds `threshold`: 0 for a bed without bubbles. The porosity is the one the gas
+        solver uses (in 2-D the 3-D porosity of [Hoomans96 eq. 49])."""
+        import h5py
+        import numpy as np
+
+        t0 = self.summary(run, "window_start")
+        t1 = self.summary(run, "window_end")
+        s = self.series(run)
+        with h5py.File(os.path.join(self.dir(run), "fields.h5"), "r") as f:
+            times = f["/fields/time"][:]
+            por = f["/fields/porosity"]
+            lo = f["/grid/lo"][:]
+            dz = f["/grid/spacing"][:][2]
+            nz = por.shape[1]
+            zc = lo[2] + (np.arange(nz) + 0.5) * dz
+            fractions = []
+            for k, t in enumerate(times):
+                if t < t0 - 1e-12 or t > t1 + 1e-12:
+                    continue
+                h = np.interp(t, s["time"], s["bed_height"])
+                below = zc < lo[2] + h
+                if not below.any():
+                    continue
+                eps = por[k][below]
+                fractions.append(float(np.mean(eps > threshold)))
+        if not fractions:
+            raise ValueError(f"{run}: no fields.h5 frame in the window [{t0}, {t1}] s")
+        return sum(fractions) / len(fractions)
+
+
+def ratio_text(a, b):
+    return a / b if b != 0 else math.inf
+
+
+# ---------------------------------------------------------------------------------------------
+# The cases. Published values from the seeds (../shared/seeds); criteria as stated per row.
+# ---------------------------------------------------------------------------------------------
+
+IDEAL = ["species[0].restitution=1.0", "species[0].friction=0.0", "walls.restitution=1.0",
+         "walls.friction=0.0"]
+
+RUNS = [
+    Run("pouring_soft", "hoomans96/pouring_soft.toml",
+        quick=["simulation.end_time=0.3"], analyse=["--from", "0"]),
+    Run("pouring_hard", "hoomans96/pouring_hard.toml",
+        full=["simulation.end_time=1.0"], quick=["simulation.end_time=0.3"],
+        analyse=["--from", "0"]),
+    Run("tsuji_setup", "hoomans96/tsuji_setup.toml",
+        quick=["simulation.end_time=0.05"], analyse=["--from", "0.3"]),
+    Run("bubble_orifice", "hoomans96/bubble_orifice.toml",
+        quick=["simulation.end_time=0.05"], analyse=["--from", "0.3"]),
+    Run("bubble_orifice_ideal", "hoomans96/bubble_orifice.toml", full=IDEAL,
+        quick=IDEAL + ["simulation.end_time=0.05"], analyse=["--from", "0.3"]),
+    Run("slug_homogeneous", "hoomans96/slug_homogeneous.toml",
+        quick=["simulation.end_time=0.05"], analyse=["--from", "1.0"]),
+    Run("slug_homogeneous_ideal", "hoomans96/slug_homogeneous.toml", full=IDEAL,
+        quick=IDEAL + ["simulation.end_time=0.05"], analyse=["--from", "1.0"]),
+]
+
+H96 = "Hoomans96"
+QUANTITIES = [
+    Quantity("pouring_soft", "[Hoomans96 §5.1]", "settled area fraction",
+             "0.832 ± 0.010",
+             lambda o: o.summary("pouring_soft", "area_fraction_last_frame"),
+             lambda v: abs(v - 0.832) <= 0.020, "within 0.020 (twice the published spread)",
+             "soft spheres, k_n = 1e4 N/m", runs=["pouring_soft"], fmt="{:.3f}"),
+    Quantity("pouring_soft", "[Hoomans96 §5.1]", "energy balance error (largest, relative)",
+             "< 5e-5 (0.005 %)",
+             lambda o: o.summary("pouring_soft", "energy_balance_error"),
+             lambda v: v < 5e-5, "below 5e-5",
+             "the paper's is the hard-sphere error; a soft-sphere run's is its integration "
+             "error (velocity Verlet)", runs=["pouring_soft"], fmt="{:.2e}"),
+    Quantity("pouring_hard", "[Hoomans96 §5.1]", "settled area fraction", "0.832 ± 0.010",
+             lambda o: o.summary("pouring_hard", "area_fraction_last_frame"),
+             lambda v: abs(v - 0.832) <= 0.020, "within 0.020 (twice the published spread)",
+             "event-driven hard spheres", runs=["pouring_hard"], fmt="{:.3f}"),
+    Quantity("pouring_hard", "[Hoomans96 §5.1]", "energy balance error (largest, relative)",
+             "< 5e-5 (0.005 %)",
+             lambda o: o.summary("pouring_hard", "energy_balance_error"),
+             lambda v: v < 5e-5, "below 5e-5", runs=["pouring_hard"], fmt="{:.2e}"),
+    Quantity("tsuji_setup", "[Hoomans96 §5.2]", "bubble fraction (cells of the bed with "
+             "porosity > 0.8)", "no bubbles",
+             lambda o: o.bubble_fraction("tsuji_setup"), lambda v: v < 0.01, "below 0.01",
+             "the 2-D bed is above its own u_mf at 1.8 m/s (cases/hoomans96/README.md)",
+             runs=["tsuji_setup"], fmt="{:.3f}"),
+    Quantity("bubble_orifice", "[Hoomans96 §5.3.1]", "bubble fraction, non-ideal (e = 0.9, "
+             "mu = 0.3)", "bubbles (a bubble turning into a slug)",
+             lambda o: o.bubble_fraction("bubble_orifice"), lambda v: v >= 0.01, "at least 0.01",
+             runs=["bubble_orifice"], fmt="{:.3f}"),
+    Quantity("bubble_orifice", "[Hoomans96 §5.3.1]", "bubble fraction, ideal (e = 1, mu = 0)",
+             "no bubbles", lambda o: o.bubble_fraction("bubble_orifice_ideal"),
+             lambda v: v < 0.01, "below 0.01", runs=["bubble_orifice_ideal"], fmt="{:.3f}"),
+    Quantity("bubble_orifice", "[Hoomans96 §5.3.1, Fig. 11]", "pressure std 20 cm above the "
+             "jet, non-ideal / ideal", "> 1 (the non-ideal line has the strongest peaks)",
+             lambda o: ratio_text(math.sqrt(o.summary("bubble_orifice", "pressure_variance_p_20cm")),
+                                  math.sqrt(o.summary("bubble_orifice_ideal",
+                                                      "pressure_variance_p_20cm"))),
+             lambda v: v > 1.0, "above 1", runs=["bubble_orifice", "bubble_orifice_ideal"],
+             fmt="{:.2f}"),
+    Quantity("bubble_orifice", "[Hoomans96 §5.3]", "collisions in the run, non-ideal",
+             "over 3 million", lambda o: o.summary("bubble_orifice", "collisions_total"),
+             lambda v: v > 3e6, "above 3e6", runs=["bubble_orifice"], fmt="{:.3g}"),
+    Quantity("slug_homogeneous", "[Hoomans96 §5.3.2, Fig. 13]", "pressure-drop std / bed "
+             "weight, non-ideal / ideal", "> 1 (slugs with pressure peaks vs homogeneous "
+             "expansion)",
+             lambda o: ratio_text(o.summary("slug_homogeneous", "pressure_drop_std_over_weight"),
+                                  o.summary("slug_homogeneous_ideal",
+                                            "pressure_drop_std_over_weight")),
+             lambda v: v > 1.0, "above 1", runs=["slug_homogeneous", "slug_homogeneous_ideal"],
+             fmt="{:.2f}"),
+    Quantity("slug_homogeneous", "[Hoomans96 §5.3.2]", "mean pressure drop / bed weight, "
+             "non-ideal", "1 (a fluidised bed carries its weight)",
+             lambda o: o.summary("slug_homogeneous", "pressure_drop_over_weight"),
+             lambda v: abs(v - 1.0) <= 0.1, "within 10 %", runs=["slug_homogeneous"],
+             fmt="{:.3f}"),
+    Quantity("slug_homogeneous", "[Hoomans96 §5.3.2]", "collisions in the run, ideal",
+             "slightly over 1 million", lambda o: o.summary("slug_homogeneous_ideal",
+                                                            "collisions_total"),
+             lambda v: 1e6 <= v <= 2e6, "1e6 to 2e6",
+             "the paper's run length is not stated", runs=["slug_homogeneous_ideal"],
+             fmt="{:.3g}"),
+]
+
+NOT_RUN = [
+    NotRun("validation_40k", "[Hoomans96 §5.4, Table 3, Fig. 15]", "bubble shape vs experiment",
+           "a bubble comparing reasonably with the photographs",
+           "40,000 particles: hours of wall time per simulated second today (issue 7); the "
+           "comparison is with photographs (figures lost in the seed)"),
+    NotRun("chang08 bubbling bed", "[Chang08 §4]", "mean pressure drop; PSD peak at 150 mm",
+           "826.1 Pa; 1.82 Hz",
+           "the particle size and velocity of the cases (Table 4.2) are lost in the seed's "
+           "extraction: the case cannot be set up without inventing them"),
+]
+
+
+# ---------------------------------------------------------------------------------------------
+
+def run_cmd(cmd, log, cwd=None):
+    with open(log, "a") as f:
+        f.write("$ " + " ".join(cmd) + "\n")
+        f.flush()
+        return subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd).returncode
+
+
+def git_commit():
+    try:
+        out = subprocess.run(["git", "-C", SOURCE, "rev-parse", "--short", "HEAD"],
+                             capture_output=True, text=True, check=True)
+        return out.stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def cpu_model():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--fluidem", required=True, help="the fluidem binary")
+    ap.add_argument("--quick", action="store_true", help="short runs (CI); numbers not comparable")
+    ap.add_argument("--work", help="directory of the runs (default out/validation[-quick])")
+    ap.add_argument("--report", help="report file (default docs/validation/README.md of the "
+                    "source tree; WORK/README.md with --quick)")
+    ap.add_argument("--only", action="append", default=[],
+                    help="only the runs whose name contains this text (repeatable)")
+    ap.add_argument("--threads", type=int, default=0, help="threads per run (default: all)")
+    ap.add_argument("--list", action="store_true", help="list the runs and quantities, run none")
+    ap.add_argument("--reuse", action="store_true",
+                    help="keep the runs of WORK that completed with the same command line "
+                    "(WORK/<run>.done) instead of running them again")
+    a = ap.parse_args()
+
+    runs = [r for r in RUNS if not a.only or any(t in r.name for t in a.only)]
+    names = {r.name for r in runs}
+    quantities = [q for q in QUANTITIES if all(r in names for r in q.runs)]
+    if a.list:
+        for r in runs:
+            print(f"run {r.name:<24} {r.case} {' '.join(r.quick if a.quick else r.full)}")
+        for q in quantities:
+            print(f"quantity {q.paper} {q.quantity}: published {q.published}")
+        return 0
+    if not runs:
+        print(f"error: no run matches --only {a.only}; runs: "
+              + ", ".join(r.name for r in RUNS), file=sys.stderr)
+        return 2
+    if not os.access(a.fluidem, os.X_OK):
+        print(f"error: --fluidem {a.fluidem} is not an executable", file=sys.stderr)
+        return 2
+
+    work = os.path.abspath(a.work or os.path.join("out", "validation-quick" if a.quick
+                                                 else "validation"))
+    report = os.path.abspath(a.report or (os.path.join(work, "README.md") if a.quick else
+                                          os.path.join(SOURCE, "docs", "validation",
+                                                       "README.md")))
+    os.makedirs(work, exist_ok=True)
+    os.makedirs(os.path.dirname(report), exist_ok=True)
+    outputs = Outputs(work)
+    failed = []
+    wall = {}
+    for r in runs:
+        out = outputs.dir(r.name)
+        log = os.path.join(work, r.name + ".log")
+        cmd = [a.fluidem, "run", os.path.join(CASES, r.case), "--out", out, "--force"]
+        for s in (r.quick if a.quick else r.full):
+            cmd += ["--set", s]
+        if a.threads > 0:
+            cmd += ["--threads", str(a.threads)]
+        done = os.path.join(work, r.name + ".done")
+        reused = False
+        if a.reuse and os.path.exists(done):
+            with open(done) as f:
+                prev_cmd, prev_wall = f.read().split("\n")[:2]
+            if prev_cmd == " ".join(cmd[1:]):
+                wall[r.name] = float(prev_wall)
+                reused = True
+                print(f"[{r.name}] run reused ({done})", flush=True)
+        if not reused:
+            for old in (done, log):
+                if os.path.exists(old):
+                    os.remove(old)
+            print(f"[{r.name}] running {r.case} ...", flush=True)
+            t = time.time()
+            code = run_cmd(cmd, log)
+            wall[r.name] = time.time() - t
+            if code != 0:
+                failed.append(f"{r.name}: fluidem run exited {code} (log {log})")
+                print(f"[{r.name}] FAILED (exit {code}), log {log}", flush=True)
+                continue
+        analyse = [a.fluidem, "analyse", out] + (["--from", "0"] if a.quick else r.analyse)
+        code = run_cmd(analyse, log)
+        if code != 0:
+            failed.append(f"{r.name}: fluidem analyse exited {code} (log {log})")
+            continue
+        if r.plot:
+            code = run_cmd([a.fluidem, "plot", out], log)
+            if code != 0:
+                failed.append(f"{r.name}: fluidem plot exited {code} (log {log})")
+        if not reused:
+            with open(done, "w") as f:
+                f.write(" ".join(cmd[1:]) + "\n" + str(wall[r.name]) + "\n")
+        print(f"[{r.name}] done ({wall[r.name]:.0f} s of wall time)", flush=True)
+
+    rows = []
+    for q in quantities:
+        if any(n in [f.split(":")[0] for f in failed] for n in q.runs):
+            rows.append((q, None, "run failed"))
+            continue
+        try:
+            v = q.value(outputs)
+        except (OSError, KeyError, ValueError, ZeroDivisionError) as e:
+            failed.append(f"{q.case}: {q.quantity}: {e}")
+            rows.append((q, None, f"not computed: {e}"))
+            continue
+        if not math.isfinite(v):
+            failed.append(f"{q.case}: {q.quantity}: not finite ({v})")
+        rows.append((q, v, None))
+
+    write_report(report, a.quick, runs, rows, wall, failed, outputs)
+    print(f"report: {report}")
+    if failed:
+        print("failures:\n  " + "\n  ".join(failed), file=sys.stderr)
+        return 1
+    return 0
+
+
+def write_report(path, quick, runs, rows, wall, failed, outputs):
+    pics = os.path.join(os.path.dirname(path), "pictures")
+    os.makedirs(pics, exist_ok=True)
+    lines = []
+    w = lines.append
+    w("# fluidem against the seeds' published results" + (" (QUICK RUNS)" if quick else ""))
+    w("")
+    w(f"Generated by `fluidem validate{' --quick' if quick else ''}` "
+      f"(python/fluidem_validate.py) on {datetime.date.today().isoformat()}, commit "
+      f"{git_commit()}, {cpu_model()}, {os.cpu_count()} cores.")
+    w("")
+    if quick:
+        w("**Quick mode**: every run is cut short (a few hundredths of a second of bed, analysed from t = 0), so the "
+          "values below are NOT comparable with the papers; this report only shows that every "
+          "case runs and every quantity is extracted. The full report is "
+          "docs/validation/README.md.")
+        w("")
+    w("Agreement: **yes** when fluidem's value meets the criterion, **no** when it does not "
+      "(the note says why, as far as we know), n/a when the quantity could not be computed.")
+    w("")
+    w("| case | paper | quantity | published | fluidem | criterion | agreement | note |")
+    w("|---|---|---|---|---|---|---|---|")
+    for q, v, err in rows:
+        if v is None:
+            val, agree = err, "n/a"
+        else:
+            val = q.fmt.format(v)
+            ok = q.agrees(v)
+            agree = "n/a (quick)" if quick else ("**yes**" if ok else "**no**")
+        w(f"| {q.case} | {q.paper} | {q.quantity} | {q.published} | {val} | {q.criterion} | "
+          f"{agree} | {q.note} |")
+    for n in NOT_RUN:
+        w(f"| {n.case} | {n.paper} | {n.quantity} | {n.published} | not run | - | n/a | "
+          f"{n.reason} |")
+    w("")
+    w("## Runs")
+    w("")
+    w("| run | case file | overrides | wall time |")
+    w("|---|---|---|---|")
+    for r in runs:
+        sets = " ".join(f"`{s}`" for s in (r.quick if quick else r.full)) or "-"
+        wt = f"{wall[r.name]:.0f} s" if r.name in wall else "-"
+        w(f"| {r.name} | cases/{r.case} | {sets} | {wt} |")
+    w("")
+    w("## Pictures")
+    w("")
+    for r in runs:
+        out = outputs.dir(r.name)
+        shown = []
+        for src, label in [("snapshot.png", "snapshot")] + [
+                (os.path.join("analysis", f), f[:-4]) for f in
+                sorted(os.listdir(os.path.join(out, "analysis")))
+                if f.endswith(".png")] if os.path.isdir(os.path.join(out, "analysis")) else []:
+            p = os.path.join(out, src)
+            if os.path.exists(p):
+                dst = f"{r.name}_{os.path.basename(src)}"
+                shutil.copyfile(p, os.path.join(pics, dst))
+                shown.append(f"![{r.name} {label}](pictures/{dst})")
+        if shown:
+            w(f"### {r.name}")
+            w("")
+            w(" ".join(shown))
+            w("")
+    if failed:
+        w("## Failures")
+        w("")
+        for f in failed:
+            w(f"- {f}")
+        w("")
+    with open(path, "w") as f:
+        f.write("\n".join(lines))
+
+
+if __name__ == "__main__":
+    sys.exit(main())

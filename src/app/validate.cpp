@@ -1,0 +1,41 @@
+#include "app/validate.hpp"
+
+#include "app/python_scripts.hpp"
+
+namespace fluidem {
+
+int ValidateCommand::run(const char* argv0) const {
+  const auto dir = find_python_script_dir("fluidem_validate.py", argv0);
+  std::vector<std::string> args{"--fluidem", own_binary_path(argv0).string()};
+  if (quick) args.emplace_back("--quick");
+  if (list) args.emplace_back("--list");
+  if (reuse) args.emplace_back("--reuse");
+  if (!work.empty()) args.insert(args.end(), {"--work", work});
+  if (!report.empty()) args.insert(args.end(), {"--report", report});
+  for (const auto& o : only) args.insert(args.end(), {"--only", o});
+  if (threads > 0) args.insert(args.end(), {"--threads", std::to_string(threads)});
+  return run_python_script(dir / "fluidem_validate.py", args);
+}
+
+std::unique_ptr<ValidateCommand> add_validate_command(CLI::App& app) {
+  auto c = std::make_unique<ValidateCommand>();
+  c->command = app.add_subcommand(
+      "validate", "Run the seeds' cases and compare with the published numbers: writes "
+                  "docs/validation/README.md (--quick: short runs, report in the work folder)");
+  c->command->add_flag("--quick", c->quick,
+                       "Short runs (minutes): checks that every case runs; numbers not "
+                       "comparable with the papers");
+  c->command->add_flag("--list", c->list, "List the runs and the compared quantities");
+  c->command->add_flag("--reuse", c->reuse,
+                       "Keep the runs in the work folder that completed with the same command "
+                       "(re-analyse them only)");
+  c->command->add_option("--work", c->work,
+                         "Folder of the runs (default out/validation or out/validation-quick)");
+  c->command->add_option("--report", c->report, "Report file (Markdown)");
+  c->command->add_option("--only", c->only, "Only the runs whose name contains this text");
+  c->command->add_option("--threads,-t", c->threads, "OpenMP threads per run")
+      ->check(CLI::PositiveNumber);
+  return c;
+}
+
+} // namespace fluidem
