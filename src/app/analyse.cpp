@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -212,6 +213,53 @@ bool analyse_particles(const fs::path& particles_path, const fs::path& out, cons
 
 } // namespace
 
+// Collision statistics (OUT/collisions.csv, analysis/collision_statistics.hpp) over the rows whose
+// interval ends in (t0, t1]: collision counts summed, max_overlap_extent the largest, every other
+// column the mean of its finite values, and mean_free_time = 1 / mean collision frequency.
+void analyse_collisions(const fs::path& path, double t0, double t1,
+                        std::vector<SummaryRow>& summary) {
+  const Table t = read_csv(path);
+  const std::vector<double>& time = t.data[0];
+  std::vector<std::size_t> rows;
+  for (std::size_t i = 0; i < time.size(); ++i)
+    if (time[i] > t0 && time[i] <= t1) rows.push_back(i);
+  if (rows.empty()) {
+    fmt::print("collisions         no rows of {} in ({}, {}] s: left out\n", path.string(), g(t0),
+               g(t1));
+    return;
+  }
+  auto unit_of = [](const std::string& c) -> std::string {
+    if (c.ends_with("_collisions") || c.ends_with("_extent") || c.ends_with("_fraction") ||
+        c.ends_with("_particles"))
+      return "1";
+    if (c.ends_with("_frequency")) return "1/s";
+    return "s"; // mean_free_time, mean_contact_duration
+  };
+  double f_mean = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t c = 1; c < t.columns.size(); ++c) {
+    const std::string& name = t.columns[c];
+    if (name == "mean_free_time") continue; // from the mean frequency below
+    double sum = 0.0, max = -std::numeric_limits<double>::infinity();
+    long finite = 0;
+    for (const std::size_t r : rows) {
+      const double v = t.data[c][r];
+      if (!std::isfinite(v)) continue;
+      sum += v, max = std::max(max, v), ++finite;
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    double value = finite > 0 ? sum / static_cast<double>(finite) : nan;
+    if (name.ends_with("_collisions")) value = sum;
+    if (name == "max_overlap_extent") value = finite > 0 ? max : nan;
+    if (name == "collision_frequency") f_mean = value;
+    summary.push_back(
+        {name == "pair_collisions" || name == "wall_collisions" ? name + "_window" : name, value,
+         unit_of(name)});
+    if (name == "collision_frequency") summary.push_back({"mean_free_time", 1.0 / value, "s"});
+  }
+  fmt::print("collisions         {} rows of {}: collision frequency {} 1/s, mean free time {} s\n",
+             rows.size(), path.string(), g(f_mean), g(1.0 / f_mean));
+}
+
 int analyse(const AnalyseOptions& o) {
   const fs::path out(o.out_dir);
   std::error_code ec;
@@ -326,6 +374,10 @@ int analyse(const AnalyseOptions& o) {
   else
     fmt::print("particles          no {}: velocity distribution and segregation left out\n",
                particles_path.string());
+
+  const fs::path collisions_path = out / "collisions.csv";
+  if (fs::exists(collisions_path, ec))
+    analyse_collisions(collisions_path, time[rows.front()], time[rows.back()], summary);
 
   std::ofstream f = open_out(dir / "summary.csv");
   f << "name,value,unit\n";
