@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -84,47 +85,55 @@ bool analyse_particles(const fs::path& particles_path, const fs::path& out, cons
                                  ft.empty() ? "-" : g(ft.front()),
                                  ft.empty() ? "-" : g(ft.back())));
   VelocityDistribution vd;
+  bool have_vd = true;
   try {
     vd = fluctuation_distribution(C, vo);
   } catch (const std::invalid_argument& e) {
-    throw InputError(fmt::format("velocity distribution over {} frames of '{}': {}", frames_used,
-                                 particles_path.string(), e.what()));
+    // E.g. a bed one particle deep, whose particles never move across it: no distribution,
+    // the other analyses go on.
+    fmt::print("velocities         left out over {} frames of '{}': {}\n", frames_used,
+               particles_path.string(), e.what());
+    have_vd = false;
   }
-  {
-    std::ofstream f = open_out(dir / "velocity_distribution.csv");
-    f << (two_d ? "bin_centre,density_x,density_z,normal,speed,speed_density,rayleigh\n"
+  if (have_vd) {
+    {
+      std::ofstream f = open_out(dir / "velocity_distribution.csv");
+      f << (two_d
+                ? "bin_centre,density_x,density_z,normal,speed,speed_density,rayleigh\n"
                 : "bin_centre,density_x,density_y,density_z,normal,speed,speed_density,maxwell\n");
-    for (std::size_t b = 0; b < vd.bin_centres.size(); ++b) {
-      f << g(vd.bin_centres[b]) << ',' << g(vd.density[0][b]) << ',';
-      if (!two_d) f << g(vd.density[1][b]) << ',';
-      f << g(vd.density[2][b]) << ',' << g(normal_density(vd.bin_centres[b])) << ','
-        << g(vd.speed_centres[b]) << ',' << g(vd.speed_density[b]) << ','
-        << g(two_d ? rayleigh_speed_density(vd.speed_centres[b])
-                   : maxwell_speed_density(vd.speed_centres[b]))
-        << '\n';
+      for (std::size_t b = 0; b < vd.bin_centres.size(); ++b) {
+        f << g(vd.bin_centres[b]) << ',' << g(vd.density[0][b]) << ',';
+        if (!two_d) f << g(vd.density[1][b]) << ',';
+        f << g(vd.density[2][b]) << ',' << g(normal_density(vd.bin_centres[b])) << ','
+          << g(vd.speed_centres[b]) << ',' << g(vd.speed_density[b]) << ','
+          << g(two_d ? rayleigh_speed_density(vd.speed_centres[b])
+                     : maxwell_speed_density(vd.speed_centres[b]))
+          << '\n';
+      }
     }
+    fmt::print("velocities         {} frames, {} fluctuation samples, local means over {}\n",
+               frames_used, vd.samples, cells_note);
+    summary.push_back({"velocity_frames", static_cast<double>(frames_used), "1"});
+    summary.push_back({"velocity_samples", static_cast<double>(vd.samples), "1"});
+    const char* axis = "xyz";
+    for (int d = 0; d < 3; ++d) {
+      if (two_d && d == 1) continue;
+      const std::string a(1, axis[d]);
+      summary.push_back({"velocity_variance_" + a, vd.variance[d], "m^2/s^2"});
+      summary.push_back({"velocity_skewness_" + a, vd.skewness[d], "1"});
+      summary.push_back({"velocity_kurtosis_" + a, vd.kurtosis[d], "1"});
+      summary.push_back({"velocity_outside_range_" + a, vd.outside[d], "1"});
+      fmt::print(
+          "  {}: variance {:.4g} m^2/s^2, skewness {:.3f}, kurtosis {:.3f} (Gaussian: 0, 3)\n", a,
+          vd.variance[d], vd.skewness[d], vd.kurtosis[d]);
+    }
+    summary.push_back({"speed_outside_range", vd.speed_outside, "1"});
+    summary.push_back({"anisotropy", vd.anisotropy, "1"});
+    summary.push_back({"granular_temperature", vd.granular_temperature, "m^2/s^2"});
+    fmt::print("  granular temperature {:.4g} m^2/s^2, anisotropy {:.3f} (vertical / horizontal "
+               "variance)\n",
+               vd.granular_temperature, vd.anisotropy);
   }
-  fmt::print("velocities         {} frames, {} fluctuation samples, local means over {}\n",
-             frames_used, vd.samples, cells_note);
-  summary.push_back({"velocity_frames", static_cast<double>(frames_used), "1"});
-  summary.push_back({"velocity_samples", static_cast<double>(vd.samples), "1"});
-  const char* axis = "xyz";
-  for (int d = 0; d < 3; ++d) {
-    if (two_d && d == 1) continue;
-    const std::string a(1, axis[d]);
-    summary.push_back({"velocity_variance_" + a, vd.variance[d], "m^2/s^2"});
-    summary.push_back({"velocity_skewness_" + a, vd.skewness[d], "1"});
-    summary.push_back({"velocity_kurtosis_" + a, vd.kurtosis[d], "1"});
-    summary.push_back({"velocity_outside_range_" + a, vd.outside[d], "1"});
-    fmt::print("  {}: variance {:.4g} m^2/s^2, skewness {:.3f}, kurtosis {:.3f} (Gaussian: 0, 3)\n",
-               a, vd.variance[d], vd.skewness[d], vd.kurtosis[d]);
-  }
-  summary.push_back({"speed_outside_range", vd.speed_outside, "1"});
-  summary.push_back({"anisotropy", vd.anisotropy, "1"});
-  summary.push_back({"granular_temperature", vd.granular_temperature, "m^2/s^2"});
-  fmt::print("  granular temperature {:.4g} m^2/s^2, anisotropy {:.3f} (vertical / horizontal "
-             "variance)\n",
-             vd.granular_temperature, vd.anisotropy);
 
   // Segregation when the particles have exactly two sizes.
   std::set<double> radii;
@@ -158,6 +167,53 @@ bool analyse_particles(const fs::path& particles_path, const fs::path& out, cons
 } // namespace
 
 namespace {
+
+// Collision statistics (OUT/collisions.csv, analysis/collision_statistics.hpp) over the rows whose
+// interval ends in (t0, t1]: collision counts summed, max_overlap_extent the largest, every other
+// column the mean of its finite values, and mean_free_time = 1 / mean collision frequency.
+void analyse_collisions(const fs::path& path, double t0, double t1,
+                        std::vector<SummaryRow>& summary) {
+  const Table t = read_csv(path);
+  const std::vector<double>& time = t.data[0];
+  std::vector<std::size_t> rows;
+  for (std::size_t i = 0; i < time.size(); ++i)
+    if (time[i] > t0 && time[i] <= t1) rows.push_back(i);
+  if (rows.empty()) {
+    fmt::print("collisions         no rows of {} in ({}, {}] s: left out\n", path.string(), g(t0),
+               g(t1));
+    return;
+  }
+  auto unit_of = [](const std::string& c) -> std::string {
+    if (c.ends_with("_collisions") || c.ends_with("_extent") || c.ends_with("_fraction") ||
+        c.ends_with("_particles"))
+      return "1";
+    if (c.ends_with("_frequency")) return "1/s";
+    return "s"; // mean_free_time, mean_contact_duration
+  };
+  double f_mean = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t c = 1; c < t.columns.size(); ++c) {
+    const std::string& name = t.columns[c];
+    if (name == "mean_free_time") continue; // from the mean frequency below
+    double sum = 0.0, max = -std::numeric_limits<double>::infinity();
+    long finite = 0;
+    for (const std::size_t r : rows) {
+      const double v = t.data[c][r];
+      if (!std::isfinite(v)) continue;
+      sum += v, max = std::max(max, v), ++finite;
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    double value = finite > 0 ? sum / static_cast<double>(finite) : nan;
+    if (name.ends_with("_collisions")) value = sum;
+    if (name == "max_overlap_extent") value = finite > 0 ? max : nan;
+    if (name == "collision_frequency") f_mean = value;
+    summary.push_back(
+        {name == "pair_collisions" || name == "wall_collisions" ? name + "_window" : name, value,
+         unit_of(name)});
+    if (name == "collision_frequency") summary.push_back({"mean_free_time", 1.0 / value, "s"});
+  }
+  fmt::print("collisions         {} rows of {}: collision frequency {} 1/s, mean free time {} s\n",
+             rows.size(), path.string(), g(f_mean), g(1.0 / f_mean));
+}
 
 // The time span of the run's results: probes.csv, else series.csv, else particles.h5.
 std::pair<double, double> run_time_span(const fs::path& out, const std::optional<Table>& probes) {
@@ -315,6 +371,10 @@ int analyse(const AnalyseOptions& o) {
   else
     fmt::print("particles          no {}: velocity distribution and segregation left out\n",
                particles_path.string());
+
+  const fs::path collisions_path = out / "collisions.csv";
+  if (fs::exists(collisions_path, ec))
+    analyse_collisions(collisions_path, window.first, window.second, summary);
 
   std::ofstream f = open_out(dir / "summary.csv");
   f << "name,value,unit\n";

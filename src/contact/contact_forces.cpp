@@ -111,8 +111,9 @@ template <NormalModel Normal, bool Tangential, RollingModel Rolling>
 
 template <NormalModel Normal, bool Tangential, RollingModel Rolling>
 ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& table, double dt,
-                     NonconservativeForces& nc) {
+                     NonconservativeForces& nc, ContactRecord* rec) {
   ContactStats st;
+  const bool recording = rec != nullptr && rec->enabled;
   const int hw = nl.history_width();
   // A contact that ends takes its spring energy with it: count it as dissipated. (Hertz springs
   // have k_t -> 0 as the overlap closes, so only the linear springs hold energy at separation.)
@@ -144,7 +145,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   // slab write only to particles of that slab and the next, so all even slabs run in parallel,
   // then all odd slabs; each slab runs its rows in a fixed order and keeps its own statistics,
   // summed in slab order: the result does not depend on the number of threads.
-  auto process_row = [&](std::size_t i, ContactStats& acc) {
+  auto process_row = [&](std::size_t i, ContactStats& acc, std::vector<ContactSample>* buf) {
     const double xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.radius[i];
     for (std::uint32_t e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
       const std::uint32_t j = nl.partner[e];
@@ -193,16 +194,37 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       acc.elastic_energy += out.elastic;
       acc.spring_losses += out.spring_loss;
       track_overlap(acc, c.overlap / (2.0 * std::min(ri, rj)), i);
+      if (buf) {
+        ContactSample& cs = buf->emplace_back();
+        cs.id_i = p.id[i];
+        cs.id_j = p.id[j];
+        cs.i = static_cast<std::int32_t>(i);
+        cs.j = static_cast<std::int32_t>(j);
+        cs.overlap = c.overlap;
+        cs.normal = c.n;
+        cs.force = out.force;
+        cs.torque_roll = out.torque_roll;
+        cs.contact_point = Vec3{xi, yi, zi} + c.n * (ri - 0.5 * c.overlap);
+      }
     }
   };
   const int nslab = nl.slab_count();
   std::vector<ContactStats> slab_stats(nslab);
+  // Recording: one buffer per slab (a slab runs on one thread), concatenated in slab order.
+  std::vector<std::vector<ContactSample>> slab_samples(recording ? nslab : 0);
   for (int phase = 0; phase < 2; ++phase) {
 #pragma omp parallel for schedule(dynamic, 1) if (n > 4096)
     for (int sl = phase; sl < nslab; sl += 2) {
+      std::vector<ContactSample>* buf = recording ? &slab_samples[sl] : nullptr;
       for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
-        process_row(nl.slab_particles[k], slab_stats[sl]);
+        process_row(nl.slab_particles[k], slab_stats[sl], buf);
     }
+  }
+  if (recording) {
+    std::size_t total = 0;
+    for (const auto& b : slab_samples) total += b.size();
+    rec->samples.reserve(total + nl.wall_particle.size());
+    for (const auto& b : slab_samples) rec->samples.insert(rec->samples.end(), b.begin(), b.end());
   }
   for (const auto& ss : slab_stats) {
     st.n_contacts += ss.n_contacts;
@@ -251,30 +273,42 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     st.elastic_energy += out.elastic;
     st.spring_losses += out.spring_loss;
     track_overlap(st, c.overlap / (2.0 * ri), i);
+    if (recording) {
+      ContactSample& cs = rec->samples.emplace_back();
+      cs.id_i = p.id[i];
+      cs.id_j = -1 - f;
+      cs.i = static_cast<std::int32_t>(i);
+      cs.j = -1;
+      cs.overlap = c.overlap;
+      cs.normal = c.n;
+      cs.force = out.force;
+      cs.torque_roll = out.torque_roll;
+      cs.contact_point = p.position(i) + c.n * gap; // on the wall plane
+    }
   }
   return st;
 }
 
 template <NormalModel Normal, bool Tangential>
 ContactStats dispatch_rolling(ParticleStore& p, NeighbourList& nl, const ContactTable& t, double dt,
-                              NonconservativeForces& nc) {
+                              NonconservativeForces& nc, ContactRecord* rec) {
   switch (t.rolling()) {
   case RollingModel::None:
-    return compute<Normal, Tangential, RollingModel::None>(p, nl, t, dt, nc);
+    return compute<Normal, Tangential, RollingModel::None>(p, nl, t, dt, nc, rec);
   case RollingModel::ConstantTorque:
-    return compute<Normal, Tangential, RollingModel::ConstantTorque>(p, nl, t, dt, nc);
+    return compute<Normal, Tangential, RollingModel::ConstantTorque>(p, nl, t, dt, nc, rec);
   case RollingModel::SpringDashpot:
-    return compute<Normal, Tangential, RollingModel::SpringDashpot>(p, nl, t, dt, nc);
+    return compute<Normal, Tangential, RollingModel::SpringDashpot>(p, nl, t, dt, nc, rec);
   }
   return {};
 }
 
 template <NormalModel Normal>
 ContactStats dispatch_tangential(ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                                 double dt, NonconservativeForces& nc) {
+                                 double dt, NonconservativeForces& nc, ContactRecord* rec) {
   return t.tangential() == TangentialModel::History
-             ? dispatch_rolling<Normal, true>(p, nl, t, dt, nc)
-             : dispatch_rolling<Normal, false>(p, nl, t, dt, nc);
+             ? dispatch_rolling<Normal, true>(p, nl, t, dt, nc, rec)
+             : dispatch_rolling<Normal, false>(p, nl, t, dt, nc, rec);
 }
 
 } // namespace
@@ -293,13 +327,14 @@ double NonconservativeForces::dissipated(const ParticleStore& p, double dt) cons
 }
 
 ContactStats compute_contact_forces(ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                                    double dt, NonconservativeForces& nc) {
+                                    double dt, NonconservativeForces& nc, ContactRecord* rec) {
   nc.reset(p.size());
+  if (rec && rec->enabled) rec->samples.clear(); // also for a model that computes nothing
   switch (t.normal()) {
   case NormalModel::Linear:
-    return dispatch_tangential<NormalModel::Linear>(p, nl, t, dt, nc);
+    return dispatch_tangential<NormalModel::Linear>(p, nl, t, dt, nc, rec);
   case NormalModel::Hertz:
-    return dispatch_tangential<NormalModel::Hertz>(p, nl, t, dt, nc);
+    return dispatch_tangential<NormalModel::Hertz>(p, nl, t, dt, nc, rec);
   case NormalModel::WaltonBraun:
     break; // rejected when the ContactTable was built
   }

@@ -2,6 +2,7 @@
 // contacts, composed from the sub-models named in the case (normal x tangential x rolling).
 // The model choice is resolved once into a template instantiation: no virtual call per contact.
 #pragma once
+#include "contact/contact_record.hpp"
 #include "contact/contact_table.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "particles/particle_store.hpp"
@@ -33,7 +34,12 @@ int contact_history_width(const ContactTable& table);
 /// Add contact forces and torques to p.f*, p.t* (which the caller zeroes). Velocities are the
 /// ones at which the forces are evaluated (half-step velocities in velocity Verlet); `dt` is the
 /// step over which the tangential displacement and the dissipation are integrated.
+/// When `record` is given and enabled, its samples are replaced by this call's touching contacts:
+/// the pairs slab by slab in slab order (rows in the slab's order, partners in list order), then
+/// the wall contacts in wall-list order, so the record does not depend on the thread count.
+/// Without a record (or disabled) nothing is recorded and nothing is allocated.
 ContactStats compute_contact_forces(ParticleStore& p, NeighbourList& nl, const ContactTable& table,
-                                    double dt, NonconservativeForces& nc);
+                                    double dt, NonconservativeForces& nc,
+                                    ContactRecord* record = nullptr);
 
 } // namespace fluidem

@@ -25,7 +25,9 @@ struct ContactSample {
 /// The record the contact loop fills when `enabled`; cleared by the loop at each call.
 struct ContactRecord {
   bool enabled = false;
-  std::vector<ContactSample> samples; ///< ordered by (i, partner) so runs do not depend on threads
+  /// Pair contacts in the contact loop's slab order, then wall contacts (contact_forces.hpp): the
+  /// order does not depend on the number of threads.
+  std::vector<ContactSample> samples;
 };
 
 } // namespace fluidem

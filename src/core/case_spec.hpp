@@ -110,6 +110,15 @@ struct ProbeSpec {
   std::array<double, 3> position{}; ///< m; inside the gas domain
 };
 
+/// A named sphere (a circle in the x-z plane in 2-D) over which the collision frequency and the
+/// local void fraction are computed (`[[output.collision_region]]`, columns of collisions.csv)
+/// [Chang08 Table 1, regions GC and CC].
+struct CollisionRegionSpec {
+  std::string name;
+  std::array<double, 3> centre{}; ///< m; inside the domain
+  double radius = 0.0;            ///< m, > 0
+};
+
 struct OutputSpec {
   double frame_interval = 0.01;   ///< s between particle (and gas field) frames
   double series_interval = 0.001; ///< s between rows of series.csv (and probes.csv)
@@ -119,6 +128,10 @@ struct OutputSpec {
   /// the index of the band its centre started in (ParticleStore::layer), written to particles.h5.
   int layers = 0;
   std::vector<ProbeSpec> probes; ///< pressure probes (coupled runs only)
+  /// Collision statistics (analysis/collision_statistics.hpp): OUT/collisions.csv every series
+  /// interval and OUT/collision_overlap.csv at the end.
+  bool collisions = false;
+  std::vector<CollisionRegionSpec> collision_regions; ///< only with collisions = true
 };
 
 struct NeighbourSpec {

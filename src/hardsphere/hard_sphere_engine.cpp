@@ -200,9 +200,16 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
   last_collision_[a] = ev.t;
   if (wall) {
     ++stats_.wall_collisions;
+    ++stats_.wall_collisions_last_step;
   } else {
+    ++stats_.pair_collisions_last_step;
     ++counter_[b];
     last_collision_[b] = ev.t;
+  }
+  if (record_) {
+    // normal: from b (or the wall) towards a; the contact point is r_a behind a's centre.
+    log_.push_back({p.id[a], wall ? -1 - static_cast<std::int64_t>(b - n) : p.id[b],
+                    p.position(a) - normal * p.radius[a]});
   }
   schedule(p, a, ev.t);
   if (!wall) schedule(p, b, ev.t);
@@ -279,6 +286,9 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
   t_end_ = time + dt;
   heap_.clear();
   stats_.events_last_step = 0;
+  stats_.pair_collisions_last_step = 0;
+  stats_.wall_collisions_last_step = 0;
+  log_.clear();
   for (std::uint32_t i = 0; i < n; ++i) schedule(p, i, time);
   const auto limit = static_cast<long>(opts_.max_events_per_particle * static_cast<double>(n));
   while (!heap_.empty()) {

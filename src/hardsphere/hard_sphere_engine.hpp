@@ -30,13 +30,22 @@
 
 namespace fluidem {
 
+/// One collision, recorded on request (HardSphereEngine::set_record_collisions) for the
+/// collision statistics: particle ids (id_b = -1 - face for a wall) and the contact point.
+struct HardSphereCollision {
+  std::int64_t id_a = 0, id_b = -1;
+  Vec3 point; ///< m (on a periodic axis it may lie one box length outside the domain)
+};
+
 struct HardSphereStats {
-  long collisions = 0;         ///< cumulative, particle-particle and particle-wall
-  long wall_collisions = 0;    ///< cumulative
-  long tc_elastic = 0;         ///< cumulative collisions made elastic by the TC model
-  long slow_elastic = 0;       ///< ... and by the low-impact-speed rule (elastic_below)
-  long events_last_step = 0;   ///< events (valid collisions) in the last DT
-  double dissipated = 0.0;     ///< cumulative kinetic energy lost in collisions, J
+  long collisions = 0;                ///< cumulative, particle-particle and particle-wall
+  long wall_collisions = 0;           ///< cumulative
+  long tc_elastic = 0;                ///< cumulative collisions made elastic by the TC model
+  long slow_elastic = 0;              ///< ... and by the low-impact-speed rule (elastic_below)
+  long events_last_step = 0;          ///< events (valid collisions) in the last DT
+  long pair_collisions_last_step = 0; ///< particle-particle collisions in the last DT
+  long wall_collisions_last_step = 0; ///< particle-wall collisions in the last DT
+  double dissipated = 0.0;            ///< cumulative kinetic energy lost in collisions, J
   double tc_energy_kept = 0.0; ///< cumulative energy both rules kept from being dissipated, J
 };
 
@@ -51,6 +60,10 @@ public:
   void advance(ParticleStore& p, double time, double dt, const std::array<double, 3>& accel);
 
   const HardSphereStats& stats() const { return stats_; }
+  /// Record every collision of the following advance() calls (off by default: nothing stored).
+  void set_record_collisions(bool on) { record_ = on; }
+  /// The collisions of the last advance() (in event order) when recording is on.
+  const std::vector<HardSphereCollision>& last_step_collisions() const { return log_; }
   std::size_t bytes() const;
   long list_builds() const { return list_builds_; }
 
@@ -102,6 +115,8 @@ private:
   Vec3 g_;
   double t_end_ = 0.0, step_dt_ = 0.0, elastic_below_ = 0.0, rmin_ = 0.0;
   HardSphereStats stats_;
+  bool record_ = false;
+  std::vector<HardSphereCollision> log_;
 };
 
 } // namespace fluidem

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -83,6 +84,26 @@ double expected_overlap_ratio(const CaseSpec& spec, const ParticleStore& p, cons
   return delta / s.diameter;
 }
 
+/// OUT/collision_overlap.csv: the overlap-extent histogram of all pair collisions ended since
+/// t = 0 (bins [bin_lo, bin_hi) of max overlap / smaller diameter; the last row, bin_hi = inf,
+/// counts the extents above the range); fraction = count / all ended pair collisions.
+void write_overlap_histogram(const std::string& path, const CollisionStatistics& c) {
+  SeriesWriter w(path, {"bin_lo", "bin_hi", "count", "fraction"});
+  const auto& h = c.histogram();
+  const std::size_t nb = h.size() - 1;
+  const double width = c.settings().histogram_max / static_cast<double>(nb);
+  std::int64_t total = 0;
+  for (const auto k : h) total += k;
+  for (std::size_t k = 0; k <= nb; ++k) {
+    const double lo = static_cast<double>(k) * width;
+    const double hi =
+        k < nb ? static_cast<double>(k + 1) * width : std::numeric_limits<double>::infinity();
+    const auto count = static_cast<double>(h[k]);
+    w.write_row({lo, hi, count, total > 0 ? count / static_cast<double>(total) : 0.0});
+  }
+  w.close();
+}
+
 } // namespace
 
 Simulation::Simulation(CaseSpec spec) : Simulation(std::move(spec), nullptr) {}
@@ -111,6 +132,19 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
   for (const auto& s : spec_.species) dmax = std::max(dmax, s.diameter);
   const double skin = spec_.neighbour.skin ? *spec_.neighbour.skin : 0.2 * dmax;
 
+  if (spec_.output.collisions) {
+    CollisionStatistics::Settings cs;
+    for (const CollisionRegionSpec& r : spec_.output.collision_regions)
+      cs.regions.push_back({r.name, Vec3{r.centre[0], r.centre[1], r.centre[2]}, r.radius});
+    cs.dimension = spec_.simulation.dimension;
+    for (std::size_t a = 0; a < 3; ++a) {
+      cs.box_length[a] = spec_.domain.hi[a] - spec_.domain.lo[a];
+      cs.periodic[a] = spec_.domain.periodic[a];
+    }
+    collisions_ = std::make_unique<CollisionStatistics>(std::move(cs), 0.0);
+    record_.enabled = true;
+  }
+
   report_.particle_count = p_.size();
   report_.total_mass = mass;
   report_.skin = skin;
@@ -125,6 +159,7 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
     check_step_count(spec_, dt_);
     nl_ = std::make_unique<NeighbourList>(box_from(spec_), skin, 0);
     hard_ = std::make_unique<HardSphereEngine>(spec_, box_from(spec_));
+    hard_->set_record_collisions(collisions_ != nullptr);
     if (spec_.gas) {
       if (spec_.gas->time_step != 0.0)
         throw InputError(spec_.where("gas.time_step"), "gas.time_step",
@@ -184,7 +219,7 @@ Simulation::~Simulation() = default;
 void Simulation::compute_forces() {
   p_.zero_forces();
   const auto t0 = Clock::now();
-  stats_ = compute_contact_forces(p_, *nl_, *table_, dt_, nc_);
+  stats_ = compute_contact_forces(p_, *nl_, *table_, dt_, nc_, collisions_ ? &record_ : nullptr);
   t_contacts_ += seconds_since(t0);
   e_dsp_ += stats_.spring_losses;
 }
@@ -203,6 +238,7 @@ void Simulation::step() {
     t_contacts_ += seconds_since(t0);
     ++step_;
     time_ = static_cast<double>(step_) * dt_;
+    record_collisions();
     return;
   }
   const std::size_t n = p_.size();
@@ -263,6 +299,19 @@ void Simulation::step() {
   t_integration_ += seconds_since(t0);
   ++step_;
   time_ = static_cast<double>(step_) * dt_;
+  record_collisions();
+}
+
+void Simulation::record_collisions() {
+  if (!collisions_) return;
+  if (hard_) {
+    instant_.clear();
+    for (const HardSphereCollision& c : hard_->last_step_collisions())
+      instant_.push_back({c.id_a, c.id_b, c.point});
+    collisions_->add_instant_step(instant_, p_, time_);
+  } else {
+    collisions_->add_step(record_, p_, time_);
+  }
 }
 
 double Simulation::bed_height() const {
@@ -375,6 +424,16 @@ RunSummary Simulation::run(const std::string& out_dir,
     for (const ProbeSpec& pr : spec_.output.probes) pc.push_back(pr.name);
     probes = open_series("probes.csv", pc);
   }
+  std::unique_ptr<SeriesWriter> coll;
+  if (collisions_) { // analysis/collision_statistics.hpp; one row per series interval
+    std::vector<std::string> cc{
+        "time",           "pair_collisions",     "wall_collisions",    "collision_frequency",
+        "mean_free_time", "mean_overlap_extent", "max_overlap_extent", "mean_contact_duration"};
+    for (const CollisionRegionSpec& r : spec_.output.collision_regions)
+      cc.insert(cc.end(), {r.name + "_collision_frequency", r.name + "_void_fraction",
+                           r.name + "_particles"});
+    coll = open_series("collisions.csv", cc);
+  }
   const std::string xmf = (fs::path(out_dir) / "particles.xmf").string();
   // Gas fields per particle frame (fields.h5 + fields.xmf), coupled runs only.
   const std::vector<std::string> field_scalars{"porosity", "pressure"};
@@ -463,6 +522,20 @@ RunSummary Simulation::run(const std::string& out_dir,
         }
       }
       series->write_row(row);
+      if (coll) {
+        const CollisionStatistics::Row c = collisions_->take_row(time_, p_.size());
+        std::vector<double> crow{time_,
+                                 static_cast<double>(c.pair_collisions),
+                                 static_cast<double>(c.wall_collisions),
+                                 c.frequency,
+                                 c.mean_free_time,
+                                 c.mean_overlap,
+                                 c.max_overlap,
+                                 c.mean_duration};
+        for (const auto& r : c.regions)
+          crow.insert(crow.end(), {r.frequency, r.void_fraction, r.particles});
+        coll->write_row(crow);
+      }
     }
     if (time_ >= clock_.next_frame - eps || step_ == total) {
       while (clock_.next_frame <= time_ + eps) clock_.next_frame += frame_dt;
@@ -525,12 +598,17 @@ RunSummary Simulation::run(const std::string& out_dir,
   } catch (...) {
     series->close();
     if (probes) probes->close();
+    if (coll) coll->close();
     if (fields) fields->flush();
     h5->flush();
     throw;
   }
   series->close();
   if (probes) probes->close();
+  if (coll) {
+    coll->close();
+    write_overlap_histogram((fs::path(out_dir) / "collision_overlap.csv").string(), *collisions_);
+  }
   s.steps = step_ - step0;
   s.wall_seconds = seconds_since(start);
   s.particle_steps_per_second = static_cast<double>(s.steps) * static_cast<double>(p_.size()) /

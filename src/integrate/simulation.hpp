@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/collision_statistics.hpp"
 #include "analysis/energies.hpp"
 #include "contact/contact_forces.hpp"
 #include "contact/contact_table.hpp"
@@ -122,6 +123,9 @@ public:
   double dissipated_energy() const { return e_dsp_; }
   /// The gas phase and coupling, or nullptr for a granular run.
   const GasCoupling* gas() const { return gas_.get(); }
+  /// The collision statistics (output.collisions = true), or nullptr. Fed after every step,
+  /// also by advance(); run() takes a row of collisions.csv every series interval.
+  const CollisionStatistics* collisions() const { return collisions_.get(); }
   /// Bed height (analysis/bed_height.hpp) along the axis of gravity, m.
   double bed_height() const;
 
@@ -130,6 +134,7 @@ private:
   void compute_forces();
   void step();
   void check_stability() const;
+  void record_collisions();
 
   CaseSpec spec_;
   ParticleStore p_;
@@ -144,6 +149,9 @@ private:
   double dt_ = 0.0, time_ = 0.0, e_dsp_ = 0.0;
   long step_ = 0;
   OutputClock clock_;
+  std::unique_ptr<CollisionStatistics> collisions_; ///< set when output.collisions = true
+  ContactRecord record_;                            ///< soft spheres: the last step's contacts
+  std::vector<InstantCollision> instant_;           ///< hard spheres: scratch
   double t_contacts_ = 0.0, t_integration_ = 0.0, t_neighbour_ = 0.0, t_gas_ = 0.0;
 };
 

@@ -8,11 +8,12 @@
 // pairs are rebuilt, and the contact histories of every pair and wall entry), the hard-sphere
 // engine's state (last-collision times of the TC model, counters, list), the gas fields
 // (velocity, pressure, porosity new and old, density) and the gas force on each particle, and
-// the output schedule. There is no random-number generator in a running simulation (random
-// insertion happens before step 0), so none is stored.
-// What is NOT stored is rebuilt from it: cell grids, the event calendar (rebuilt every flow
-// step), and the gas solver's multigrid set-ups, which the run writing the checkpoint drops
-// too (GasSolver::reset_solver_history), so both continue bitwise alike.
+// the output schedule, and the collision statistics when they are on (ongoing contacts and
+// accumulators, so that collisions.csv continues exactly). There is no random-number generator in a
+// running simulation (random insertion happens before step 0), so none is stored. What is NOT
+// stored is rebuilt from it: cell grids, the event calendar (rebuilt every flow step), and the gas
+// solver's multigrid set-ups, which the run writing the checkpoint drops too
+// (GasSolver::reset_solver_history), so both continue bitwise alike.
 #include <fmt/format.h>
 
 #include "core/error.hpp"
@@ -126,6 +127,14 @@ void Simulation::write_checkpoint(const std::string& path) {
           std::vector<double>{h.stats.dissipated, h.stats.tc_energy_kept});
     put_list(w, "hardsphere/list", h.list);
   }
+  if (collisions_) { // the ongoing contacts and the accumulators of the statistics
+    const CollisionStatistics::State c = collisions_->state();
+    w.put("collisions/keys", c.keys);
+    w.put("collisions/ongoing", c.ongoing);
+    w.put("collisions/counters", c.counters);
+    w.put("collisions/sums", c.sums);
+    w.put("collisions/histogram", c.histogram);
+  }
   if (gas_) {
     const GasCoupling::State g = gas_->state();
     for (int d = 0; d < 3; ++d) {
@@ -221,6 +230,19 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
       h.stats.tc_energy_kept = e[1];
       h.list = get_list(r, "hardsphere/list");
       s.hard_->restore(s.p_, h);
+    }
+    // Collision statistics: continued when the checkpoint holds them; a run that switches
+    // them on at the restart (--set output.collisions=true) starts them there.
+    if (s.collisions_ && r.has("collisions/counters")) {
+      CollisionStatistics::State c;
+      c.keys = r.int64s("collisions/keys");
+      c.ongoing = r.doubles("collisions/ongoing");
+      c.counters = r.int64s("collisions/counters");
+      c.sums = r.doubles("collisions/sums");
+      c.histogram = r.int64s("collisions/histogram");
+      s.collisions_->restore(c);
+    } else if (s.collisions_) {
+      s.collisions_ = std::make_unique<CollisionStatistics>(s.collisions_->settings(), s.time_);
     }
     if (s.gas_) {
       GasCoupling::State g;

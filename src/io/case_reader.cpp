@@ -44,7 +44,11 @@ const Keys& simulation_keys() {
 }
 const Keys& output_keys() {
   static const Keys k = {"frame_interval", "series_interval", "checkpoint_interval", "layers",
-                         "probe"};
+                         "probe",          "collisions",      "collision_region"};
+  return k;
+}
+const Keys& collision_region_keys() {
+  static const Keys k = {"name", "centre", "radius"};
   return k;
 }
 const Keys& probe_keys() {
@@ -200,7 +204,7 @@ const Keys* subtable_keys(const std::string& parent, const std::string& sub) {
 /// True for the arrays of tables below the top level ([[output.probe]],
 /// [[gas.boundary.FACE.region]]).
 bool is_table_array(const std::string& parent, const std::string& key) {
-  if (parent == "output") return key == "probe";
+  if (parent == "output") return key == "probe" || key == "collision_region";
   return parent.rfind("gas.boundary.", 0) == 0 && key == "region";
 }
 
@@ -567,6 +571,7 @@ public:
     read_gas(root);
     read_coupling(section(root, "coupling"));
     read_probes(output);
+    read_collision_regions(output);
   }
 
 private:
@@ -928,6 +933,7 @@ private:
     if (t != nullptr)
       if (const auto e = find(*t, "layers", "output.layers"))
         spec_.output.layers = int_value(*e, "output.layers", 0, "an integer >= 0 (0: off)");
+    opt_bool(t, "output", "collisions", spec_.output.collisions);
   }
 
   void read_domain(const toml::table& t) {
@@ -1532,6 +1538,65 @@ private:
                                " <= " + format_double(spec_.domain.hi[d]) + ")");
       }
       spec_.output.probes.push_back(probe);
+    }
+  }
+
+  /// `[[output.collision_region]]` (with output.collisions = true): named spheres over which the
+  /// collision frequency and the void fraction are computed [Chang08 Table 1].
+  void read_collision_regions(const toml::table* output) {
+    if (output == nullptr) return;
+    const std::string name_rule =
+        "a non-empty name, unique among the [[output.collision_region]], without commas, quotes "
+        "or line breaks (it names columns of collisions.csv)";
+    const toml::array* a = opt_table_array(*output, "collision_region", "output.collision_region",
+                                           "output.collision_region", collision_region_keys(),
+                                           "each with a name, a centre and a radius");
+    if (a == nullptr) return;
+    if (!spec_.output.collisions)
+      throw InputError(spec_.where("output.collision_region"), "output.collision_region",
+                       "needs output.collisions = true (allowed: collision regions of a run "
+                       "that writes collision statistics)");
+    static const char* axis_name = "xyz";
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const toml::table* t = a->get(i)->as_table();
+      const std::string p = "output.collision_region[" + std::to_string(i) + "]";
+      const std::string shown = "[[output.collision_region]] " + p;
+      CollisionRegionSpec region;
+      const auto name = find(*t, "name", p + ".name");
+      if (!name) missing(t, p, shown, "name", name_rule);
+      region.name = str_value(*name, p + ".name", name_rule);
+      if (region.name.empty())
+        throw InputError(name->where, p + ".name", "is empty (allowed: " + name_rule + ")");
+      if (region.name.find_first_of(",\"\r\n") != std::string::npos)
+        throw InputError(name->where, p + ".name",
+                         in_quotes(region.name) +
+                             " has a comma, a quote or a line break (allowed: " + name_rule + ")");
+      for (std::size_t j = 0; j < spec_.output.collision_regions.size(); ++j)
+        if (spec_.output.collision_regions[j].name == region.name)
+          throw InputError(
+              name->where, p + ".name",
+              "duplicate collision region name " + in_quotes(region.name) +
+                  ", also output.collision_region[" + std::to_string(j) + "] at " +
+                  spec_.where("output.collision_region[" + std::to_string(j) + "].name").str() +
+                  " (allowed: " + name_rule + ")");
+      const auto centre = find(*t, "centre", p + ".centre");
+      if (!centre)
+        missing(t, p, shown, "centre", "an array of 3 numbers, in m: a point inside the domain");
+      region.centre = vec3(*centre, p + ".centre", {Bound::Any, "m"});
+      for (std::size_t d = 0; d < 3; ++d) {
+        if (spec_.simulation.dimension == 2 && d == 1) continue; // y is not used in 2-D
+        const double x = region.centre[d];
+        if (x < spec_.domain.lo[d] || x > spec_.domain.hi[d])
+          throw InputError(centre->where, p + ".centre",
+                           "centre[" + std::to_string(d) + "] = " + format_double(x) +
+                               " is outside the domain (allowed: a point inside the domain, " +
+                               format_double(spec_.domain.lo[d]) + " <= " + axis_name[d] +
+                               " <= " + format_double(spec_.domain.hi[d]) + ")");
+      }
+      const auto radius = find(*t, "radius", p + ".radius");
+      if (!radius) missing(t, p, shown, "radius", "a number > 0, in m");
+      region.radius = number(*radius, p + ".radius", {Bound::Positive, "m"});
+      spec_.output.collision_regions.push_back(region);
     }
   }
 };

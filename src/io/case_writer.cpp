@@ -218,11 +218,19 @@ std::string write_case_toml(const CaseSpec& spec) {
   if (spec.output.checkpoint_interval > 0.0)
     os << "checkpoint_interval = " << format_double(spec.output.checkpoint_interval) << "  # s\n";
   if (spec.output.layers > 0) os << "layers = " << spec.output.layers << "\n";
+  if (spec.output.collisions) os << "collisions = true\n";
   if (spec.gas) {
     for (const ProbeSpec& p : spec.output.probes)
       os << "\n[[output.probe]]\n"
          << "name = " << toml_string(p.name) << "\n"
          << "position = " << vec3(p.position) << "  # m\n";
+  }
+  if (spec.output.collisions) {
+    for (const CollisionRegionSpec& r : spec.output.collision_regions)
+      os << "\n[[output.collision_region]]\n"
+         << "name = " << toml_string(r.name) << "\n"
+         << "centre = " << vec3(r.centre) << "  # m\n"
+         << "radius = " << format_double(r.radius) << "  # m\n";
   }
 
   const DomainSpec& d = spec.domain;

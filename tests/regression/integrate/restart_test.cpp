@@ -5,7 +5,9 @@
 // must equal the uninterrupted run's: series.csv and probes.csv byte for byte, the particle and
 // field frames (times and positions) of particles.h5 the same frames with the same values, the
 // XDMF indexes byte for byte (no duplicated, no missing frame). The runs keep 4 initial layers
-// (output.layers): the layer array and particles.h5's layer frames must be identical too.
+// (output.layers): the layer array and particles.h5's layer frames must be identical too, and
+// they record collision statistics (output.collisions, one region): collisions.csv and
+// collision_overlap.csv must be identical byte for byte.
 // Engines: soft spheres (Hoomans pouring, 500 discs, with tangential-spring history in the
 // contacts), hard spheres (the same with the event-driven engine), and both coupled to the gas
 // (the Tsuji column of tests/common, 200 particles). The time step is fixed explicitly (an
@@ -88,7 +90,8 @@ void expect_same_arrays(const Simulation& a, const Simulation& b) {
 }
 
 void expect_same_outputs(const fs::path& a, const fs::path& b, bool gas) {
-  std::vector<std::string> texts{"series.csv", "particles.xmf"};
+  std::vector<std::string> texts{"series.csv", "particles.xmf", "collisions.csv",
+                                 "collision_overlap.csv"};
   if (gas) {
     texts.push_back("fields.xmf");
   }
@@ -123,6 +126,15 @@ void check_restart_identity(CaseSpec spec, double T, const std::string& name) {
   spec.output.frame_interval = T / 4.0;
   spec.output.series_interval = T / 20.0;
   spec.output.layers = 4;
+  // Collision statistics with one region around the centre: the tracker's ongoing contacts and
+  // accumulators are in the checkpoint, so collisions.csv and collision_overlap.csv continue
+  // byte for byte.
+  spec.output.collisions = true;
+  CollisionRegionSpec region{"centre", {}, 0.0};
+  for (std::size_t d = 0; d < 3; ++d)
+    region.centre[d] = 0.5 * (spec.domain.lo[d] + spec.domain.hi[d]);
+  region.radius = 0.25 * (spec.domain.hi[0] - spec.domain.lo[0]);
+  spec.output.collision_regions = {region};
   Simulation a(spec);
   a.run(one.string());
 

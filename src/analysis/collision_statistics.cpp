@@ -1,0 +1,245 @@
+#include "analysis/collision_statistics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <utility>
+
+namespace fluidem {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kPi = std::numbers::pi;
+} // namespace
+
+CollisionStatistics::CollisionStatistics(Settings settings, double time)
+    : s_(std::move(settings)), t0_(time), region_(s_.regions.size()),
+      hist_(static_cast<std::size_t>(std::max(1, s_.histogram_bins)) + 1, 0) {}
+
+bool CollisionStatistics::inside(const CollisionRegion& r, const Vec3& x) const {
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    if (s_.dimension == 2 && a == 1) continue; // circles in the x-z plane
+    double d = x[a] - r.centre[a];
+    if (s_.periodic[a]) d -= s_.box_length[a] * std::nearbyint(d / s_.box_length[a]);
+    d2 += d * d;
+  }
+  return d2 < r.radius * r.radius;
+}
+
+void CollisionStatistics::begin(std::int64_t b, const Vec3& point) {
+  if (b < 0) {
+    ++interval_.walls_begun, ++total_.walls_begun;
+    return;
+  }
+  ++interval_.pairs_begun, ++total_.pairs_begun;
+  for (std::size_t k = 0; k < s_.regions.size(); ++k)
+    if (inside(s_.regions[k], point)) ++region_[k].collisions;
+}
+
+void CollisionStatistics::end(const Ongoing& c, double time) {
+  if (c.b < 0) {
+    ++interval_.walls_ended, ++total_.walls_ended;
+    return;
+  }
+  const double extent = c.max_overlap / c.diameter;
+  const double duration = time - c.begin;
+  for (Acc* acc : {&interval_, &total_}) {
+    ++acc->pairs_ended;
+    acc->sum_extent += extent;
+    acc->max_extent = std::max(acc->max_extent, extent);
+    acc->sum_duration += duration;
+  }
+  const double w = s_.histogram_max / static_cast<double>(hist_.size() - 1);
+  const double k = std::floor(extent / w);
+  const std::size_t bin =
+      k < static_cast<double>(hist_.size() - 1) ? static_cast<std::size_t>(k) : hist_.size() - 1;
+  ++hist_[bin];
+}
+
+void CollisionStatistics::sample_regions(const ParticleStore& p) {
+  if (s_.regions.empty()) return;
+  const bool disc = s_.dimension == 2;
+  for (std::size_t k = 0; k < s_.regions.size(); ++k) {
+    RegionAcc& r = region_[k];
+    ++r.samples;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (!inside(s_.regions[k], p.position(i))) continue;
+      const double ri = p.radius[i];
+      r.sum_count += 1.0;
+      r.sum_volume += disc ? kPi * ri * ri : 4.0 / 3.0 * kPi * ri * ri * ri;
+    }
+  }
+}
+
+void CollisionStatistics::add_step(const ContactRecord& record, const ParticleStore& p,
+                                   double time) {
+  current_.clear();
+  current_.reserve(record.samples.size());
+  for (const ContactSample& c : record.samples) {
+    Ongoing o{};
+    if (c.j >= 0) {
+      o.a = std::min(c.id_i, c.id_j), o.b = std::max(c.id_i, c.id_j);
+      o.diameter = 2.0 * std::min(p.radius[static_cast<std::size_t>(c.i)],
+                                  p.radius[static_cast<std::size_t>(c.j)]);
+    } else {
+      o.a = c.id_i, o.b = c.id_j;
+      o.diameter = 2.0 * p.radius[static_cast<std::size_t>(c.i)];
+    }
+    o.begin = time;
+    o.max_overlap = c.overlap;
+    current_.push_back(o);
+  }
+  auto key_less = [](const Ongoing& x, const Ongoing& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  };
+  // The record is in slab order; sort by key, keeping the samples' order among equal keys
+  // (cannot happen for one contact loop, but the result must not depend on the sort).
+  std::vector<std::size_t> order(current_.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    return key_less(current_[x], current_[y]);
+  });
+  // Merge with the ongoing contacts (sorted): new keys begin, missing keys end.
+  merged_.clear();
+  merged_.reserve(current_.size());
+  std::size_t io = 0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Ongoing& c = current_[order[k]];
+    if (!merged_.empty() && merged_.back().a == c.a && merged_.back().b == c.b) {
+      merged_.back().max_overlap = std::max(merged_.back().max_overlap, c.max_overlap);
+      continue; // a duplicate key (same pair twice in one record): one contact
+    }
+    while (io < ongoing_.size() && key_less(ongoing_[io], c)) end(ongoing_[io++], time);
+    if (io < ongoing_.size() && !key_less(c, ongoing_[io])) { // continues
+      Ongoing o = ongoing_[io++];
+      o.max_overlap = std::max(o.max_overlap, c.max_overlap);
+      merged_.push_back(o);
+    } else { // begins
+      const ContactSample& sample = record.samples[order[k]];
+      begin(c.b, sample.contact_point);
+      merged_.push_back(c);
+    }
+  }
+  while (io < ongoing_.size()) end(ongoing_[io++], time);
+  std::swap(ongoing_, merged_);
+  sample_regions(p);
+}
+
+void CollisionStatistics::add_instant_step(const std::vector<InstantCollision>& collisions,
+                                           const ParticleStore& p, double /*time*/) {
+  for (const InstantCollision& c : collisions) begin(c.id_b < 0 ? -1 : c.id_b, c.point);
+  // Instantaneous: every collision has ended as it began (no overlap, no duration).
+  for (const InstantCollision& c : collisions) {
+    Acc* accs[2] = {&interval_, &total_};
+    for (Acc* acc : accs) ++(c.id_b < 0 ? acc->walls_ended : acc->pairs_ended);
+  }
+  sample_regions(p);
+}
+
+CollisionStatistics::Row CollisionStatistics::take_row(double time, std::size_t n_particles) {
+  Row r;
+  r.time = time;
+  r.length = time - t0_;
+  r.pair_collisions = interval_.pairs_begun;
+  r.wall_collisions = interval_.walls_begun;
+  r.pair_collisions_ended = interval_.pairs_ended;
+  const double c2 = 2.0 * static_cast<double>(interval_.pairs_begun);
+  r.frequency =
+      r.length > 0.0 && n_particles > 0 ? c2 / (static_cast<double>(n_particles) * r.length) : kNaN;
+  r.mean_free_time = 1.0 / r.frequency;
+  // Overlap and duration: soft-sphere contacts only (the hard-sphere ones add no sums).
+  const bool has = interval_.pairs_ended > 0 && interval_.sum_duration > 0.0;
+  const double ne = static_cast<double>(interval_.pairs_ended);
+  r.mean_overlap = has ? interval_.sum_extent / ne : kNaN;
+  r.max_overlap = has ? interval_.max_extent : kNaN;
+  r.mean_duration = has ? interval_.sum_duration / ne : kNaN;
+  const bool disc = s_.dimension == 2;
+  for (std::size_t k = 0; k < s_.regions.size(); ++k) {
+    RegionAcc& a = region_[k];
+    const double rad = s_.regions[k].radius;
+    const double vol = disc ? kPi * rad * rad : 4.0 / 3.0 * kPi * rad * rad * rad;
+    RegionRow rr;
+    rr.collisions = a.collisions;
+    const double samples = static_cast<double>(a.samples);
+    rr.particles = a.samples > 0 ? a.sum_count / samples : kNaN;
+    rr.void_fraction = a.samples > 0 ? 1.0 - a.sum_volume / samples / vol : kNaN;
+    rr.frequency = r.length > 0.0 && rr.particles > 0.0
+                       ? 2.0 * static_cast<double>(a.collisions) / (rr.particles * r.length)
+                       : kNaN;
+    r.regions.push_back(rr);
+    a = RegionAcc{};
+  }
+  interval_ = Acc{};
+  t0_ = time;
+  return r;
+}
+
+double CollisionStatistics::mean_overlap() const {
+  return total_.pairs_ended > 0 && total_.sum_duration > 0.0
+             ? total_.sum_extent / static_cast<double>(total_.pairs_ended)
+             : kNaN;
+}
+double CollisionStatistics::max_overlap() const {
+  return total_.pairs_ended > 0 && total_.sum_duration > 0.0 ? total_.max_extent : kNaN;
+}
+double CollisionStatistics::mean_duration() const {
+  return total_.pairs_ended > 0 && total_.sum_duration > 0.0
+             ? total_.sum_duration / static_cast<double>(total_.pairs_ended)
+             : kNaN;
+}
+
+CollisionStatistics::State CollisionStatistics::state() const {
+  State s;
+  for (const Ongoing& o : ongoing_) {
+    s.keys.insert(s.keys.end(), {o.a, o.b});
+    s.ongoing.insert(s.ongoing.end(), {o.begin, o.max_overlap, o.diameter});
+  }
+  for (const Acc* a : {&interval_, &total_}) {
+    s.counters.insert(s.counters.end(),
+                      {a->pairs_begun, a->walls_begun, a->pairs_ended, a->walls_ended});
+    s.sums.insert(s.sums.end(), {a->sum_extent, a->max_extent, a->sum_duration});
+  }
+  s.sums.push_back(t0_);
+  for (const RegionAcc& r : region_) {
+    s.counters.insert(s.counters.end(), {r.collisions, r.samples});
+    s.sums.insert(s.sums.end(), {r.sum_count, r.sum_volume});
+  }
+  s.histogram = hist_;
+  return s;
+}
+
+void CollisionStatistics::restore(const State& s) {
+  const std::size_t nr = region_.size();
+  if (s.keys.size() % 2 != 0 || s.ongoing.size() != s.keys.size() / 2 * 3 ||
+      s.counters.size() != 8 + 2 * nr || s.sums.size() != 7 + 2 * nr ||
+      s.histogram.size() != hist_.size())
+    throw std::runtime_error("collision statistics in the checkpoint do not match the case "
+                             "(regions or histogram bins differ)");
+  ongoing_.clear();
+  for (std::size_t k = 0; k < s.keys.size() / 2; ++k)
+    ongoing_.push_back({s.keys[2 * k], s.keys[2 * k + 1], s.ongoing[3 * k], s.ongoing[3 * k + 1],
+                        s.ongoing[3 * k + 2]});
+  std::size_t c = 0, d = 0;
+  for (Acc* a : {&interval_, &total_}) {
+    a->pairs_begun = s.counters[c++];
+    a->walls_begun = s.counters[c++];
+    a->pairs_ended = s.counters[c++];
+    a->walls_ended = s.counters[c++];
+    a->sum_extent = s.sums[d++];
+    a->max_extent = s.sums[d++];
+    a->sum_duration = s.sums[d++];
+  }
+  t0_ = s.sums[d++];
+  for (RegionAcc& r : region_) {
+    r.collisions = s.counters[c++];
+    r.samples = s.counters[c++];
+    r.sum_count = s.sums[d++];
+    r.sum_volume = s.sums[d++];
+  }
+  hist_ = s.histogram;
+}
+
+} // namespace fluidem

@@ -1,0 +1,154 @@
+// Collision statistics of a run [Chang08 (Chang, Lin & Liu, "Applicability limit of binary
+// collision model in dense particle flow", AIP Conf. Proc.), Table 1]: collision frequency per
+// particle, mean free time, and the distribution of overlap extents (maximum overlap of each
+// collision / smaller diameter), globally and in named spherical regions.
+//
+// Soft spheres: fed one ContactRecord per step (contact/contact_record.hpp, filled by the contact
+// loop). Contacts are tracked across steps by their particle ids: each step's contacts are sorted
+// by (smaller id, larger id) (wall contacts: (id, -1 - face)) and merged with the sorted list of
+// ongoing contacts, O(C log C) per step. A collision begins at the first step a contact appears
+// and ends at the first step it is gone; its duration is the time between those two steps (the
+// number of steps it was seen x dt), its overlap extent the largest overlap seen / the smaller
+// diameter (the contact loop samples once per step, so the extent is accurate to the overlap
+// change over one step).
+//
+// Hard spheres: collisions are instantaneous; the engine reports each step's pair and wall
+// collisions (with their contact points, for the regions). Overlap extents and durations are zero
+// by construction and are not accumulated: those outputs stay empty (NaN in the rows).
+//
+// Collision frequency per particle over an interval of length T with N particles:
+//   f = 2 C / (N T),   C = pair collisions begun in the interval
+// (each pair collision is a collision of two particles; wall collisions are counted apart and not
+// in f). Mean free time tau = 1/f. Chang08 cites [5] for its definition of f (eq. 5); the formula
+// is garbled in the source text available to us, so this is the standard kinetic definition, the
+// one whose value for an elastic gas is the Enskog rate f = 4 n d^2 g0 sqrt(pi <v_x^2>).
+//
+// Regions (Chang08, GC and CC cells): a sphere (centre, radius) - a circle in the x-z plane in
+// 2-D. Its particles are those whose centre lies inside (minimum image on periodic axes); at every
+// step fed, their count and their volume (disc areas in 2-D) are summed. Over an interval:
+//   f_region = 2 C_region / (<N_region> T),  C_region = pair collisions begun whose contact point
+//              lies inside the region,
+//   void fraction = 1 - <V_particles> / V_sphere (Chang08: "the volumetric sum of the particles,
+//              for which their centers of mass fall inside the cell, divided by the volume of the
+//              cell" is the solid fraction; its complement is the void fraction theta of Table 1).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "contact/contact_record.hpp" // plain data (header only): no dependency on the contact loop
+#include "core/vec3.hpp"
+#include "particles/particle_store.hpp"
+
+namespace fluidem {
+
+struct CollisionRegion {
+  std::string name;
+  Vec3 centre;         ///< m
+  double radius = 0.0; ///< m, > 0
+};
+
+/// One collision of a hard-sphere step: particle ids (id_b = -1 - face for a wall) and the
+/// contact point.
+struct InstantCollision {
+  std::int64_t id_a = 0, id_b = -1;
+  Vec3 point;
+};
+
+class CollisionStatistics {
+public:
+  struct Settings {
+    std::vector<CollisionRegion> regions;
+    int dimension = 3;                  ///< 2: discs in the x-z plane (regions are circles)
+    std::array<double, 3> box_length{}; ///< m, for the minimum image on periodic axes
+    std::array<bool, 3> periodic{};
+    int histogram_bins = 200;   ///< overlap-extent histogram on [0, histogram_max)
+    double histogram_max = 0.1; ///< extent (overlap / smaller diameter); above: overflow
+  };
+  /// `time`: the start of the first interval (the run's current time).
+  CollisionStatistics(Settings settings, double time);
+
+  /// Soft spheres: the contacts at the end of the step that ended at `time`.
+  void add_step(const ContactRecord& record, const ParticleStore& p, double time);
+  /// Hard spheres: the collisions of the step that ended at `time`.
+  void add_instant_step(const std::vector<InstantCollision>& collisions, const ParticleStore& p,
+                        double time);
+
+  struct RegionRow {
+    double frequency = 0.0;     ///< 1/s per particle in the region
+    double void_fraction = 0.0; ///< 1 - mean particle volume / region volume
+    double particles = 0.0;     ///< mean number of particles (centres inside)
+    long collisions = 0;        ///< pair collisions begun with the contact point inside
+  };
+  /// The statistics of one interval (between two rows).
+  struct Row {
+    double time = 0.0, length = 0.0; ///< end of the interval and its length T, s
+    long pair_collisions = 0;        ///< pair collisions begun in the interval
+    long wall_collisions = 0;        ///< wall collisions begun in the interval
+    long pair_collisions_ended = 0;
+    double frequency = 0.0;      ///< f = 2 C / (N T), 1/s (NaN when T = 0)
+    double mean_free_time = 0.0; ///< 1/f, s (inf when no collision)
+    double mean_overlap = 0.0;   ///< mean extent of the pair collisions ended (NaN if none)
+    double max_overlap = 0.0;    ///< largest extent of the pair collisions ended (NaN if none)
+    double mean_duration = 0.0;  ///< s, of the pair collisions ended (NaN if none)
+    std::vector<RegionRow> regions;
+  };
+  /// Close the interval at `time` (N = p.size()) and start the next one there.
+  Row take_row(double time, std::size_t n_particles);
+
+  /// Totals since the start (or since the state a restart restored).
+  long pair_collisions() const { return total_.pairs_begun; }
+  long wall_collisions() const { return total_.walls_begun; }
+  long pair_collisions_ended() const { return total_.pairs_ended; }
+  long wall_collisions_ended() const { return total_.walls_ended; }
+  double mean_overlap() const;  ///< over all pair collisions ended, NaN if none
+  double max_overlap() const;   ///< NaN if none
+  double mean_duration() const; ///< s, NaN if none
+  std::size_t ongoing() const { return ongoing_.size(); }
+
+  /// Overlap-extent histogram of the pair collisions ended: counts of bins [k w, (k+1) w),
+  /// w = histogram_max / bins, then one overflow count (extent >= histogram_max).
+  const std::vector<std::int64_t>& histogram() const { return hist_; }
+  const Settings& settings() const { return s_; }
+
+  /// What a checkpoint keeps: the ongoing contacts and every accumulator, as flat arrays.
+  struct State {
+    std::vector<std::int64_t> keys;     ///< 2 per ongoing contact
+    std::vector<double> ongoing;        ///< 3 per ongoing contact: begin, max overlap, diameter
+    std::vector<std::int64_t> counters; ///< interval and total counters, region collisions
+    std::vector<double> sums;           ///< interval start, sums, maxima, region sums
+    std::vector<std::int64_t> histogram;
+  };
+  State state() const;
+  /// std::runtime_error when the sizes do not fit these settings.
+  void restore(const State& s);
+
+private:
+  struct Ongoing {
+    std::int64_t a, b; ///< a < b for pairs; (id, -1 - face) for walls
+    double begin, max_overlap, diameter;
+  };
+  struct Acc {
+    long pairs_begun = 0, walls_begun = 0, pairs_ended = 0, walls_ended = 0;
+    double sum_extent = 0.0, max_extent = 0.0, sum_duration = 0.0;
+  };
+  struct RegionAcc {
+    long collisions = 0;
+    long samples = 0;
+    double sum_count = 0.0, sum_volume = 0.0;
+  };
+  void begin(std::int64_t b, const Vec3& point);
+  void end(const Ongoing& c, double time);
+  void sample_regions(const ParticleStore& p);
+  bool inside(const CollisionRegion& r, const Vec3& x) const;
+
+  Settings s_;
+  double t0_;
+  Acc interval_, total_;
+  std::vector<RegionAcc> region_;
+  std::vector<Ongoing> ongoing_, current_, merged_;
+  std::vector<std::int64_t> hist_;
+};
+
+} // namespace fluidem
