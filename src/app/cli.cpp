@@ -271,6 +271,8 @@ int run_cli(int argc, char** argv) {
     if (sim.gas())
       fmt::print("         {}/fields.h5 (+ fields.xmf){}\n", out_dir,
                  sim.spec().output.probes.empty() ? "" : fmt::format(", {}/probes.csv", out_dir));
+    if (sim.collisions())
+      fmt::print("         {}/collisions.csv, {}/collision_overlap.csv\n", out_dir, out_dir);
     return 0;
   } catch (const InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
