@@ -206,7 +206,9 @@ void ContinuumAverager::accumulate_volume(const ParticleStore& p,
   const double inv_v = 1.0 / grid_.cell_volume();
   double* const acc = state_.sums.data();
   const long ncell = static_cast<long>(cells);
-#pragma omp parallel for schedule(dynamic, 16)
+  // Threads only for large steps: a parallel region costs more than a small bed's sums.
+  const bool parallel = n + contacts.size() > settings_.parallel_threshold;
+#pragma omp parallel for schedule(dynamic, 16) if (parallel)
   for (long cl = 0; cl < ncell; ++cl) {
     const std::size_t c = static_cast<std::size_t>(cl);
     Sums s{};
@@ -280,7 +282,8 @@ void ContinuumAverager::accumulate_weighted(const ParticleStore& p,
   }
   double* const acc = state_.sums.data();
   const long ncell = static_cast<long>(cells);
-#pragma omp parallel for schedule(dynamic, 4)
+  const bool parallel = n + contacts.size() > settings_.parallel_threshold / 16;
+#pragma omp parallel for schedule(dynamic, 4) if (parallel)
   for (long cl = 0; cl < ncell; ++cl) {
     const std::size_t c = static_cast<std::size_t>(cl);
     const int ci[3] = {

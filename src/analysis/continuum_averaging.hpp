@@ -57,6 +57,10 @@ struct ContinuumSettings {
   AveragingMethod method = AveragingMethod::Volume;
   double width = 0.0;  ///< m, Gaussian standard deviation w (weighted only), > 0
   double cutoff = 3.0; ///< the Gaussian is zero beyond cutoff * width (weighted only), > 0
+  /// Cells are summed by OpenMP threads when particles + contacts exceed this (the volume
+  /// method; a sixteenth of it for the weighted one, whose cells cost more): a parallel region
+  /// costs more than a small bed's sums. The results do not depend on it.
+  std::size_t parallel_threshold = 50000;
 };
 
 /// Time-volume averaged fields, one value per cell (x fastest). Tensors: component [3a + b].
