@@ -282,6 +282,8 @@ int run_cli(int argc, char** argv) {
                  sim.spec().output.probes.empty() ? "" : fmt::format(", {}/probes.csv", out_dir));
     if (sim.collisions())
       fmt::print("         {}/collisions.csv, {}/collision_overlap.csv\n", out_dir, out_dir);
+    if (sim.continuum())
+      fmt::print("         {}/continuum.h5 (+ continuum.xmf for ParaView)\n", out_dir);
     return 0;
   } catch (const InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
