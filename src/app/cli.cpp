@@ -89,10 +89,19 @@ std::string default_out_dir(const std::string& case_path) {
 }
 
 /// The files a run writes to its output directory.
-const char* const kResultFiles[] = {
-    "case.resolved.toml", "particles.h5",   "particles.xmf",        "series.csv",
-    "fields.h5",          "fields.xmf",     "probes.csv",           "checkpoint.h5",
-    "checkpoint.prev.h5", "collisions.csv", "collision_overlap.csv"};
+const char* const kResultFiles[] = {"case.resolved.toml",
+                                    "particles.h5",
+                                    "particles.xmf",
+                                    "series.csv",
+                                    "fields.h5",
+                                    "fields.xmf",
+                                    "probes.csv",
+                                    "checkpoint.h5",
+                                    "checkpoint.prev.h5",
+                                    "collisions.csv",
+                                    "collision_overlap.csv",
+                                    "continuum.h5",
+                                    "continuum.xmf"};
 
 /// Before a run: the directory must not hold another run's results (unless `force`: they are
 /// removed), must be writable, and should have room for the outputs (InputError otherwise).
@@ -274,6 +283,10 @@ int run_cli(int argc, char** argv) {
     if (sim.gas())
       fmt::print("         {}/fields.h5 (+ fields.xmf){}\n", out_dir,
                  sim.spec().output.probes.empty() ? "" : fmt::format(", {}/probes.csv", out_dir));
+    if (sim.collisions())
+      fmt::print("         {}/collisions.csv, {}/collision_overlap.csv\n", out_dir, out_dir);
+    if (sim.continuum())
+      fmt::print("         {}/continuum.h5 (+ continuum.xmf for ParaView)\n", out_dir);
     return 0;
   } catch (const InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -49,6 +49,10 @@ const char* to_string(RollingModel m) {
   }
   return "?";
 }
+const char* to_string(ContinuumMethod m) {
+  return m == ContinuumMethod::Weighted ? "weighted" : "volume";
+}
+
 const char* to_string(Placement p) {
   switch (p) {
   case Placement::Random:

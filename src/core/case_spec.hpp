@@ -119,6 +119,18 @@ struct CollisionRegionSpec {
   double radius = 0.0;            ///< m, > 0
 };
 
+/// Discrete-to-continuum averaging (`[output.continuum]`, OUT/continuum.h5) [Zhu07 Tables 5-6].
+enum class ContinuumMethod { Volume, Weighted };
+
+struct ContinuumOutputSpec {
+  std::array<int, 3> cells{1, 1, 1};                ///< averaging cells over the domain
+  ContinuumMethod method = ContinuumMethod::Volume; ///< "volume" | "weighted"
+  double width = 0.0;    ///< m, Gaussian width of the weighted method (required there)
+  double cutoff = 3.0;   ///< weighted: the Gaussian is cut at cutoff x width
+  double interval = 0.0; ///< s, averaging interval; 0 (key absent) = output.frame_interval
+  int stride = 1;        ///< average every stride-th step of the interval
+};
+
 struct OutputSpec {
   double frame_interval = 0.01;   ///< s between particle (and gas field) frames
   double series_interval = 0.001; ///< s between rows of series.csv (and probes.csv)
@@ -132,6 +144,7 @@ struct OutputSpec {
   /// interval and OUT/collision_overlap.csv at the end.
   bool collisions = false;
   std::vector<CollisionRegionSpec> collision_regions; ///< only with collisions = true
+  std::optional<ContinuumOutputSpec> continuum;       ///< continuum averages (empty: off)
 };
 
 struct NeighbourSpec {
@@ -169,5 +182,6 @@ const char* to_string(NormalModel m);
 const char* to_string(TangentialModel m);
 const char* to_string(RollingModel m);
 const char* to_string(Placement p);
+const char* to_string(ContinuumMethod m);
 
 } // namespace fluidem

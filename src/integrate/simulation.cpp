@@ -208,6 +208,28 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
   report_.time_step_forced = dt_ > dt_limit;
   report_.expected_overlap_ratio = expected_overlap_ratio(spec_, p_, *table_);
 
+  if (const auto& c = spec_.output.continuum) {
+    // Discrete-to-continuum averages [Zhu07 Tables 5-6] on cells over the whole domain.
+    ContinuumGrid grid;
+    grid.cells = c->cells;
+    grid.lo = spec_.domain.lo;
+    grid.periodic = spec_.domain.periodic;
+    grid.dimension = spec_.simulation.dimension;
+    for (int a = 0; a < 3; ++a)
+      grid.spacing[a] = (spec_.domain.hi[a] - spec_.domain.lo[a]) / c->cells[a];
+    ContinuumSettings settings;
+    settings.method = c->method == ContinuumMethod::Weighted ? AveragingMethod::Weighted
+                                                             : AveragingMethod::Volume;
+    settings.width = c->width;
+    settings.cutoff = c->cutoff;
+    try {
+      continuum_ = std::make_unique<ContinuumAverager>(grid, settings);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(spec_.where("output.continuum"), "output.continuum", e.what());
+    }
+    continuum_interval_ = c->interval > 0.0 ? c->interval : spec_.output.frame_interval;
+  }
+
   nl_ = std::make_unique<NeighbourList>(box_from(spec_), skin, contact_history_width(*table_));
   nl_->build(p_);
   compute_forces();
@@ -219,7 +241,10 @@ Simulation::~Simulation() = default;
 void Simulation::compute_forces() {
   p_.zero_forces();
   const auto t0 = Clock::now();
-  stats_ = compute_contact_forces(p_, *nl_, *table_, dt_, nc_, collisions_ ? &record_ : nullptr);
+  // The contacts are recorded when an analysis uses them: the collision statistics every step,
+  // the continuum averages on their sampled steps (Simulation::step sets record_.enabled).
+  stats_ = compute_contact_forces(p_, *nl_, *table_, dt_, nc_,
+                                  collisions_ || continuum_ ? &record_ : nullptr);
   t_contacts_ += seconds_since(t0);
   e_dsp_ += stats_.spring_losses;
 }
@@ -288,6 +313,8 @@ void Simulation::step() {
   if (nl_->needs_rebuild(p_)) nl_->build(p_);
   t_neighbour_ += seconds_since(t0);
 
+  // The contacts are recorded on the steps whose contacts an analysis uses.
+  record_.enabled = collisions_ != nullptr || continuum_samples_next_step();
   compute_forces();
 
   t0 = Clock::now();
@@ -297,6 +324,8 @@ void Simulation::step() {
   // Verlet the force computed at t+dt acts with mean velocity v(t+dt) over [t+dt/2, t+3dt/2].
   e_dsp_ += nc_.dissipated(p_, dt_);
   t_integration_ += seconds_since(t0);
+  if (continuum_ && continuum_samples_next_step()) // positions and contacts of this step,
+    continuum_->accumulate(p_, record_.samples);   // full-step velocities
   ++step_;
   time_ = static_cast<double>(step_) * dt_;
   record_collisions();
@@ -312,6 +341,10 @@ void Simulation::record_collisions() {
   } else {
     collisions_->add_step(record_, p_, time_);
   }
+}
+
+bool Simulation::continuum_samples_next_step() const {
+  return continuum_ && (step_ + 1) % spec_.output.continuum->stride == 0;
 }
 
 double Simulation::bed_height() const {
@@ -454,6 +487,34 @@ RunSummary Simulation::run(const std::string& out_dir,
             : std::make_unique<FieldsWriter>(path, fgrid, field_scalars, field_vectors, kVersion);
   }
   const std::string fields_xmf = (fs::path(out_dir) / "fields.xmf").string();
+  // Continuum averages [Zhu07 Tables 5-6] (continuum.h5 + continuum.xmf): one frame at the end
+  // of every averaging interval, the cells as ParaView cell data. Tensor T_ab as the scalar
+  // <name>_<a><b>.
+  std::vector<std::string> cont_scalars{"solid_fraction"};
+  for (const char* tensor : {"kinetic_stress", "contact_stress", "couple_stress"})
+    for (const char* ab : {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"})
+      cont_scalars.push_back(std::string(tensor) + "_" + ab);
+  const std::vector<std::string> cont_vectors{"velocity", "angular_velocity"};
+  std::unique_ptr<FieldsWriter> cont;
+  FieldGrid cgrid;
+  std::vector<double> cont_times;
+  const std::string cont_xmf = (fs::path(out_dir) / "continuum.xmf").string();
+  if (continuum_) {
+    cgrid.cells = continuum_->grid().cells;
+    cgrid.lo = continuum_->grid().lo;
+    cgrid.spacing = continuum_->grid().spacing;
+    const std::string path = (fs::path(out_dir) / "continuum.h5").string();
+    // A resumed run continues continuum.h5 (when the run being continued wrote one).
+    if (options.resume && fs::exists(path)) {
+      cont = std::make_unique<FieldsWriter>(
+          FieldsWriter::resume(path, t_keep, cgrid, cont_scalars, cont_vectors));
+      cont_times = cont->kept_times();
+      write_fields_xdmf(cont_xmf, "continuum.h5", cgrid, cont_scalars, cont_vectors, cont_times);
+    } else {
+      cont = std::make_unique<FieldsWriter>(path, cgrid, cont_scalars, cont_vectors, kVersion);
+    }
+    if (!clock_.started) clock_.next_continuum = time_ + continuum_interval_;
+  }
   if (options.resume) { // the indexes list exactly the frames kept in the files
     clock_.frame_times = h5->kept_times();
     if (fields && fields->kept_times() != clock_.frame_times)
@@ -484,7 +545,9 @@ RunSummary Simulation::run(const std::string& out_dir,
   auto write_outputs = [&]() {
     const auto t0 = Clock::now();
     // Nothing unstable reaches the files: check before any row or frame is written.
-    if (time_ >= clock_.next_series - eps || time_ >= clock_.next_frame - eps || step_ == total)
+    const bool continuum_due = cont && time_ >= clock_.next_continuum - eps;
+    if (time_ >= clock_.next_series - eps || time_ >= clock_.next_frame - eps || step_ == total ||
+        continuum_due)
       check_stability();
     if (time_ >= clock_.next_series - eps || step_ == total) {
       while (clock_.next_series <= time_ + eps) clock_.next_series += series_dt;
@@ -554,11 +617,26 @@ RunSummary Simulation::run(const std::string& out_dir,
                           clock_.frame_times);
       }
     }
+    if (continuum_due) { // the averages over the interval that ends now
+      while (clock_.next_continuum <= time_ + eps) clock_.next_continuum += continuum_interval_;
+      const ContinuumFields f = continuum_->result();
+      std::vector<const double*> sc{f.solid_fraction.data()};
+      for (const auto* tensor : {&f.kinetic_stress, &f.contact_stress, &f.couple_stress})
+        for (const auto& component : *tensor) sc.push_back(component.data());
+      auto vec = [](const std::array<std::vector<double>, 3>& v) {
+        return std::array<const double*, 3>{v[0].data(), v[1].data(), v[2].data()};
+      };
+      cont->write_frame(step_, time_, sc, {vec(f.velocity), vec(f.angular_vel)});
+      cont_times.push_back(time_);
+      write_fields_xdmf(cont_xmf, "continuum.h5", cgrid, cont_scalars, cont_vectors, cont_times);
+      continuum_->reset();
+    }
     clock_.started = true;
     seconds_output += seconds_since(t0);
   };
   auto flush_outputs = [&]() { // (the CSV writers flush every row)
     if (fields) fields->flush();
+    if (cont) cont->flush();
     h5->flush();
   };
   RunSummary s;
@@ -600,6 +678,7 @@ RunSummary Simulation::run(const std::string& out_dir,
     if (probes) probes->close();
     if (coll) coll->close();
     if (fields) fields->flush();
+    if (cont) cont->flush();
     h5->flush();
     throw;
   }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "analysis/collision_statistics.hpp"
+#include "analysis/continuum_averaging.hpp"
 #include "analysis/energies.hpp"
 #include "contact/contact_forces.hpp"
 #include "contact/contact_table.hpp"
@@ -75,6 +76,7 @@ struct RunOptions {
 /// run writes its next frame, row and checkpoint when the original would have).
 struct OutputClock {
   double next_frame = 0.0, next_series = 0.0, next_checkpoint = 0.0;
+  double next_continuum = 0.0; ///< end of the current continuum averaging interval
   std::vector<double> frame_times;
   double e0 = 0.0, escale = 0.0;
   bool started = false; ///< e0, escale and the first "next" times are set
@@ -128,6 +130,11 @@ public:
   const CollisionStatistics* collisions() const { return collisions_.get(); }
   /// Bed height (analysis/bed_height.hpp) along the axis of gravity, m.
   double bed_height() const;
+  /// The continuum averager of [output.continuum] (its sums since the last written interval),
+  /// or nullptr when the case has none.
+  const ContinuumAverager* continuum() const { return continuum_.get(); }
+  /// The contacts of the last step, when that step recorded them (else empty).
+  const ContactRecord& contact_record() const { return record_; }
 
 private:
   Simulation(CaseSpec spec, const ParticleStore* initial);
@@ -135,6 +142,8 @@ private:
   void step();
   void check_stability() const;
   void record_collisions();
+  /// True when the step about to be taken (number step_ + 1) is averaged by [output.continuum].
+  bool continuum_samples_next_step() const;
 
   CaseSpec spec_;
   ParticleStore p_;
@@ -150,8 +159,12 @@ private:
   long step_ = 0;
   OutputClock clock_;
   std::unique_ptr<CollisionStatistics> collisions_; ///< set when output.collisions = true
-  ContactRecord record_;                            ///< soft spheres: the last step's contacts
-  std::vector<InstantCollision> instant_;           ///< hard spheres: scratch
+  /// The last step's contacts, recorded for the collision statistics (every step) and the
+  /// continuum averages (their sampled steps).
+  ContactRecord record_;
+  std::vector<InstantCollision> instant_;        ///< hard spheres: scratch
+  std::unique_ptr<ContinuumAverager> continuum_; ///< set with [output.continuum]
+  double continuum_interval_ = 0.0;              ///< s
   double t_contacts_ = 0.0, t_integration_ = 0.0, t_neighbour_ = 0.0, t_gas_ = 0.0;
 };
 

@@ -101,6 +101,11 @@ void Simulation::write_checkpoint(const std::string& path) {
   w.put_scalar("run/clock/escale", clock_.escale);
   w.put_scalar("run/clock/started", static_cast<std::int64_t>(clock_.started));
   w.put("run/clock/frame_times", clock_.frame_times);
+  if (continuum_) { // the sums of the averaging interval in progress
+    w.put_scalar("run/clock/next_continuum", clock_.next_continuum);
+    w.put("continuum/sums", continuum_->state().sums);
+    w.put_scalar("continuum/samples", static_cast<std::int64_t>(continuum_->state().samples));
+  }
   w.put_scalar("stats/n_contacts", static_cast<std::int64_t>(stats_.n_contacts));
   w.put_scalar("stats/max_overlap_ratio", stats_.max_overlap_ratio);
   w.put_scalar("stats/max_overlap_particle",
@@ -165,6 +170,10 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
       throw InputError(fmt::format("--set {}: a restarted run continues the checkpointed one; "
                                    "only simulation.end_time and output.* may change",
                                    o));
+    if (key.rfind("output.continuum", 0) == 0) // its grid and sums are in the checkpoint
+      throw InputError(fmt::format("--set {}: the continuum averaging of a restarted run is the "
+                                   "checkpointed one (its sums are in the checkpoint)",
+                                   o));
     if (key == "output.layers") // the layers are those of t = 0, kept in the checkpoint
       throw InputError(fmt::format("--set {}: the layers are assigned at t = 0; a restarted run "
                                    "keeps those of the checkpointed one",
@@ -208,6 +217,14 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
   s.stats_.elastic_energy = r.scalar("stats/elastic_energy");
   s.stats_.spring_losses = r.scalar("stats/spring_losses");
   try {
+    if (s.continuum_) {
+      if (r.has("continuum/sums")) {
+        s.continuum_->set_state({r.doubles("continuum/sums"), r.integer("continuum/samples")});
+        s.clock_.next_continuum = r.scalar("run/clock/next_continuum");
+      } else { // a checkpoint without continuum averages: the first interval starts here
+        s.clock_.next_continuum = s.time_ + s.continuum_interval_;
+      }
+    }
     s.nl_->restore(s.p_, get_list(r, "neighbour"));
     if (s.hard_) {
       HardSphereEngine::State h;

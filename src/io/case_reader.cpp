@@ -44,7 +44,11 @@ const Keys& simulation_keys() {
 }
 const Keys& output_keys() {
   static const Keys k = {"frame_interval", "series_interval", "checkpoint_interval", "layers",
-                         "probe",          "collisions",      "collision_region"};
+                         "probe",          "collisions",      "collision_region",    "continuum"};
+  return k;
+}
+const Keys& continuum_keys() {
+  static const Keys k = {"cells", "method", "width", "cutoff", "interval", "stride"};
   return k;
 }
 const Keys& collision_region_keys() {
@@ -196,6 +200,7 @@ const Keys* subtable_keys(const std::string& parent, const std::string& sub) {
   if (parent == "walls" && contains(face_keys(), sub)) return &material_keys();
   if (parent == "insert" && sub == "region") return &region_keys();
   if (parent == "gas" && sub == "solver") return &gas_solver_keys();
+  if (parent == "output" && sub == "continuum") return &continuum_keys();
   if (parent == "gas" && sub == "boundary") return &gas_side_keys();
   if (parent == "gas.boundary" && contains(gas_side_keys(), sub)) return &gas_face_keys();
   return nullptr;
@@ -572,6 +577,7 @@ public:
     read_coupling(section(root, "coupling"));
     read_probes(output);
     read_collision_regions(output);
+    read_continuum(output);
   }
 
 private:
@@ -1483,6 +1489,61 @@ private:
       c.scheme = schemes[static_cast<std::size_t>(n - 1)];
     }
     opt_number(t, p, "d_mean", {Bound::NonNegative, "m"}, c.d_mean);
+  }
+
+  /// `[output.continuum]`: discrete-to-continuum averages [Zhu07 Tables 5-6] (after [domain]:
+  /// the weighted method's cutoff radius must fit half a periodic length).
+  void read_continuum(const toml::table* output) {
+    if (output == nullptr) return;
+    const std::string p = "output.continuum";
+    const toml::table* t = table(*output, "continuum", p, continuum_keys());
+    if (t == nullptr) return;
+    ContinuumOutputSpec c;
+    const int dim = spec_.simulation.dimension;
+    const std::string cells_rule = dim == 2 ? "an array of 3 integers [nx, 1, nz], each >= 1"
+                                            : "an array of 3 integers [nx, ny, nz], each >= 1";
+    const auto cells = find(*t, "cells", p + ".cells");
+    if (!cells) missing(t, p, "[output.continuum]", "cells", cells_rule);
+    c.cells = int3(*cells, p + ".cells", cells_rule);
+    if (dim == 2 && c.cells[1] != 1)
+      throw InputError(cells->where, p + ".cells",
+                       "ny = " + std::to_string(c.cells[1]) +
+                           " is not 1 in dimension 2 (allowed: " + cells_rule + ")");
+    opt_enum<ContinuumMethod>(
+        t, p, "method",
+        {{"volume", ContinuumMethod::Volume}, {"weighted", ContinuumMethod::Weighted}}, c.method);
+    const bool weighted = c.method == ContinuumMethod::Weighted;
+    for (const char* key : {"width", "cutoff"})
+      if (!weighted)
+        if (const auto e = find(*t, key, p + "." + key))
+          throw InputError(e->where, p + "." + key,
+                           "only with method = \"weighted\" (allowed: remove it, or set "
+                           "output.continuum.method = \"weighted\")");
+    if (weighted) {
+      c.width = req_number(t, p, "[output.continuum] with method = \"weighted\"", "width",
+                           {Bound::Positive, "m"});
+      opt_number(t, p, "cutoff", {Bound::Positive, ""}, c.cutoff);
+      const double reach = c.width * c.cutoff;
+      for (int a = 0; a < 3; ++a) {
+        const double len = spec_.domain.hi[a] - spec_.domain.lo[a];
+        if (spec_.domain.periodic[a] && !(dim == 2 && a == 1) && reach > 0.5 * len)
+          throw InputError(spec_.where(p + ".width"), p + ".width",
+                           "width x cutoff = " + format_double(reach) +
+                               " m is more than half the periodic length along " +
+                               std::string(1, "xyz"[a]) + " (" + format_double(len) +
+                               " m) (allowed: width x cutoff <= " + format_double(0.5 * len) +
+                               " m)");
+      }
+    }
+    opt_number(t, p, "interval", kTime, c.interval);
+    if (const auto e = find(*t, "stride", p + ".stride"))
+      c.stride = int_value(*e, p + ".stride", 1, "an integer >= 1 (average every stride-th step)");
+    if (spec_.simulation.engine == Engine::HardSphere)
+      throw InputError(table_loc(t, p), p,
+                       "needs the soft-sphere engine (the contact stresses come from its "
+                       "contacts; allowed: simulation.engine = \"soft_sphere\", or remove "
+                       "[output.continuum])");
+    spec_.output.continuum = c;
   }
 
   /// `[[output.probe]]` (coupled runs only): named points where the gas pressure is recorded.

@@ -219,6 +219,16 @@ std::string write_case_toml(const CaseSpec& spec) {
     os << "checkpoint_interval = " << format_double(spec.output.checkpoint_interval) << "  # s\n";
   if (spec.output.layers > 0) os << "layers = " << spec.output.layers << "\n";
   if (spec.output.collisions) os << "collisions = true\n";
+  if (const auto& c = spec.output.continuum) {
+    os << "\n[output.continuum]\n"
+       << "cells = [" << c->cells[0] << ", " << c->cells[1] << ", " << c->cells[2] << "]\n"
+       << "method = " << toml_string(to_string(c->method)) << "\n";
+    if (c->method == ContinuumMethod::Weighted)
+      os << "width = " << format_double(c->width) << "  # m\n"
+         << "cutoff = " << format_double(c->cutoff) << "  # x width\n";
+    if (c->interval > 0.0) os << "interval = " << format_double(c->interval) << "  # s\n";
+    os << "stride = " << c->stride << "\n";
+  }
   if (spec.gas) {
     for (const ProbeSpec& p : spec.output.probes)
       os << "\n[[output.probe]]\n"

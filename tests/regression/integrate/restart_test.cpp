@@ -8,6 +8,10 @@
 // (output.layers): the layer array and particles.h5's layer frames must be identical too, and
 // they record collision statistics (output.collisions, one region): collisions.csv and
 // collision_overlap.csv must be identical byte for byte.
+// The soft-sphere runs also average continuum fields ([output.continuum], weighted for the 2-D
+// pouring, volume for the coupled column) over intervals of 0.3 T, so that the checkpoint at T
+// cuts an interval: continuum.xmf byte for byte and continuum.h5's times and fields the same
+// (the interval's sums are in the checkpoint).
 // Engines: soft spheres (Hoomans pouring, 500 discs, with tangential-spring history in the
 // contacts), hard spheres (the same with the event-driven engine), and both coupled to the gas
 // (the Tsuji column of tests/common, 200 particles). The time step is fixed explicitly (an
@@ -25,6 +29,7 @@
 
 #include <fmt/format.h>
 #include <hdf5.h>
+#include <unistd.h>
 
 #include "../../common/tsuji_column.hpp"
 #include "integrate/simulation.hpp"
@@ -89,9 +94,21 @@ void expect_same_arrays(const Simulation& a, const Simulation& b) {
   }
 }
 
-void expect_same_outputs(const fs::path& a, const fs::path& b, bool gas) {
+void expect_same_outputs(const fs::path& a, const fs::path& b, bool gas, bool continuum) {
   std::vector<std::string> texts{"series.csv", "particles.xmf", "collisions.csv",
                                  "collision_overlap.csv"};
+  if (continuum) {
+    texts.push_back("continuum.xmf");
+    for (const char* ds :
+         {"fields/time", "fields/solid_fraction", "fields/velocity", "fields/contact_stress_zz",
+          "fields/couple_stress_yx", "fields/kinetic_stress_xz"}) {
+      const auto va = read_h5_doubles(a / "continuum.h5", ds);
+      const auto vb = read_h5_doubles(b / "continuum.h5", ds);
+      EXPECT_GE(va.size(), 6u) << ds;
+      EXPECT_TRUE(va == vb) << "continuum.h5 " << ds << ": " << va.size() << " vs " << vb.size()
+                            << " values, or values differ";
+    }
+  }
   if (gas) {
     texts.push_back("fields.xmf");
   }
@@ -118,7 +135,8 @@ void expect_same_outputs(const fs::path& a, const fs::path& b, bool gas) {
 
 /// Runs `spec` to 2T in one go (checkpoint every T) and as T + restart + T; compares.
 void check_restart_identity(CaseSpec spec, double T, const std::string& name) {
-  const fs::path root = fs::temp_directory_path() / ("fluidem_restart_" + name);
+  const fs::path root =
+      fs::temp_directory_path() / ("fluidem_restart_" + name + "_" + std::to_string(getpid()));
   fs::remove_all(root);
   const fs::path one = root / "one", two = root / "two";
   spec.simulation.end_time = 2.0 * T;
@@ -135,6 +153,17 @@ void check_restart_identity(CaseSpec spec, double T, const std::string& name) {
     region.centre[d] = 0.5 * (spec.domain.lo[d] + spec.domain.hi[d]);
   region.radius = 0.25 * (spec.domain.hi[0] - spec.domain.lo[0]);
   spec.output.collision_regions = {region};
+  const bool continuum = spec.simulation.engine == Engine::SoftSphere;
+  if (continuum) {
+    ContinuumOutputSpec c;
+    c.cells = {4, spec.simulation.dimension == 2 ? 1 : 2, 5};
+    c.interval = 0.3 * T;
+    if (spec.simulation.dimension == 2) {
+      c.method = ContinuumMethod::Weighted;
+      c.width = 0.5 * spec.species[0].diameter * 2.0;
+    }
+    spec.output.continuum = c;
+  }
   Simulation a(spec);
   a.run(one.string());
 
@@ -150,7 +179,7 @@ void check_restart_identity(CaseSpec spec, double T, const std::string& name) {
   c->run(two.string(), {}, resume);
   EXPECT_EQ(a.step_count(), c->step_count());
   expect_same_arrays(a, *c);
-  expect_same_outputs(one, two, spec.gas.has_value());
+  expect_same_outputs(one, two, spec.gas.has_value(), continuum);
   fs::remove_all(root);
 }
 

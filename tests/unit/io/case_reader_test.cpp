@@ -788,5 +788,56 @@ TEST(CaseReader, OutputLayersMustBeANonNegativeInteger) {
     expect_error_at(base + bad + "\n", bad, "output.layers", "integer >= 0");
 }
 
+// [output.continuum]: cells >= 1 (ny = 1 in 2-D), method "volume" | "weighted", width > 0 and
+// required for "weighted" (rejected for "volume"), cutoff > 0, interval > 0, stride >= 1,
+// width x cutoff at most half a periodic length, soft-sphere engine only; errors name the key
+// and its line.
+TEST(CaseReader, OutputContinuumKeysAreValidated) {
+  const std::string base = "[simulation]\nend_time = 1\n"
+                           "[domain]\nlo = [0, 0, 0]\nhi = [1, 1, 1]\nperiodic = [true, false, "
+                           "false]\n"
+                           "[[species]]\nname = \"s\"\ndiameter = 0.1\ndensity = 1\n"
+                           "[[insert]]\nspecies = \"s\"\ncount = 1\n[output.continuum]\n";
+  const CaseSpec a = read_case_string(base + "cells = [4, 3, 2]\n", "case.toml");
+  ASSERT_TRUE(a.output.continuum.has_value());
+  EXPECT_EQ(a.output.continuum->cells, (std::array<int, 3>{4, 3, 2}));
+  EXPECT_EQ(a.output.continuum->method, ContinuumMethod::Volume);
+  EXPECT_EQ(a.output.continuum->interval, 0.0);
+  EXPECT_EQ(a.output.continuum->stride, 1);
+  EXPECT_FALSE(read_case_string(minimal(), "case.toml").output.continuum.has_value());
+  const CaseSpec b = read_case_string(base + "cells = [4, 3, 2]\nmethod = \"weighted\"\n"
+                                             "width = 0.05\ncutoff = 4\ninterval = 0.02\n"
+                                             "stride = 5\n",
+                                      "case.toml");
+  EXPECT_EQ(b.output.continuum->method, ContinuumMethod::Weighted);
+  EXPECT_EQ(b.output.continuum->width, 0.05);
+  EXPECT_EQ(b.output.continuum->cutoff, 4.0);
+  EXPECT_EQ(b.output.continuum->interval, 0.02);
+  EXPECT_EQ(b.output.continuum->stride, 5);
+
+  const std::string w = base + "cells = [4, 3, 2]\nmethod = \"weighted\"\n";
+  expect_error_at(base + "cells = [0, 3, 2]\n", "cells = [0", "output.continuum.cells[0]",
+                  "each >= 1");
+  expect_error_at(base + "cells = [4, 3]\n", "cells = [4, 3]", "output.continuum.cells",
+                  "array of 3 integers");
+  expect_error_at(w + "width = -0.1\n", "width = -0.1", "output.continuum.width", "> 0");
+  expect_error_at(w + "width = 0\n", "width = 0", "output.continuum.width", "> 0");
+  expect_error_at(w + "width = 0.1\ncutoff = 0\n", "cutoff = 0", "output.continuum.cutoff", "> 0");
+  expect_error_at(w + "width = 0.2\n", "width = 0.2", "output.continuum.width",
+                  "half the periodic length along x");
+  expect_error_at(w, "[output.continuum]", "output.continuum.width", "missing required key");
+  expect_error_at(base + "cells = [1, 1, 1]\nmethod = \"gauss\"\n",
+                  "method =", "output.continuum.method", "\"volume\", \"weighted\"");
+  expect_error_at(base + "cells = [1, 1, 1]\nwidth = 0.1\n", "width =", "output.continuum.width",
+                  "only with method = \"weighted\"");
+  expect_error_at(base + "cells = [1, 1, 1]\ninterval = -1\n",
+                  "interval =", "output.continuum.interval", "> 0");
+  expect_error_at(base + "cells = [1, 1, 1]\nstride = 0\n", "stride =", "output.continuum.stride",
+                  "integer >= 1");
+  expect_error_at(base + "cells = [1, 1, 1]\nsize = 3\n", "size =", "output.continuum.size",
+                  "unknown key");
+  expect_error_at(base, "[output.continuum]", "output.continuum.cells", "missing required key");
+}
+
 } // namespace
 } // namespace fluidem

@@ -386,5 +386,31 @@ TEST(CaseWriter, FormatDouble) {
   EXPECT_EQ(format_double(std::numeric_limits<double>::infinity()), "inf");
 }
 
+// [output.continuum]: written with every key that applies, read back identical.
+TEST(CaseWriter, RoundTripOutputContinuum) {
+  const std::string minimal = "[simulation]\nend_time = 1\n"
+                              "[domain]\nlo = [0, 0, 0]\nhi = [1, 1, 1]\n"
+                              "[[species]]\nname = \"s\"\ndiameter = 0.1\ndensity = 1\n"
+                              "[[insert]]\nspecies = \"s\"\ncount = 1\n";
+  EXPECT_EQ(write_case_toml(read_case_string(minimal, "case.toml")).find("continuum"),
+            std::string::npos);
+  for (const std::string& extra :
+       {std::string("cells = [2, 3, 4]\n"),
+        std::string("cells = [5, 1, 7]\nmethod = \"weighted\"\nwidth = 0.125\ncutoff = 2.5\n"
+                    "interval = 0.03\nstride = 4\n")}) {
+    const CaseSpec a = read_case_string(minimal + "[output.continuum]\n" + extra, "case.toml");
+    const std::string text = write_case_toml(a);
+    const CaseSpec b = read_case_string(text, "resolved.toml");
+    ASSERT_TRUE(b.output.continuum.has_value()) << text;
+    EXPECT_EQ(b.output.continuum->cells, a.output.continuum->cells);
+    EXPECT_EQ(b.output.continuum->method, a.output.continuum->method);
+    EXPECT_EQ(b.output.continuum->width, a.output.continuum->width);
+    EXPECT_EQ(b.output.continuum->cutoff, a.output.continuum->cutoff);
+    EXPECT_EQ(b.output.continuum->interval, a.output.continuum->interval);
+    EXPECT_EQ(b.output.continuum->stride, a.output.continuum->stride);
+    EXPECT_EQ(write_case_toml(b), text);
+  }
+}
+
 } // namespace
 } // namespace fluidem
