@@ -14,6 +14,7 @@ struct ValidateCommand {
   bool quick = false;
   bool list = false;
   bool reuse = false;
+  bool report_only = false;
   std::string work, report;
   std::vector<std::string> only;
   int threads = 0;
