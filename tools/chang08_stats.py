@@ -11,8 +11,10 @@ Averages over the particle frames with t >= T0 (default 10 s) and over the serie
                 and (3L/4, 3L/4, 3L/4) (periodic images), the particles whose centre lies inside
                 [Chang08]: local void fraction 1 - sum V_p / V_cell, mean u_x, rms u'_x (about the
                 region's mean over all samples).
-The regional collision frequencies need per-collision records (OUT/collisions.csv, not written
-by this version): not computed here.
+With `output.collisions = true` (OUT/collisions.csv, regions named GC, CC1, CC2) it also gives
+f per region: f = sum_rows(f_row N_row) / sum_rows(N_row) over the rows with t > T0 (= 2 C / (<N> T)
+over the whole averaging time; CC: CC1 and CC2 together), and the regions' void fraction as the
+statistics count it at every step (column eps_steps).
 """
 import argparse
 import csv
@@ -70,13 +72,31 @@ def main():
     k0 = np.searchsorted(tt, a.t0 - 1e-9)
     freq = 2.0 * (nc[-1] - nc[k0]) / (n * (tt[-1] - tt[k0]))
     out["whole domain"]["f"] = freq
+    try:
+        with open(f"{a.out}/collisions.csv") as f:
+            crow = [r for r in csv.DictReader(f) if float(r["time"]) > a.t0 + 1e-9]
+    except FileNotFoundError:
+        crow = []
+    if crow:
+        out["whole domain"]["f_csv"] = np.mean([float(r["collision_frequency"]) for r in crow])
+        for name, cols in {"GC": ["GC"], "CC": ["CC1", "CC2"]}.items():
+            fn = sum(float(r[c + "_collision_frequency"]) * float(r[c + "_particles"])
+                     for r in crow for c in cols
+                     if math.isfinite(float(r[c + "_collision_frequency"])))
+            nn = sum(float(r[c + "_particles"]) for r in crow for c in cols)
+            out[name]["f"] = fn / nn if nn > 0 else float("nan")
+            out[name]["eps_steps"] = np.mean([float(r[c + "_void_fraction"])
+                                              for r in crow for c in cols])
     print(f"frames {out['whole domain']['nframes']} from t = {a.t0} s to {tt[-1]:.3g} s, "
           f"N = {n}")
-    print(f"{'region':14s} {'u_x (m/s)':>11s} {'u_x rms':>10s} {'eps':>7s} {'f (1/s)':>9s} "
-          f"{'particles':>9s}")
+    print(f"{'region':14s} {'u_x (m/s)':>11s} {'u_x rms':>10s} {'eps':>7s} {'eps_steps':>9s} "
+          f"{'f (1/s)':>9s} {'particles':>9s}")
     for name, r in out.items():
         print(f"{name:14s} {r['u']:11.3e} {r['urms']:10.3e} {r['eps']:7.3f} "
-              f"{r.get('f', float('nan')):9.3f} {r.get('count', n):9.2f}")
+              f"{r.get('eps_steps', float('nan')):9.3f} {r.get('f', float('nan')):9.3f} "
+              f"{r.get('count', n):9.2f}")
+    if "f_csv" in out["whole domain"]:
+        print(f"whole-domain f from collisions.csv: {out['whole domain']['f_csv']:.3f} 1/s")
 
 
 if __name__ == "__main__":
