@@ -7,8 +7,9 @@ Reads OUT/case.resolved.toml (the bottom face's velocity table: the nozzle's sup
 ratio x U0) and OUT/series.csv (pressure_drop). Writes OUT/loop.csv (U0 bin centre, mean pressure
 drop on the rising branch, on the falling branch, in Pa and over the bed weight per area W) and
 prints, also as OUT/loop_summary.csv (name,value,unit):
-  u_mf_C          the point C of Chang: the lowest U0 from which on the two branches stay within
-                  5% of W of each other (where the rising loop's overshoot ends);
+  u_mf_C          the point C of Chang, "the interception of the loop as increasing the gas
+                  velocity and the loop as decreasing": the first crossing of the two branches above
+                  the rising branch's peak (point B);
   u_mf_ergun      the usual construction on the falling branch: the fixed-bed points (below 70% of
                   the fluidised plateau) fitted by dP = a U + b U^2, intersected with the plateau;
   plateau_over_W  mean pressure drop over both branches at U0 >= 0.75 of the highest U0 (3.0 m/s), over W;
@@ -71,12 +72,18 @@ def main(argv):
     ub = [(b + 0.5) * width for b in range(nb)]
     plateau_vals = [mean(a) for b in range(nb) for a in (up[b], down[b]) if ub[b] >= 0.75 * max(vels) / ratio and a[1]]
     plateau = sum(plateau_vals) / len(plateau_vals)
-    # point C: lowest U from which |up - down| < 0.05 W in every bin with both branches
+    # point C: the first crossing, above the rising branch's peak (point B), of the rising and
+    # falling branches (rising - falling changes sign), linear between bin centres
     umf_c = float("nan")
     both = [b for b in range(nb) if up[b][1] and down[b][1]]
-    for b in both:
-        if all(abs(mean(up[k]) - mean(down[k])) < 0.05 * W for k in both if k >= b):
-            umf_c = ub[b] - 0.5 * width
+    b_peak = max((b for b in both), key=lambda b: mean(up[b]))
+    for k in range(len(both) - 1):
+        b0, b1 = both[k], both[k + 1]
+        if b0 < b_peak:
+            continue
+        d0, d1 = mean(up[b0]) - mean(down[b0]), mean(up[b1]) - mean(down[b1])
+        if d0 > 0 >= d1:
+            umf_c = ub[b0] + (ub[b1] - ub[b0]) * d0 / (d0 - d1)
             break
     # Ergun-form fit on the falling branch's fixed-bed points
     s11 = s12 = s22 = r1 = r2 = 0.0

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/body_force.hpp"
 #include "core/coupling_settings.hpp"
 #include "core/error.hpp"
 #include "core/gas_settings.hpp"
@@ -166,6 +167,8 @@ struct CaseSpec {
   std::optional<gas::GasSettings> gas;
   /// Particle-gas coupling (`[coupling]`); used when `gas` is set.
   coupling::CouplingSettings coupling;
+  /// A spatially varying body force on the particles (`[body_force]`); empty = none.
+  std::optional<BodyForceSpec> body_force;
 
   /// Dotted key path -> location, e.g. "contact.stiffness", "species[1].restitution",
   /// "insert[0].count", "walls.z_lo.friction". Filled by the reader for every key it saw.

@@ -139,6 +139,8 @@ public:
 private:
   Simulation(CaseSpec spec, const ParticleStore* initial);
   void compute_forces();
+  /// v += h a(x) for every particle: the `[body_force]` field at its position (none: no-op).
+  void body_force_kick(double h);
   void step();
   void check_stability() const;
   void record_collisions();

@@ -27,8 +27,9 @@ constexpr const char* kSetFile = "--set";
 // The schema: valid keys of every table.
 
 const Keys& root_keys() {
-  static const Keys k = {"simulation", "output",    "domain",     "walls", "species", "insert",
-                         "contact",    "neighbour", "hardsphere", "gas",   "coupling"};
+  static const Keys k = {"simulation", "output", "domain",   "walls",
+                         "species",    "insert", "contact",  "neighbour",
+                         "hardsphere", "gas",    "coupling", "body_force"};
   return k;
 }
 const Keys& simulation_keys() {
@@ -111,6 +112,10 @@ const Keys& hardsphere_keys() {
   static const Keys k = {"tc_time", "elastic_below", "max_events_per_particle"};
   return k;
 }
+const Keys& body_force_keys() {
+  static const Keys k = {"type", "amplitude", "wavelength", "origin"};
+  return k;
+}
 const Keys& gas_keys() {
   static const Keys k = {"cells",
                          "time_step",
@@ -187,6 +192,7 @@ const Keys& section_keys(const std::string& section) {
   if (section == "insert") return insert_keys();
   if (section == "contact") return contact_keys();
   if (section == "hardsphere") return hardsphere_keys();
+  if (section == "body_force") return body_force_keys();
   return neighbour_keys();
 }
 
@@ -573,6 +579,7 @@ public:
     read_contact(section(root, "contact"));
     read_neighbour(section(root, "neighbour"));
     read_hardsphere(section(root, "hardsphere"));
+    read_body_force(section(root, "body_force"));
     read_gas(root);
     read_coupling(section(root, "coupling"));
     read_probes(output);
@@ -1154,6 +1161,35 @@ private:
     auto_number(t, "hardsphere", "elastic_below", {Bound::NonNegative, "m/s"}, h.elastic_below);
     opt_number(t, "hardsphere", "max_events_per_particle", {Bound::AtLeastOne, ""},
                h.max_events_per_particle);
+  }
+
+  /// `[body_force]`: after [domain] (the wavelength must fit a periodic box).
+  void read_body_force(const toml::table* t) {
+    if (t == nullptr) return;
+    const std::string p = "body_force";
+    BodyForceSpec b;
+    const auto type = find(*t, "type", p + ".type");
+    if (!type) missing(t, p, "[body_force]", "type", "\"sinusoidal_cube\"");
+    opt_enum<BodyForceType>(t, p, "type", {{"sinusoidal_cube", BodyForceType::SinusoidalCube}},
+                            b.type);
+    b.amplitude = req_number(t, p, "[body_force]", "amplitude", {Bound::Any, "m/s^2"});
+    b.wavelength = req_number(t, p, "[body_force]", "wavelength", kLength);
+    opt_vec3(t, p, "origin", {Bound::Any, "m"}, b.origin);
+    for (int a = 0; a < 3; ++a) {
+      const auto k = static_cast<std::size_t>(a);
+      if (!spec_.domain.periodic[k]) continue;
+      const double length = spec_.domain.hi[k] - spec_.domain.lo[k];
+      const double periods = length / b.wavelength;
+      if (std::abs(periods - std::round(periods)) > 1e-9 * std::max(1.0, periods) ||
+          std::round(periods) < 1.0)
+        throw InputError(spec_.where(p + ".wavelength"), p + ".wavelength",
+                         format_double(b.wavelength) +
+                             " m does not divide the periodic box length " + format_double(length) +
+                             " m along " + "xyz"[a] +
+                             " (allowed: length / n for a whole number n >= 1, so that the field "
+                             "is continuous across the periodic faces)");
+    }
+    spec_.body_force = b;
   }
 
   // --- gas, coupling, probes ----------------------------------------------------------------

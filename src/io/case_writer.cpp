@@ -310,6 +310,15 @@ std::string write_case_toml(const CaseSpec& spec) {
      << "elastic_below = " << auto_or(h.elastic_below) << "  # m/s\n"
      << "max_events_per_particle = " << format_double(h.max_events_per_particle) << "\n";
 
+  if (spec.body_force) {
+    const BodyForceSpec& b = *spec.body_force;
+    os << "\n[body_force]\n"
+       << "type = " << toml_string(to_string(b.type)) << "\n"
+       << "amplitude = " << format_double(b.amplitude) << "  # m/s^2\n"
+       << "wavelength = " << format_double(b.wavelength) << "  # m\n"
+       << "origin = " << vec3(b.origin) << "  # m\n";
+  }
+
   // A coupled run only; a granular case has neither (the reader would reject [coupling]).
   if (spec.gas) {
     write_gas(os, *spec.gas, spec.simulation.engine);
