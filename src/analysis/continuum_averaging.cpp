@@ -339,6 +339,7 @@ ContinuumFields ContinuumAverager::result() const {
   ContinuumFields f;
   f.samples = state_.samples;
   f.solid_fraction.assign(cells, 0.0);
+  f.granular_temperature.assign(cells, 0.0);
   for (auto* group : {&f.velocity, &f.angular_vel})
     for (auto& v : *group) v.assign(cells, 0.0);
   for (auto* group : {&f.kinetic_stress, &f.contact_stress, &f.couple_stress})
@@ -361,6 +362,11 @@ ContinuumFields ContinuumAverager::result() const {
         f.contact_stress[ab][c] = s[kContact + ab] * inv_n;
         f.couple_stress[ab][c] = s[kCouple + ab] * inv_n;
       }
+    }
+    if (s[kMass] > 0.0) { // the mass density of the cell is s[kMass] * inv_n
+      const double trace = f.kinetic_stress[0][c] + f.kinetic_stress[4][c] + f.kinetic_stress[8][c];
+      const double dims = grid_.dimension == 2 ? 2.0 : 3.0;
+      f.granular_temperature[c] = -trace / (dims * s[kMass] * inv_n);
     }
   }
   return f;

@@ -71,7 +71,10 @@ struct ContinuumFields {
   std::array<std::vector<double>, 9> kinetic_stress; ///< Pa
   std::array<std::vector<double>, 9> contact_stress; ///< Pa
   std::array<std::vector<double>, 9> couple_stress;  ///< N/m (contact part)
-  long samples = 0;                                  ///< steps averaged
+  /// theta = sum w m |v - u|^2 / (D sum w m) = -tr(kinetic_stress) / (D rho_s phi), m^2/s^2,
+  /// D = 3 (2 for discs in x-z); 0 where no mass [Deen07 §6.2; Goldschmidt et al. 2002].
+  std::vector<double> granular_temperature;
+  long samples = 0; ///< steps averaged
 };
 
 /// The accumulated sums of an averaging interval (kept in checkpoints).

@@ -515,7 +515,7 @@ RunSummary Simulation::run(const std::string& out_dir,
   // Continuum averages [Zhu07 Tables 5-6] (continuum.h5 + continuum.xmf): one frame at the end
   // of every averaging interval, the cells as ParaView cell data. Tensor T_ab as the scalar
   // <name>_<a><b>.
-  std::vector<std::string> cont_scalars{"solid_fraction"};
+  std::vector<std::string> cont_scalars{"solid_fraction", "granular_temperature"};
   for (const char* tensor : {"kinetic_stress", "contact_stress", "couple_stress"})
     for (const char* ab : {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"})
       cont_scalars.push_back(std::string(tensor) + "_" + ab);
@@ -645,7 +645,7 @@ RunSummary Simulation::run(const std::string& out_dir,
     if (continuum_due) { // the averages over the interval that ends now
       while (clock_.next_continuum <= time_ + eps) clock_.next_continuum += continuum_interval_;
       const ContinuumFields f = continuum_->result();
-      std::vector<const double*> sc{f.solid_fraction.data()};
+      std::vector<const double*> sc{f.solid_fraction.data(), f.granular_temperature.data()};
       for (const auto* tensor : {&f.kinetic_stress, &f.contact_stress, &f.couple_stress})
         for (const auto& component : *tensor) sc.push_back(component.data());
       auto vec = [](const std::array<std::vector<double>, 3>& v) {

@@ -170,6 +170,9 @@ TEST(ContinuumAveraging, KineticStressEqualsTheDirectFluctuationSum) {
                     1e-12 * scale)
             << "cell " << c << " component " << ab;
       for (int a = 0; a < 3; ++a) EXPECT_NEAR(f.velocity[a][c], mv[a] / m, 1e-12);
+      // Granular temperature: the mass-weighted mean of |v - u|^2 / 3, from the sums here.
+      const double theta = (mean_vv[0] + mean_vv[4] + mean_vv[8]) / 3.0;
+      EXPECT_NEAR(f.granular_temperature[c], theta, 1e-12 * theta) << "cell " << c;
     }
   }
   // Weighted: -sum_i h_i m_i v'v' with the Gaussian written out here.
