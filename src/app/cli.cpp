@@ -283,6 +283,19 @@ int run_cli(int argc, char** argv) {
     if (sim.gas())
       fmt::print("         {}/fields.h5 (+ fields.xmf){}\n", out_dir,
                  sim.spec().output.probes.empty() ? "" : fmt::format(", {}/probes.csv", out_dir));
+    if (sim.spec().output.analyse) { // output.analyse: the run's analysis, as `fluidem analyse`
+      AnalyseOptions ao;
+      ao.out_dir = out_dir;
+      fmt::print("analysis (output.analyse = true):\n");
+      try {
+        analyse(ao);
+      } catch (const InputError& e) { // the run's results are safe: say why, keep exit 0
+        fmt::print(stderr,
+                   "warning: the analysis was not written: {}\n(run `fluidem analyse {} "
+                   "--from T0 --to T1` with another window)\n",
+                   e.what(), out_dir);
+      }
+    }
     if (sim.collisions())
       fmt::print("         {}/collisions.csv, {}/collision_overlap.csv\n", out_dir, out_dir);
     if (sim.continuum())

@@ -146,6 +146,9 @@ struct OutputSpec {
   bool collisions = false;
   std::vector<CollisionRegionSpec> collision_regions; ///< only with collisions = true
   std::optional<ContinuumOutputSpec> continuum;       ///< continuum averages (empty: off)
+  /// Run `fluidem analyse OUT` at the end of the run (OUT/analysis/: spectra, velocity
+  /// distributions, segregation, bed and collision summaries; docs/analysis.md).
+  bool analyse = false;
 };
 
 struct NeighbourSpec {

@@ -44,8 +44,9 @@ const Keys& simulation_keys() {
   return k;
 }
 const Keys& output_keys() {
-  static const Keys k = {"frame_interval", "series_interval", "checkpoint_interval", "layers",
-                         "probe",          "collisions",      "collision_region",    "continuum"};
+  static const Keys k = {"frame_interval",   "series_interval", "checkpoint_interval",
+                         "layers",           "probe",           "collisions",
+                         "collision_region", "continuum",       "analyse"};
   return k;
 }
 const Keys& continuum_keys() {
@@ -947,6 +948,7 @@ private:
       if (const auto e = find(*t, "layers", "output.layers"))
         spec_.output.layers = int_value(*e, "output.layers", 0, "an integer >= 0 (0: off)");
     opt_bool(t, "output", "collisions", spec_.output.collisions);
+    opt_bool(t, "output", "analyse", spec_.output.analyse);
   }
 
   void read_domain(const toml::table& t) {

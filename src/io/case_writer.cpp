@@ -219,6 +219,7 @@ std::string write_case_toml(const CaseSpec& spec) {
     os << "checkpoint_interval = " << format_double(spec.output.checkpoint_interval) << "  # s\n";
   if (spec.output.layers > 0) os << "layers = " << spec.output.layers << "\n";
   if (spec.output.collisions) os << "collisions = true\n";
+  if (spec.output.analyse) os << "analyse = true\n";
   if (const auto& c = spec.output.continuum) {
     os << "\n[output.continuum]\n"
        << "cells = [" << c->cells[0] << ", " << c->cells[1] << ", " << c->cells[2] << "]\n"
