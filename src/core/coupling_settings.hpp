@@ -66,6 +66,11 @@ struct CouplingSettings {
   drag::DragModel drag = drag::DragModel::ergun_wen_yu; ///< `coupling.drag`
   PorositySettings porosity;                            ///< `coupling.porosity`, `.cube_factor`
   ExchangeScheme scheme = ExchangeScheme::scheme3;      ///< `coupling.scheme`: 1 | 2 | 3
+  /// `coupling.hold_gas_at_rest`: each flow step a uniform force on the gas (a mean pressure
+  /// gradient, the reaction of the container of a periodic suspension) removes the gas's mean
+  /// momentum along every periodic axis: the gas is at rest on average, the momentum the
+  /// particles give it leaves the system. Only with a periodic axis.
+  bool hold_gas_at_rest = false;
   double d_mean = 0.0; ///< `coupling.d_mean`, m: Sauter mean diameter (polydisperse closures;
                        ///< 0 = computed from the inserted particles)
 };

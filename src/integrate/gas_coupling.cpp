@@ -66,6 +66,7 @@ void GasCoupling::step(const ParticleStore& p, double time, double dt) {
   coupling::update_porosity(*gas_, p, settings_);
   coupling::compute_particle_forces(*gas_, p, settings_, f_);
   coupling::deposit_momentum_source(*gas_, p, f_);
+  if (settings_.hold_gas_at_rest) hold_at_rest(dt);
   gas_->step(time, dt);
   gas_->check_courant(time + dt, dt);
   coupling::update_particle_forces(*gas_, p, f_);
@@ -75,6 +76,34 @@ void GasCoupling::step(const ParticleStore& p, double time, double dt) {
     force_[0][i] = f_.drag_x[i] + f_.pres_x[i];
     force_[1][i] = f_.drag_y[i] + f_.pres_y[i];
     force_[2][i] = f_.drag_z[i] + f_.pres_z[i];
+  }
+}
+
+void GasCoupling::hold_at_rest(double dt) {
+  // Mean momentum per volume of the gas along a periodic axis d, sum over the solved faces of
+  // (eps rho)_face u / number of faces (uniform cells); a uniform force -M/dt on the solved
+  // faces (explicit source, per cell volume) takes it out within this step.
+  const gas::GasGrid& g = gas_->grid();
+  const std::vector<double>& eps = gas_->porosity();
+  const std::vector<double>& rho = gas_->density();
+  for (int d = 0; d < 3; ++d) {
+    if (!gas_->boundary().periodic(d)) continue;
+    const std::vector<unsigned char>& role = gas_->face_role(d);
+    const std::vector<double>& u = gas_->velocity(d);
+    const long st = g.stride[static_cast<std::size_t>(d)];
+    double m = 0.0;
+    long n = 0;
+    for (std::size_t q = 0; q < role.size(); ++q) {
+      if (role[q] != gas::GasSolver::solved) continue;
+      const auto up = static_cast<std::size_t>(static_cast<long>(q) + st);
+      m += 0.5 * (eps[q] * rho[q] + eps[up] * rho[up]) * u[q];
+      ++n;
+    }
+    if (n == 0) continue;
+    const double f = -m / static_cast<double>(n) / dt;
+    std::vector<double>& src = gas_->explicit_source(d);
+    for (std::size_t q = 0; q < role.size(); ++q)
+      if (role[q] == gas::GasSolver::solved) src[q] += f;
   }
 }
 

@@ -77,6 +77,9 @@ public:
   void cell_fields(const ParticleStore& p, CellFields& out) const;
 
 private:
+  /// coupling.hold_gas_at_rest: a uniform force on the gas removing its mean momentum along the
+  /// periodic axes within the coming flow step of length dt.
+  void hold_at_rest(double dt);
   std::vector<ProbeSpec> probes_;
   std::unique_ptr<gas::GasSolver> gas_;
   coupling::CouplingSettings settings_;

@@ -178,7 +178,7 @@ const std::vector<std::pair<std::string, std::string>>& gas_derived_keys() {
   return k;
 }
 const Keys& coupling_keys() {
-  static const Keys k = {"drag", "porosity", "cube_factor", "scheme", "d_mean"};
+  static const Keys k = {"drag", "porosity", "cube_factor", "scheme", "d_mean", "hold_gas_at_rest"};
   return k;
 }
 /// Keys of a top-level table section (species and insert are arrays of tables).
@@ -1527,6 +1527,12 @@ private:
       c.scheme = schemes[static_cast<std::size_t>(n - 1)];
     }
     opt_number(t, p, "d_mean", {Bound::NonNegative, "m"}, c.d_mean);
+    opt_bool(t, p, "hold_gas_at_rest", c.hold_gas_at_rest);
+    const auto& per = spec_.domain.periodic;
+    if (c.hold_gas_at_rest && !per[0] && !per[1] && !per[2])
+      throw InputError(spec_.where(p + ".hold_gas_at_rest"), p + ".hold_gas_at_rest",
+                       "true needs a periodic axis (allowed: true only with domain.periodic true "
+                       "on some axis; closed walls hold the gas already)");
   }
 
   /// `[output.continuum]`: discrete-to-continuum averages [Zhu07 Tables 5-6] (after [domain]:

@@ -183,7 +183,8 @@ void write_coupling(std::ostream& os, const coupling::CouplingSettings& c) {
   if (c.porosity.method == coupling::PorosityMethod::porous_cube)
     os << "cube_factor = " << format_double(c.porosity.cube_factor) << "\n";
   os << "scheme = " << static_cast<int>(c.scheme) + 1 << "\n"
-     << "d_mean = " << format_double(c.d_mean) << "  # m\n";
+     << "d_mean = " << format_double(c.d_mean) << "  # m\n"
+     << "hold_gas_at_rest = " << (c.hold_gas_at_rest ? "true" : "false") << "\n";
 }
 
 } // namespace

@@ -89,5 +89,24 @@ TEST(BodyForceKeys, BadKeysNameTheKey) {
   EXPECT_EQ(msg.rfind("--set: body_force.wavelength:", 0), 0u) << msg;
 }
 
+TEST(HoldGasAtRestKey, ReadWrittenAndNeedsAPeriodicAxis) {
+  const std::string gas = "[gas]\ncells = [4, 4, 4]\neos = \"incompressible\"\ndensity = 1000.0\n"
+                          "[coupling]\nhold_gas_at_rest = true\n";
+  const CaseSpec c = read_case_string(kBase + gas, "case.toml");
+  EXPECT_TRUE(c.coupling.hold_gas_at_rest);
+  EXPECT_TRUE(read_case_string(write_case_toml(c), "resolved.toml").coupling.hold_gas_at_rest);
+  EXPECT_FALSE(read_case_string(kBase + "[gas]\ncells = [4, 4, 4]\n", "case.toml")
+                   .coupling.hold_gas_at_rest);
+  std::string closed = kBase;
+  closed.replace(closed.find("periodic = [true, true, true]"), 29,
+                 "periodic = [false, false, false]");
+  const std::string msg = error_of(closed + gas);
+  EXPECT_NE(msg.find(": coupling.hold_gas_at_rest: "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("periodic"), std::string::npos) << msg;
+  const std::string bad = error_of(kBase + "[gas]\ncells = [4, 4, 4]\n[coupling]\n"
+                                           "hold_gas_at_rest = 1\n");
+  EXPECT_NE(bad.find(": coupling.hold_gas_at_rest: "), std::string::npos) << bad;
+}
+
 } // namespace
 } // namespace fluidem
