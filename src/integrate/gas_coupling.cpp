@@ -116,6 +116,32 @@ void GasCoupling::kick(ParticleStore& p, double dt) const {
   }
 }
 
+double GasCoupling::superficial_velocity(double t) const {
+  const gas::GasGrid& g = gas_->grid();
+  const gas::BoundaryMap& bc = gas_->boundary();
+  double flow = 0.0; // m^3/s into the domain
+  for (int side = 0; side < 6; ++side) {
+    const int axis = side / 2;
+    if (bc.periodic(axis)) continue;
+    const int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
+    const double area =
+        g.h[static_cast<std::size_t>(a1)] * g.h[static_cast<std::size_t>(a2)]; // one face
+    for (int b = 1; b <= g.n[static_cast<std::size_t>(a2)]; ++b)
+      for (int a = 1; a <= g.n[static_cast<std::size_t>(a1)]; ++a) {
+        std::array<int, 3> c{1, 1, 1};
+        c[static_cast<std::size_t>(a1)] = a;
+        c[static_cast<std::size_t>(a2)] = b;
+        const gas::BoundaryPatch& patch = bc.at(side, c[0], c[1], c[2]);
+        if (patch.type == gas::BoundaryType::inflow)
+          flow += gas::inflow_velocity(patch.inflow, t) * area;
+      }
+  }
+  const int v1 = (vertical_ + 1) % 3, v2 = (vertical_ + 2) % 3;
+  const double cross = g.n[static_cast<std::size_t>(v1)] * g.h[static_cast<std::size_t>(v1)] *
+                       g.n[static_cast<std::size_t>(v2)] * g.h[static_cast<std::size_t>(v2)];
+  return flow / cross;
+}
+
 double GasCoupling::pressure_drop() const {
   const gas::GasGrid& g = gas_->grid();
   const std::vector<double>& pr = gas_->pressure();

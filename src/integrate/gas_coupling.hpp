@@ -71,6 +71,11 @@ public:
   /// the mean on the top face, each face's pressure the mean of its ghost and first interior
   /// cell, as the solver sees it (docs/coupling.md).
   double pressure_drop() const;
+  /// Superficial gas velocity at time t, m/s: the volume flow prescribed into the domain by
+  /// every inflow boundary cell (face, regions, time profiles; gas::inflow_velocity, superficial)
+  /// divided by the domain's cross-section normal to gravity. The x-axis of a pressure-drop
+  /// against velocity curve [Chang08 §3.4].
+  double superficial_velocity(double t) const;
   /// Pressure at each probe of spec.output.probes, Pa (interpolated, gas::pressure_at).
   std::vector<double> probe_pressures() const;
   /// The fields written to fields.h5.

@@ -468,7 +468,8 @@ RunSummary Simulation::run(const std::string& out_dir,
   }
   if (gas_) {
     // Coupled runs: e_total then leaves out the work of the gas on the particles.
-    columns.insert(columns.end(), {"pressure_drop", "bed_height", "gas_iterations"});
+    columns.insert(columns.end(),
+                   {"pressure_drop", "bed_height", "gas_iterations", "superficial_velocity"});
   }
   auto open_series = [&](const std::string& name, const std::vector<std::string>& cols) {
     const std::string path = (fs::path(out_dir) / name).string();
@@ -601,7 +602,8 @@ RunSummary Simulation::run(const std::string& out_dir,
       }
       if (gas_) {
         row.insert(row.end(), {gas_->pressure_drop(), bed_height(),
-                               static_cast<double>(gas_->solver().last_iterations())});
+                               static_cast<double>(gas_->solver().last_iterations()),
+                               gas_->superficial_velocity(time_)});
         if (probes) {
           std::vector<double> prow{time_};
           const std::vector<double> pp = gas_->probe_pressures();
