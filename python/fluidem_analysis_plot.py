@@ -12,7 +12,10 @@ OUTDIR/analysis/:
                             standard normal density, and of the speed |C|/sqrt(theta) against the
                             Maxwell (3-D) or Rayleigh (2-D) density, as [Deen07 Fig. 10];
   segregation.png           the degree of segregation s against time [Deen07 eq. 49], when
-                            segregation.csv exists.
+                            segregation.csv exists;
+  pressure_drop_velocity.png the bed pressure drop against the superficial velocity, rising and
+                            falling branches (over the bed weight W), as [Chang08 Fig. 3.17],
+                            when pressure_drop_velocity.csv exists (the inflow varied).
 Exit codes: 0 done; 2 bad input (no OUTDIR/analysis: run `fluidem analyse OUTDIR` first; an
 unreadable CSV); 3 matplotlib or numpy is missing.
 """
@@ -138,6 +141,23 @@ def plot_segregation(adir):
     plt.close(fig)
 
 
+def plot_pressure_velocity(adir):
+    d = read_columns(os.path.join(adir, "pressure_drop_velocity.csv"))
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    ax.plot(d["superficial_velocity"], d["rising_over_weight"], "o-", ms=3, lw=1.0,
+            label="velocity rising")
+    ax.plot(d["superficial_velocity"], d["falling_over_weight"], "s--", ms=3, lw=1.0,
+            label="velocity falling")
+    ax.axhline(1.0, color="k", lw=0.5)
+    ax.set_xlabel("superficial velocity (m/s)")
+    ax.set_ylabel("pressure drop / bed weight per area")
+    ax.set_title("pressure drop against superficial velocity [Chang08 §3.4]")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(adir, "pressure_drop_velocity.png"), dpi=100)
+    plt.close(fig)
+
+
 def main(argv):
     if len(argv) != 1 or argv[0] in ("-h", "--help"):
         print(__doc__)
@@ -159,6 +179,9 @@ def main(argv):
         written += 1
     if os.path.exists(os.path.join(adir, "segregation.csv")):
         plot_segregation(adir)
+        written += 1
+    if os.path.exists(os.path.join(adir, "pressure_drop_velocity.csv")):
+        plot_pressure_velocity(adir)
         written += 1
     if written == 0:
         fail(f"{adir} holds no analysis CSV: run `fluidem analyse {outdir}`")

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -66,6 +68,51 @@ double weight_per_area(const CaseSpec& spec, const ParticleStore& p) {
   return mass * g / area;
 }
 
+// The pressure drop against the superficial velocity over the whole run [Chang08 §3.4, Fig.
+// 3.17]: rows binned by U (bins of `width`), apart for the rising (U above the previous row's)
+// and the falling branch; a row at the same U as the previous one belongs to the branch before
+// it. Written when U varies by more than 5% of its largest value; returns whether it did.
+bool pressure_drop_curve(const Table& s, int col_u, int col_dp, double weight,
+                         const fs::path& dir) {
+  const auto& u = s.data[static_cast<std::size_t>(col_u)];
+  const auto& dp = s.data[static_cast<std::size_t>(col_dp)];
+  if (u.size() < 2) return false;
+  const auto [lo_it, hi_it] = std::minmax_element(u.begin(), u.end());
+  const double lo = *lo_it, hi = *hi_it;
+  if (!(hi > 0.0) || hi - lo <= 0.05 * hi) return false;
+  const double width = (hi - lo) / 40.0;
+  const auto bins = static_cast<std::size_t>(40);
+  std::array<std::vector<double>, 2> sum{std::vector<double>(bins + 1, 0.0),
+                                         std::vector<double>(bins + 1, 0.0)};
+  std::array<std::vector<long>, 2> count{std::vector<long>(bins + 1, 0),
+                                         std::vector<long>(bins + 1, 0)};
+  int branch = 0; // 0 rising, 1 falling
+  for (std::size_t r = 1; r < u.size(); ++r) {
+    if (u[r] > u[r - 1]) branch = 0;
+    if (u[r] < u[r - 1]) branch = 1;
+    const auto b = static_cast<std::size_t>(std::lround((u[r] - lo) / width));
+    sum[static_cast<std::size_t>(branch)][std::min(b, bins)] += dp[r];
+    ++count[static_cast<std::size_t>(branch)][std::min(b, bins)];
+  }
+  std::ofstream f = open_out(dir / "pressure_drop_velocity.csv");
+  f << "superficial_velocity,pressure_drop_rising,pressure_drop_falling,rising_over_weight,"
+       "falling_over_weight\n";
+  for (std::size_t b = 0; b <= bins; ++b) {
+    if (count[0][b] == 0 && count[1][b] == 0) continue;
+    f << g(lo + static_cast<double>(b) * width);
+    double mean[2];
+    for (std::size_t k = 0; k < 2; ++k)
+      mean[k] = count[k][b] > 0 ? sum[k][b] / static_cast<double>(count[k][b])
+                                : std::numeric_limits<double>::quiet_NaN();
+    f << ',' << g(mean[0]) << ',' << g(mean[1]) << ',' << g(mean[0] / weight) << ','
+      << g(mean[1] / weight) << '\n';
+  }
+  fmt::print("pressure drop      against the superficial velocity {:.3g} to {:.3g} m/s: "
+             "pressure_drop_velocity.csv\n",
+             lo, hi);
+  return true;
+}
+
 } // namespace
 
 void analyse_bed(const fs::path& out, double t0, double t1, std::vector<SummaryRow>& summary) {
@@ -119,6 +166,12 @@ void analyse_bed(const fs::path& out, double t0, double t1, std::vector<SummaryR
     } else {
       fmt::print("pressure drop      mean {:.5g} Pa, std {:.4g} Pa\n", w.mean, w.std);
     }
+  }
+  if (const int cu = s.column("superficial_velocity"), cp = s.column("pressure_drop");
+      cu >= 0 && cp >= 0) {
+    const double W =
+        spec && reader ? weight_per_area(*spec, first) : std::numeric_limits<double>::quiet_NaN();
+    pressure_drop_curve(s, cu, cp, W, out / "analysis");
   }
   if (const int c = s.column("bed_height"); c >= 0) {
     const WindowStats w = window_stats(s, c, t0, t1);

@@ -501,3 +501,46 @@ TEST(AnalyseSynthetic, DominantFrequencyOfASine) {
 }
 
 } // namespace
+
+namespace {
+
+// The pressure drop against the superficial velocity (analysis/pressure_drop_velocity.csv) of a
+// synthetic velocity loop: U = t/2 up to 2 m/s over 4 s, then back to 0 over 4 s, rows every
+// 10 ms; pressure drop 1000 min(U, 1) Pa rising and 900 min(U, 1) falling (a fixed bed, then a
+// plateau, lower on the way down). Bins are 1/40 of the range (0.05 m/s) around their centres:
+// a bin's mean lies between the function's values at its edges, within slope x 0.025 m/s of the
+// value at the centre (25 Pa rising, 22.5 Pa falling), away from the kink at 1 m/s.
+TEST(AnalyseSynthetic, PressureDropAgainstVelocity) {
+  const fs::path d = temp_dir("loop");
+  fs::create_directories(d / "out");
+  auto dp = [](double u, bool rising) { return (rising ? 1000.0 : 900.0) * std::min(u, 1.0); };
+  {
+    std::ofstream f(d / "out" / "series.csv");
+    f << "time,pressure_drop,superficial_velocity\n";
+    char line[96];
+    for (int i = 0; i <= 800; ++i) {
+      const double t = 0.01 * i;
+      const double u = t <= 4.0 ? 0.5 * t : 0.5 * (8.0 - t);
+      std::snprintf(line, sizeof line, "%.10g,%.10g,%.10g\n", t, dp(u, t <= 4.0), u);
+      f << line;
+    }
+  }
+  const Result r = fluidem({"analyse", "out"}, d);
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const Csv c = read_csv(d / "out" / "analysis" / "pressure_drop_velocity.csv");
+  ASSERT_EQ(c.rows, 41u);
+  int checked = 0;
+  for (std::size_t k = 0; k < c.rows; ++k) {
+    const double u = c.col.at("superficial_velocity")[k];
+    EXPECT_NEAR(u, 0.05 * static_cast<double>(k), 1e-9);
+    if (std::fabs(u - 1.0) < 0.06 || u < 0.01 || u > 1.99) continue; // the kink, the ends
+    EXPECT_NEAR(c.col.at("pressure_drop_rising")[k], dp(u, true), 25.0 + 1e-9) << "U = " << u;
+    EXPECT_NEAR(c.col.at("pressure_drop_falling")[k], dp(u, false), 22.5 + 1e-9) << "U = " << u;
+    ++checked;
+  }
+  EXPECT_GE(checked, 30);
+  EXPECT_NE(r.out.find("pressure_drop_velocity.csv"), std::string::npos) << r.out;
+  if (std::getenv("FLUIDEM_KEEP_TEST_FILES") == nullptr) fs::remove_all(d);
+}
+
+} // namespace
