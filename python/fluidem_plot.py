@@ -86,6 +86,7 @@ def parse_args(argv):
                    help="particle colours (default: layer when the file holds layers, else "
                         "species)")
     p.add_argument("--out", default=None, help="PNG to write (default OUTDIR/snapshot.png)")
+    p.add_argument("--dpi", type=float, default=150.0, help="resolution of the PNG (dots per inch)")
     p.add_argument("--movie", action="store_true",
                    help="draw every frame (or every --every-th) to OUTDIR/movie_frames/ and "
                         "join them into OUTDIR/movie.mp4 with ffmpeg")
@@ -552,7 +553,7 @@ def main(argv=None):
     if fig.get_layout_engine() is None:  # the coupled layout is constrained already
         fig.tight_layout()
     out = args.out if args.out else os.path.join(args.outdir, "snapshot.png")
-    fig.savefig(out, dpi=150)
+    fig.savefig(out, dpi=args.dpi)
     plt.close(fig)
     print(out)
     return 0

@@ -571,6 +571,9 @@ def main():
 def write_report(path, quick, runs, rows, wall, failed, outputs):
     pics = os.path.join(os.path.dirname(path), "pictures")
     os.makedirs(pics, exist_ok=True)
+    for old in os.listdir(pics):  # the pictures of an earlier report
+        if old.endswith(".png"):
+            os.remove(os.path.join(pics, old))
     lines = []
     w = lines.append
     w("# fluidem against the seeds' published results" + (" (QUICK RUNS)" if quick else ""))
@@ -622,15 +625,24 @@ def write_report(path, quick, runs, rows, wall, failed, outputs):
     for r in runs:
         out = outputs.dir(r.name)
         shown = []
-        for src, label in [("snapshot.png", "snapshot")] + [
-                (os.path.join("analysis", f), f[:-4]) for f in
-                sorted(os.listdir(os.path.join(out, "analysis")))
-                if f.endswith(".png")] if os.path.isdir(os.path.join(out, "analysis")) else []:
-            p = os.path.join(out, src)
+        # The snapshot drawn again at a lower resolution (the repository keeps the report), then
+        # the analysis pictures: velocity distribution, pressure-drop curve, first spectrum.
+        if os.path.exists(os.path.join(out, "particles.h5")):
+            dst = f"{r.name}_snapshot.png"
+            code = subprocess.run([sys.executable, os.path.join(HERE, "fluidem_plot.py"), out,
+                                   "--out", os.path.join(pics, dst), "--dpi", "60"],
+                                  capture_output=True).returncode
+            if code == 0:
+                shown.append(f"![{r.name} snapshot](pictures/{dst})")
+        adir = os.path.join(out, "analysis")
+        spectra = sorted(f for f in os.listdir(adir) if f.startswith("spectrum_")
+                         and f.endswith(".png")) if os.path.isdir(adir) else []
+        for f in ["velocity_distribution.png", "pressure_drop_velocity.png"] + spectra[:1]:
+            p = os.path.join(adir, f)
             if os.path.exists(p):
-                dst = f"{r.name}_{os.path.basename(src)}"
+                dst = f"{r.name}_{f}"
                 shutil.copyfile(p, os.path.join(pics, dst))
-                shown.append(f"![{r.name} {label}](pictures/{dst})")
+                shown.append(f"![{r.name} {f[:-4]}](pictures/{dst})")
         if shown:
             w(f"### {r.name}")
             w("")
