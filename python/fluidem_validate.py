@@ -95,6 +95,8 @@ class Outputs:
         raise KeyError(f"{path} has no row '{name}'")
 
     def series(self, run, name="series.csv"):
+        """The columns of a CSV of the run (header line, then numbers); rows of another length
+        (the last line of a run cut short) are left out."""
         path = os.path.join(self.dir(run), name)
         with open(path) as f:
             rows = list(csv.reader(f))
@@ -116,19 +118,9 @@ class Outputs:
 
     def csv_at(self, run, name, key, at, column):
         """`column` of the row of OUT/name whose `key` is nearest to `at`."""
-        s = self.series(run, name) if key == "time" else self.table(run, name)
+        s = self.series(run, name)
         k = min(range(len(s[key])), key=lambda i: abs(s[key][i] - at))
         return s[column][k]
-
-    def table(self, run, name):
-        path = os.path.join(self.dir(run), name)
-        with open(path) as f:
-            rows = list(csv.reader(f))
-        cols = {h: [] for h in rows[0]}
-        for r in rows[1:]:
-            for h, v in zip(rows[0], r):
-                cols[h].append(float(v))
-        return cols
 
     def bubble_fraction(self, run, threshold=0.8):
         """Mean over the frames of the analysis window of the fraction of the gas cells below
