@@ -11,6 +11,7 @@ int ValidateCommand::run(const char* argv0) const {
   if (list) args.emplace_back("--list");
   if (reuse) args.emplace_back("--reuse");
   if (report_only) args.emplace_back("--report-only");
+  if (long_cases) args.emplace_back("--long");
   if (!work.empty()) args.insert(args.end(), {"--work", work});
   if (!report.empty()) args.insert(args.end(), {"--report", report});
   for (const auto& o : only) args.insert(args.end(), {"--only", o});
@@ -30,6 +31,9 @@ std::unique_ptr<ValidateCommand> add_validate_command(CLI::App& app) {
   c->command->add_flag("--reuse", c->reuse,
                        "Keep the runs in the work folder that completed with the same command "
                        "(re-analyse them only)");
+  c->command->add_flag("--long", c->long_cases,
+                       "Also the full-size cases (40,000-72,600 particles, the 17 s loop): "
+                       "hours of wall time each");
   c->command->add_flag("--report-only", c->report_only,
                        "Run nothing: the report from the finished runs of the work folder");
   c->command->add_option("--work", c->work,

@@ -15,6 +15,7 @@ struct ValidateCommand {
   bool list = false;
   bool reuse = false;
   bool report_only = false;
+  bool long_cases = false;
   std::string work, report;
   std::vector<std::string> only;
   int threads = 0;

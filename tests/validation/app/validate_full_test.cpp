@@ -31,4 +31,22 @@ TEST(ValidateFull, EveryCaseRunsAndEveryQuantityIsComputed) {
   EXPECT_TRUE(contains(text, "**yes**")) << text;
 }
 
+// `fluidem validate --long`: the full-size cases as well (hours each: 40,000 to 72,600
+// particles, the 17 s spouted-bed loop). Set FLUIDEM_VALIDATION_WORK to a folder to keep (and,
+// with --reuse, continue) the runs there.
+TEST(ValidateFull, TheFullSizeCasesRunAndAreCompared) {
+  TempDir dir("fluidem_validate_long");
+  const char* keep = std::getenv("FLUIDEM_VALIDATION_REPORT");
+  const char* work = std::getenv("FLUIDEM_VALIDATION_WORK");
+  const std::string report = keep != nullptr ? keep : (dir.path / "README.md").string();
+  const Result r = fluidem({"validate", "--long", "--reuse", "--work",
+                            work != nullptr ? std::string(work) : (dir.path / "work").string(),
+                            "--report", report},
+                           dir.path);
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const std::string text = read_file(report);
+  EXPECT_FALSE(contains(text, "not computed")) << text;
+  EXPECT_FALSE(contains(text, "not run: a full-size case")) << text;
+}
+
 } // namespace
