@@ -69,9 +69,9 @@ double weight_per_area(const CaseSpec& spec, const ParticleStore& p) {
 }
 
 // The pressure drop against the superficial velocity over the whole run [Chang08 §3.4, Fig.
-// 3.17]: rows binned by U (bins of `width`), apart for the rising (U above the previous row's)
-// and the falling branch; a row at the same U as the previous one belongs to the branch before
-// it. Written when U varies by more than 5% of its largest value; returns whether it did.
+// 3.17]: rows binned by U (40 bins over its range), apart for the rising (U above the previous
+// row's) and the falling branch; a row at the same U as the previous one belongs to the branch
+// before it. Written when U varies by more than 5% of its largest value; returns whether it did.
 bool pressure_drop_curve(const Table& s, int col_u, int col_dp, double weight,
                          const fs::path& dir) {
   const auto& u = s.data[static_cast<std::size_t>(col_u)];
@@ -155,8 +155,8 @@ void analyse_bed(const fs::path& out, double t0, double t1, std::vector<SummaryR
     const WindowStats w = window_stats(s, c, t0, t1);
     summary.push_back({"pressure_drop_mean", w.mean, "Pa"});
     summary.push_back({"pressure_drop_std", w.std, "Pa"});
-    if (spec && reader) {
-      const double W = weight_per_area(*spec, first);
+    const double W = spec && reader ? weight_per_area(*spec, first) : 0.0;
+    if (W > 0.0) { // no gravity (a periodic suspension): no weight to compare with
       summary.push_back({"bed_weight_per_area", W, "Pa"});
       summary.push_back({"pressure_drop_over_weight", w.mean / W, "1"});
       summary.push_back({"pressure_drop_std_over_weight", w.std / W, "1"});
