@@ -174,18 +174,25 @@ void ContinuumAverager::accumulate(const ParticleStore& p,
   ++state_.samples;
 }
 
+std::size_t ContinuumAverager::flat(const std::array<int, 3>& c) const {
+  const auto& g = grid_.cells;
+  return static_cast<std::size_t>(c[0]) +
+         static_cast<std::size_t>(g[0]) *
+             (static_cast<std::size_t>(c[1]) +
+              static_cast<std::size_t>(g[1]) * static_cast<std::size_t>(c[2]));
+}
+
+void ContinuumAverager::bin_particles(const ParticleStore& p) {
+  key_.resize(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) key_[i] = flat(cell_of(p.x[i], p.y[i], p.z[i]));
+  bin_items(key_, grid_.size(), start_, order_);
+}
+
 void ContinuumAverager::accumulate_volume(const ParticleStore& p,
                                           const std::vector<ContactSample>& contacts) {
   const std::size_t n = p.size(), cells = grid_.size();
-  const auto& g = grid_.cells;
-  const auto flat = [&](const std::array<int, 3>& c) {
-    return static_cast<std::size_t>(c[0]) +
-           static_cast<std::size_t>(g[0]) *
-               (static_cast<std::size_t>(c[1]) +
-                static_cast<std::size_t>(g[1]) * static_cast<std::size_t>(c[2]));
-  };
-  std::vector<std::size_t> key(n);
-  for (std::size_t i = 0; i < n; ++i) key[i] = flat(cell_of(p.x[i], p.y[i], p.z[i]));
+  bin_particles(p);
+  const std::vector<std::size_t>& key = key_;
   // Half contacts: item 2k is contact k seen from i, 2k + 1 from j (unused for walls).
   std::vector<std::size_t> half_key;
   std::vector<std::size_t> half_item;
@@ -200,7 +207,6 @@ void ContinuumAverager::accumulate_volume(const ParticleStore& p,
       half_item.push_back(2 * k + 1);
     }
   }
-  bin_items(key, cells, start_, order_);
   bin_items(half_key, cells, seg_start_, seg_order_);
 
   const double inv_v = 1.0 / grid_.cell_volume();
@@ -232,15 +238,7 @@ void ContinuumAverager::accumulate_weighted(const ParticleStore& p,
                                             const std::vector<ContactSample>& contacts) {
   const std::size_t n = p.size(), cells = grid_.size();
   const auto& g = grid_.cells;
-  const auto flat = [&](const std::array<int, 3>& c) {
-    return static_cast<std::size_t>(c[0]) +
-           static_cast<std::size_t>(g[0]) *
-               (static_cast<std::size_t>(c[1]) +
-                static_cast<std::size_t>(g[1]) * static_cast<std::size_t>(c[2]));
-  };
-  std::vector<std::size_t> key(n);
-  for (std::size_t i = 0; i < n; ++i) key[i] = flat(cell_of(p.x[i], p.y[i], p.z[i]));
-  bin_items(key, cells, start_, order_);
+  bin_particles(p);
 
   // One segment per contact: the branch d from x_i to x_j (pairs) or to the contact point on
   // the wall, binned by its midpoint. f: force on i; q: the moment the couple stress takes.

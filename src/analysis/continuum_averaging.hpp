@@ -113,6 +113,10 @@ private:
   void accumulate_volume(const ParticleStore& p, const std::vector<ContactSample>& contacts);
   void accumulate_weighted(const ParticleStore& p, const std::vector<ContactSample>& contacts);
   std::array<int, 3> cell_of(double x, double y, double z) const;
+  /// Flat index i + nx (j + ny k) of cell (i, j, k).
+  std::size_t flat(const std::array<int, 3>& c) const;
+  /// key_[i] = flat index of particle i's cell; start_/order_ = the particles binned by cell.
+  void bin_particles(const ParticleStore& p);
   Vec3 min_image(Vec3 d) const;
 
   ContinuumGrid grid_;
@@ -122,7 +126,7 @@ private:
   double radius_ = 0.0; ///< cutoff radius, m
   std::array<double, 3> length_{};
   // Scratch reused between steps (bins).
-  std::vector<std::size_t> start_, order_, seg_start_, seg_order_;
+  std::vector<std::size_t> key_, start_, order_, seg_start_, seg_order_;
 };
 
 } // namespace fluidem
