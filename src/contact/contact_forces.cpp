@@ -44,13 +44,16 @@ template <NormalModel Normal, bool Tangential, RollingModel Rolling>
   // Normal force [Deen07 eq. 24-27] or Hertz-Tsuji [Chang08 eq. 2.15, 2.22].
   kernels::NormalResponse nr;
   double k_tangent_ref; // normal stiffness used to scale rolling springs
+  double k_t;           // tangential stiffness [Deen07 eq. 28] or Mindlin [Chang08 eq. 2.16]
   if constexpr (Normal == NormalModel::Linear) {
     nr = kernels::linear_normal(pp.kn, pp.normal_damping, c.m_eff, c.overlap);
     k_tangent_ref = pp.kn;
+    k_t = pp.kt;
   } else {
-    const double k_hertz = pp.kn * std::sqrt(c.r_eff);
-    nr = kernels::hertz_normal(k_hertz, pp.normal_damping, c.m_eff, c.overlap);
+    const double sr = std::sqrt(c.r_eff);
+    nr = kernels::hertz_normal(pp.kn * sr, pp.normal_damping, c.m_eff, c.overlap);
     k_tangent_ref = nr.stiffness;
+    k_t = pp.kt * sr * nr.sqrt_overlap; // kt sqrt(R* delta)
   }
   const double vn = dot(c.v_rel, c.n); // > 0 when approaching
   const double fn = nr.elastic + nr.damping_coeff * vn;
@@ -63,17 +66,18 @@ template <NormalModel Normal, bool Tangential, RollingModel Rolling>
   out.elastic = nr.energy;
   out.nc_force = c.n * (-nr.damping_coeff * vn);
 
-  // The previous normal is only needed (one sqrt) when there is history to rotate.
-  auto previous_normal = [&c]() { return c.d_prev / norm(c.d_prev); };
+  // The history turns with the contact normal (from the separation one step earlier) [Deen07
+  // eq. 31-32]; a wall's normal never turns.
+  auto turned = [&c](const Vec3& v) {
+    return c.fixed_normal ? v : kernels::rotate_with_separation(v, c.d_prev, c.n);
+  };
   if constexpr (Tangential) {
     // [Deen07 eq. 28-32]
     const Vec3 v_t = c.v_rel - c.n * vn;
     Vec3 delta{hist[0], hist[1], hist[2]};
-    if (!c.fixed_normal && norm2(delta) > 0.0)
-      delta = kernels::rotate_with_contact(delta, previous_normal(), c.n);
-    const double k_t =
-        (Normal == NormalModel::Linear) ? pp.kt : pp.kt * std::sqrt(c.r_eff * c.overlap);
-    const double eta_t = pp.tangential_damping * std::sqrt(2.0 / 7.0 * c.m_eff * k_t);
+    if (norm2(delta) > 0.0) delta = turned(delta);
+    // eta_t = factor sqrt(2/7 m* k_t) [Deen07 eq. 30], from the normal dashpot's sqrt(m* K).
+    const double eta_t = pp.tangential_damping * pp.tangential_root * nr.damping_scale;
     const auto tr = kernels::tangential_spring(delta, v_t, k_t, eta_t, pp.mu, out.fn_abs, dt);
     hist[0] = delta.x, hist[1] = delta.y, hist[2] = delta.z;
     out.force += tr.force;
@@ -93,8 +97,7 @@ template <NormalModel Normal, bool Tangential, RollingModel Rolling>
     } else {
       double* th = hist + (Tangential ? 3 : 0);
       Vec3 theta{th[0], th[1], th[2]};
-      if (!c.fixed_normal && norm2(theta) > 0.0)
-        theta = kernels::rotate_with_contact(theta, previous_normal(), c.n);
+      if (norm2(theta) > 0.0) theta = turned(theta);
       const double k_r = 2.25 * k_tangent_ref * pp.mu_r * pp.mu_r * c.r_eff * c.r_eff;
       const double c_r = pp.rolling_damping * std::sqrt(k_r / c.inv_inertia_sum);
       rr = kernels::rolling_spring_dashpot(theta, w_roll, k_r, c_r, pp.mu_r, c.r_eff, out.fn_abs,
@@ -111,7 +114,7 @@ template <NormalModel Normal, bool Tangential, RollingModel Rolling>
 
 template <NormalModel Normal, bool Tangential, RollingModel Rolling>
 ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& table, double dt,
-                     NonconservativeForces& nc, ContactRecord* rec) {
+                     ContactScratch& nc, ContactRecord* rec) {
   ContactStats st;
   const bool recording = rec != nullptr && rec->enabled;
   const int hw = nl.history_width();
@@ -145,55 +148,70 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   // slab write only to particles of that slab and the next, so all even slabs run in parallel,
   // then all odd slabs; each slab runs its rows in a fixed order and keeps its own statistics,
   // summed in slab order: the result does not depend on the number of threads.
-  auto process_row = [&](std::size_t i, ContactStats& acc, std::vector<ContactSample>* buf) {
-    const double xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.radius[i];
-    for (std::uint32_t e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
+  // The pair loop reads the particles through the packed view (one base pointer, the data of
+  // particle j in 96 contiguous bytes) and adds into the packed accumulator; the row's own
+  // particle i accumulates in registers and is written once at the end of the row (the partners
+  // j != i per pair).
+  const double* view = nc.view.data();
+  double* acc_f = nc.acc.data();
+  auto process_row = [&, view, acc_f](std::size_t i, ContactStats& acc,
+                                      std::vector<ContactSample>* buf) {
+    const double* pi = view + ContactScratch::kView * i;
+    const double xi = pi[0], yi = pi[1], zi = pi[2], ri = pi[3];
+    const Vec3 vi{pi[4], pi[5], pi[6]}, wi{pi[8], pi[9], pi[10]};
+    const double mi = pi[7], inv_ii = pi[11];
+    const int si = p.species[i];
+    Vec3 f_i, t_i, ncf_i, nct_i;
+    const std::uint32_t row_end = nl.offset[i + 1];
+    for (std::uint32_t e = nl.offset[i]; e < row_end; ++e) {
       const std::uint32_t j = nl.partner[e];
-      const double dx = nl.min_image(p.x[j] - xi, 0);
-      const double dy = nl.min_image(p.y[j] - yi, 1);
-      const double dz = nl.min_image(p.z[j] - zi, 2);
-      const double rsum = ri + p.radius[j];
+      const double* pj = view + ContactScratch::kView * j;
+      const double dx = nl.min_image(pj[0] - xi, 0);
+      const double dy = nl.min_image(pj[1] - yi, 1);
+      const double dz = nl.min_image(pj[2] - zi, 2);
+      const double rj = pj[3];
+      const double rsum = ri + rj;
       const double d2 = dx * dx + dy * dy + dz * dz;
       double* hist = hw ? &nl.history[static_cast<std::size_t>(e) * hw] : nullptr;
       if (d2 >= rsum * rsum) {
-        if (hw) { // contact lost: history reset
-          const double rj = p.radius[j];
-          release(acc, hist, table.pair(p.species[i], p.species[j]), ri * rj / rsum);
-        }
+        if (hw) // contact lost: history reset
+          release(acc, hist, table.pair(si, p.species[j]), ri * rj / rsum);
         continue;
       }
       const double d = std::sqrt(d2);
       ContactInput c;
-      c.n = Vec3{dx, dy, dz} / d;
+      const double inv_d = 1.0 / d;
+      c.n = Vec3{dx * inv_d, dy * inv_d, dz * inv_d};
       c.overlap = rsum - d;
-      const Vec3 vi = p.velocity(i), vj = p.velocity(j);
-      const Vec3 wi = p.angular_velocity(i), wj = p.angular_velocity(j);
-      const double rj = p.radius[j];
+      const Vec3 vj{pj[4], pj[5], pj[6]};
+      const Vec3 wj{pj[8], pj[9], pj[10]};
       c.v_rel = vi - vj + cross(wi * ri + wj * rj, c.n);
       c.w_rel = wi - wj;
-      c.r_eff = ri * rj / rsum;
-      c.m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
-      c.inv_inertia_sum = p.inv_inertia[i] + p.inv_inertia[j];
+      const double mj = pj[7];
+      const double inv = 1.0 / (rsum * (mi + mj)); // r* = ri rj / rsum, m* = mi mj / (mi + mj)
+      c.r_eff = ri * rj * (mi + mj) * inv;
+      c.m_eff = mi * mj * rsum * inv;
+      c.inv_inertia_sum = inv_ii + pj[11];
       // Separation one step earlier: positions moved by v dt with the current velocities.
       c.d_prev = Vec3{dx, dy, dz} - (vj - vi) * dt;
-      const auto out = evaluate<Normal, Tangential, Rolling>(
-          c, table.pair(p.species[i], p.species[j]), hist, dt);
-      p.fx[i] += out.force.x, p.fy[i] += out.force.y, p.fz[i] += out.force.z;
-      p.fx[j] -= out.force.x, p.fy[j] -= out.force.y, p.fz[j] -= out.force.z;
-      const Vec3 ti = out.torque_unit * ri + out.torque_roll;
+      const auto out =
+          evaluate<Normal, Tangential, Rolling>(c, table.pair(si, p.species[j]), hist, dt);
+      double* aj = acc_f + ContactScratch::kAcc * j;
       const Vec3 tj = out.torque_unit * rj - out.torque_roll;
-      p.tx[i] += ti.x, p.ty[i] += ti.y, p.tz[i] += ti.z;
-      p.tx[j] += tj.x, p.ty[j] += tj.y, p.tz[j] += tj.z;
-      nc.fx[i] += out.nc_force.x, nc.fy[i] += out.nc_force.y, nc.fz[i] += out.nc_force.z;
-      nc.fx[j] -= out.nc_force.x, nc.fy[j] -= out.nc_force.y, nc.fz[j] -= out.nc_force.z;
-      const Vec3 nti = out.nc_torque_unit * ri + out.nc_torque_roll;
       const Vec3 ntj = out.nc_torque_unit * rj - out.nc_torque_roll;
-      nc.tx[i] += nti.x, nc.ty[i] += nti.y, nc.tz[i] += nti.z;
-      nc.tx[j] += ntj.x, nc.ty[j] += ntj.y, nc.tz[j] += ntj.z;
+      aj[0] -= out.force.x, aj[1] -= out.force.y, aj[2] -= out.force.z;
+      aj[3] += tj.x, aj[4] += tj.y, aj[5] += tj.z;
+      aj[6] -= out.nc_force.x, aj[7] -= out.nc_force.y, aj[8] -= out.nc_force.z;
+      aj[9] += ntj.x, aj[10] += ntj.y, aj[11] += ntj.z;
+      f_i += out.force;
+      t_i += out.torque_unit * ri + out.torque_roll;
+      ncf_i += out.nc_force;
+      nct_i += out.nc_torque_unit * ri + out.nc_torque_roll;
       ++acc.n_contacts;
       acc.elastic_energy += out.elastic;
       acc.spring_losses += out.spring_loss;
-      track_overlap(acc, c.overlap / (2.0 * std::min(ri, rj)), i);
+      const double dmin = 2.0 * std::min(ri, rj);
+      if (c.overlap > acc.max_overlap_ratio * dmin) track_overlap(acc, c.overlap / dmin, i);
       if (buf) {
         ContactSample& cs = buf->emplace_back();
         cs.id_i = p.id[i];
@@ -207,9 +225,15 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
         cs.contact_point = Vec3{xi, yi, zi} + c.n * (ri - 0.5 * c.overlap);
       }
     }
+    double* ai = acc_f + ContactScratch::kAcc * i;
+    ai[0] += f_i.x, ai[1] += f_i.y, ai[2] += f_i.z;
+    ai[3] += t_i.x, ai[4] += t_i.y, ai[5] += t_i.z;
+    ai[6] += ncf_i.x, ai[7] += ncf_i.y, ai[8] += ncf_i.z;
+    ai[9] += nct_i.x, ai[10] += nct_i.y, ai[11] += nct_i.z;
   };
   const int nslab = nl.slab_count();
-  std::vector<ContactStats> slab_stats(nslab);
+  auto& slab_stats = nc.slab_stats; // kept between steps: no allocation per step
+  slab_stats.assign(nslab, ContactStats{});
   // Recording: one buffer per slab (a slab runs on one thread), concatenated in slab order.
   std::vector<std::vector<ContactSample>> slab_samples(recording ? nslab : 0);
   for (int phase = 0; phase < 2; ++phase) {
@@ -235,46 +259,51 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       st.max_overlap_particle = ss.max_overlap_particle;
     }
   }
-  // Particle-wall contacts: wall of infinite mass, its own material.
+  // Particle-wall contacts: wall of infinite mass, its own material. The entries are cut into
+  // chunks of about kWallChunk that never split one particle's entries (they are sorted by
+  // particle), so the chunks run in parallel without races; each keeps its own statistics and
+  // samples, joined in chunk order: the result does not depend on the number of threads.
   const auto& box = nl.box();
   const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
-  for (std::size_t e = 0; e < nl.wall_particle.size(); ++e) {
+  auto process_wall = [&](std::size_t e, ContactStats& acc, std::vector<ContactSample>* buf) {
     const std::uint32_t i = nl.wall_particle[e];
     const int f = nl.wall_face[e];
     const int a = f / 2;
     const bool lo_face = (f % 2 == 0);
-    const double ri = p.radius[i];
+    const double* pi = view + ContactScratch::kView * i;
+    const double ri = pi[3];
     const double gap = lo_face ? (*pos[a])[i] - box.lo[a] : box.hi[a] - (*pos[a])[i];
     double* hist = hw ? &nl.wall_history[e * hw] : nullptr;
     if (gap >= ri) {
-      if (hw) release(st, hist, table.wall(p.species[i], f), ri);
-      continue;
+      if (hw) release(acc, hist, table.wall(p.species[i], f), ri);
+      return;
     }
     ContactInput c;
     c.n = Vec3{};
     c.n[a] = lo_face ? -1.0 : 1.0; // from the particle towards the wall
     c.fixed_normal = true;
     c.overlap = ri - gap;
-    const Vec3 wi = p.angular_velocity(i);
-    c.v_rel = p.velocity(i) + cross(wi * ri, c.n);
+    const Vec3 wi{pi[8], pi[9], pi[10]};
+    c.v_rel = Vec3{pi[4], pi[5], pi[6]} + cross(wi * ri, c.n);
     c.w_rel = wi;
     c.r_eff = ri;
-    c.m_eff = p.mass[i];
-    c.inv_inertia_sum = p.inv_inertia[i];
+    c.m_eff = pi[7];
+    c.inv_inertia_sum = pi[11];
     const auto out =
         evaluate<Normal, Tangential, Rolling>(c, table.wall(p.species[i], f), hist, dt);
-    p.fx[i] += out.force.x, p.fy[i] += out.force.y, p.fz[i] += out.force.z;
+    double* ai = acc_f + ContactScratch::kAcc * i;
     const Vec3 ti = out.torque_unit * ri + out.torque_roll;
-    p.tx[i] += ti.x, p.ty[i] += ti.y, p.tz[i] += ti.z;
-    nc.fx[i] += out.nc_force.x, nc.fy[i] += out.nc_force.y, nc.fz[i] += out.nc_force.z;
     const Vec3 nti = out.nc_torque_unit * ri + out.nc_torque_roll;
-    nc.tx[i] += nti.x, nc.ty[i] += nti.y, nc.tz[i] += nti.z;
-    ++st.n_contacts;
-    st.elastic_energy += out.elastic;
-    st.spring_losses += out.spring_loss;
-    track_overlap(st, c.overlap / (2.0 * ri), i);
-    if (recording) {
-      ContactSample& cs = rec->samples.emplace_back();
+    ai[0] += out.force.x, ai[1] += out.force.y, ai[2] += out.force.z;
+    ai[3] += ti.x, ai[4] += ti.y, ai[5] += ti.z;
+    ai[6] += out.nc_force.x, ai[7] += out.nc_force.y, ai[8] += out.nc_force.z;
+    ai[9] += nti.x, ai[10] += nti.y, ai[11] += nti.z;
+    ++acc.n_contacts;
+    acc.elastic_energy += out.elastic;
+    acc.spring_losses += out.spring_loss;
+    if (c.overlap > acc.max_overlap_ratio * 2.0 * ri) track_overlap(acc, c.overlap / (2.0 * ri), i);
+    if (buf) {
+      ContactSample& cs = buf->emplace_back();
       cs.id_i = p.id[i];
       cs.id_j = -1 - f;
       cs.i = static_cast<std::int32_t>(i);
@@ -285,13 +314,49 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       cs.torque_roll = out.torque_roll;
       cs.contact_point = p.position(i) + c.n * gap; // on the wall plane
     }
+  };
+  constexpr std::size_t kWallChunk = 2048;
+  const std::size_t nwall = nl.wall_particle.size();
+  const std::size_t nchunk = (nwall + kWallChunk - 1) / kWallChunk;
+  auto chunk_start = [&](std::size_t k) {
+    std::size_t e = std::min(k * kWallChunk, nwall);
+    while (e > 0 && e < nwall && nl.wall_particle[e] == nl.wall_particle[e - 1]) ++e;
+    return e;
+  };
+  auto& wall_stats = nc.wall_stats;
+  wall_stats.assign(nchunk, ContactStats{});
+  std::vector<std::vector<ContactSample>> chunk_samples(recording ? nchunk : 0);
+#pragma omp parallel for schedule(static) if (nwall > 4096)
+  for (std::size_t k = 0; k < nchunk; ++k) {
+    std::vector<ContactSample>* buf = recording ? &chunk_samples[k] : nullptr;
+    const std::size_t end = chunk_start(k + 1);
+    for (std::size_t e = chunk_start(k); e < end; ++e) process_wall(e, wall_stats[k], buf);
+  }
+  for (std::size_t k = 0; k < nchunk; ++k) {
+    const ContactStats& ws = wall_stats[k];
+    st.n_contacts += ws.n_contacts;
+    st.elastic_energy += ws.elastic_energy;
+    st.spring_losses += ws.spring_losses;
+    if (ws.max_overlap_ratio > st.max_overlap_ratio) {
+      st.max_overlap_ratio = ws.max_overlap_ratio;
+      st.max_overlap_particle = ws.max_overlap_particle;
+    }
+    if (recording)
+      rec->samples.insert(rec->samples.end(), chunk_samples[k].begin(), chunk_samples[k].end());
+  }
+  // The contact forces and torques join the other forces of the step (the caller zeroed them).
+#pragma omp parallel for schedule(static) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* ai = acc_f + ContactScratch::kAcc * i;
+    p.fx[i] += ai[0], p.fy[i] += ai[1], p.fz[i] += ai[2];
+    p.tx[i] += ai[3], p.ty[i] += ai[4], p.tz[i] += ai[5];
   }
   return st;
 }
 
 template <NormalModel Normal, bool Tangential>
 ContactStats dispatch_rolling(ParticleStore& p, NeighbourList& nl, const ContactTable& t, double dt,
-                              NonconservativeForces& nc, ContactRecord* rec) {
+                              ContactScratch& nc, ContactRecord* rec) {
   switch (t.rolling()) {
   case RollingModel::None:
     return compute<Normal, Tangential, RollingModel::None>(p, nl, t, dt, nc, rec);
@@ -305,7 +370,7 @@ ContactStats dispatch_rolling(ParticleStore& p, NeighbourList& nl, const Contact
 
 template <NormalModel Normal>
 ContactStats dispatch_tangential(ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                                 double dt, NonconservativeForces& nc, ContactRecord* rec) {
+                                 double dt, ContactScratch& nc, ContactRecord* rec) {
   return t.tangential() == TangentialModel::History
              ? dispatch_rolling<Normal, true>(p, nl, t, dt, nc, rec)
              : dispatch_rolling<Normal, false>(p, nl, t, dt, nc, rec);
@@ -313,22 +378,39 @@ ContactStats dispatch_tangential(ParticleStore& p, NeighbourList& nl, const Cont
 
 } // namespace
 
-void NonconservativeForces::reset(std::size_t n) {
-  for (auto* v : {&fx, &fy, &fz, &tx, &ty, &tz}) v->assign(n, 0.0);
+void ContactScratch::reset(const ParticleStore& p) {
+  const std::size_t n = p.size();
+  view.resize(kView * n);
+  acc.resize(kAcc * n);
+  double* v = view.data();
+  double* a = acc.data();
+#pragma omp parallel for schedule(static) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    double* vi = v + kView * i;
+    vi[0] = p.x[i], vi[1] = p.y[i], vi[2] = p.z[i], vi[3] = p.radius[i];
+    vi[4] = p.vx[i], vi[5] = p.vy[i], vi[6] = p.vz[i], vi[7] = p.mass[i];
+    vi[8] = p.wx[i], vi[9] = p.wy[i], vi[10] = p.wz[i], vi[11] = p.inv_inertia[i];
+    std::fill_n(a + kAcc * i, kAcc, 0.0);
+  }
 }
 
-double NonconservativeForces::dissipated(const ParticleStore& p, double dt) const {
+double ContactScratch::dissipated(const ParticleStore& p, double dt) const {
   double w = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    w += fx[i] * p.vx[i] + fy[i] * p.vy[i] + fz[i] * p.vz[i];
-    w += tx[i] * p.wx[i] + ty[i] * p.wy[i] + tz[i] * p.wz[i];
+    const double* nc = acc.data() + kAcc * i + 6;
+    w += nc[0] * p.vx[i] + nc[1] * p.vy[i] + nc[2] * p.vz[i];
+    w += nc[3] * p.wx[i] + nc[4] * p.wy[i] + nc[5] * p.wz[i];
   }
   return -w * dt;
 }
 
+std::size_t ContactScratch::bytes() const {
+  return (view.capacity() + acc.capacity()) * sizeof(double);
+}
+
 ContactStats compute_contact_forces(ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                                    double dt, NonconservativeForces& nc, ContactRecord* rec) {
-  nc.reset(p.size());
+                                    double dt, ContactScratch& nc, ContactRecord* rec) {
+  nc.reset(p);
   if (rec && rec->enabled) rec->samples.clear(); // also for a model that computes nothing
   switch (t.normal()) {
   case NormalModel::Linear:

@@ -17,15 +17,24 @@ struct ContactStats {
   double spring_losses = 0.0;     ///< J removed from springs this step (Coulomb limit, release)
 };
 
-/// Per-particle sums of the non-conservative contact forces and torques (dashpots, sliding
-/// friction, rolling resistance). Their work, evaluated by the integrator with the full-step
-/// velocities, is the energy the contacts dissipate: with velocity Verlet this is exactly the
-/// kinetic energy they remove, so the energy balance measures only the integration error.
-struct NonconservativeForces {
-  std::vector<double> fx, fy, fz, tx, ty, tz;
-  void reset(std::size_t n);
-  /// -sum (F.v + T.w) dt: energy dissipated over a step of length dt, J.
+/// Working arrays of the contact loop, kept between steps (nothing is allocated per step).
+/// `view` packs what the pair loop reads of each particle (position, radius, velocity, mass,
+/// angular velocity, inverse inertia: kView doubles, one base pointer instead of twelve);
+/// `acc` packs what it adds: contact force, torque, and their non-conservative parts (dashpots,
+/// sliding friction, rolling resistance). The work of the latter, evaluated by the integrator
+/// with the full-step velocities, is the energy the contacts dissipate: with velocity Verlet
+/// this is exactly the kinetic energy they remove, so the energy balance measures only the
+/// integration error.
+struct ContactScratch {
+  static constexpr std::size_t kView = 12; ///< x y z r | vx vy vz m | wx wy wz 1/I
+  static constexpr std::size_t kAcc = 12;  ///< f | t | f_nc | t_nc
+  std::vector<double> view, acc;
+  std::vector<ContactStats> slab_stats, wall_stats; ///< per slab / wall chunk, summed in order
+  /// Pack the view from p and zero the sums.
+  void reset(const ParticleStore& p);
+  /// -sum (F_nc.v + T_nc.w) dt: energy dissipated over a step of length dt, J.
   double dissipated(const ParticleStore& p, double dt) const;
+  std::size_t bytes() const;
 };
 
 /// History doubles per contact needed by the chosen sub-models.
@@ -39,7 +48,6 @@ int contact_history_width(const ContactTable& table);
 /// the wall contacts in wall-list order, so the record does not depend on the thread count.
 /// Without a record (or disabled) nothing is recorded and nothing is allocated.
 ContactStats compute_contact_forces(ParticleStore& p, NeighbourList& nl, const ContactTable& table,
-                                    double dt, NonconservativeForces& nc,
-                                    ContactRecord* record = nullptr);
+                                    double dt, ContactScratch& nc, ContactRecord* record = nullptr);
 
 } // namespace fluidem

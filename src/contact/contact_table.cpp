@@ -88,6 +88,7 @@ ContactTable::ContactTable(const CaseSpec& spec)
       p.kt = c.stiffness_ratio ? *c.stiffness_ratio * 2.0 * p.e_star
                                : 8.0 / (inv_g_part(a) + inv_g_part(b));
     }
+    p.tangential_root = std::sqrt(2.0 * p.kt / (7.0 * p.kn));
     return p;
   };
 

@@ -18,6 +18,7 @@ struct PairParams {
   double normal_damping = 0;     ///< linear: factor of [Deen07 eq. 27]; Hertz: Tsuji's alpha
   double kt = 0;                 ///< linear: k_t, N/m; Hertz: c_t, Pa (k_t = c_t sqrt(R* delta))
   double tangential_damping = 0; ///< factor of [Deen07 eq. 30] from beta0
+  double tangential_root = 0;    ///< sqrt(2 kt / (7 kn)): eta_t from the normal damping scale
   double mu = 0;                 ///< Coulomb friction
   double mu_r = 0;               ///< rolling friction, dimensionless
   double rolling_damping = 0;    ///< factor of [Deen07 eq. 27] from e (rolling spring-dashpot)

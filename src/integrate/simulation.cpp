@@ -726,10 +726,16 @@ RunSummary Simulation::run(const std::string& out_dir,
   s.seconds_output = seconds_output;
   s.seconds_gas = t_gas_;
   s.bytes_per_particle =
-      p_.size() ? (p_.bytes() + nl_->bytes() + (hard_ ? hard_->bytes() : 0)) / p_.size() : 0;
+      p_.size()
+          ? (p_.bytes() + nl_->bytes() + nc_.bytes() + (hard_ ? hard_->bytes() : 0)) / p_.size()
+          : 0;
   if (hard_) {
     s.collisions = hard_->stats().collisions;
     s.neighbour_builds = hard_->list_builds();
+  } else {
+    s.pairs_per_particle =
+        p_.size() ? static_cast<double>(nl_->partner.size()) / static_cast<double>(p_.size()) : 0.0;
+    s.contacts = stats_.n_contacts;
   }
   const Energies e = energies();
   s.energy_drift =

@@ -56,8 +56,10 @@ struct RunSummary {
   double seconds_contacts = 0.0, seconds_integration = 0.0, seconds_neighbour = 0.0,
          seconds_output = 0.0, seconds_gas = 0.0;
   std::size_t bytes_per_particle = 0;
-  double energy_drift = 0.0; ///< (E_total(end) - E_total(0)) / E_scale
-  long collisions = 0;       ///< hard-sphere engine: collisions processed
+  double energy_drift = 0.0;       ///< (E_total(end) - E_total(0)) / E_scale
+  long collisions = 0;             ///< hard-sphere engine: collisions processed
+  double pairs_per_particle = 0.0; ///< soft spheres: neighbour-list pair entries per particle
+  long contacts = 0;               ///< soft spheres: touching pairs and walls after the last step
   int stopped_by_signal = 0; ///< SIGINT/SIGTERM that stopped the run early (0: ran to the end)
   std::string checkpoint;    ///< the last checkpoint written
 };
@@ -156,7 +158,7 @@ private:
   long steps_per_flow_ = 1;                ///< soft sphere: DEM steps per gas step
   CaseReport report_;
   ContactStats stats_;
-  NonconservativeForces nc_;
+  ContactScratch nc_;
   double dt_ = 0.0, time_ = 0.0, e_dsp_ = 0.0;
   long step_ = 0;
   OutputClock clock_;

@@ -15,4 +15,17 @@ inline Vec3 rotate_with_contact(const Vec3& v, const Vec3& n0, const Vec3& n) {
   return c * v + cross(w, v) + (dot(w, v) / (1.0 + c)) * w;
 }
 
+/// The same rotation with the previous normal given unnormalised, n0 = a/|a| (the separation one
+/// step earlier): R v = [(a.n) v + (a x n) x v] / L + ((a x n).v) (a x n) / (L (L + a.n)),
+/// L = |a|; one square root and one division per call.
+inline Vec3 rotate_with_separation(const Vec3& v, const Vec3& a, const Vec3& n) {
+  const double l = norm(a);
+  const double an = dot(a, n);
+  const double s = l + an;
+  if (s <= 1e-12 * l) return -v; // normal flipped: cannot happen within one step
+  const Vec3 w = cross(a, n);
+  const double inv = 1.0 / (l * s);
+  return (an * v + cross(w, v)) * (s * inv) + (dot(w, v) * inv) * w;
+}
+
 } // namespace fluidem::kernels

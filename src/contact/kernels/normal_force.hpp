@@ -18,6 +18,10 @@ struct NormalResponse {
   double damping_coeff; ///< eta_n, kg/s: damping force = -eta_n v_n
   double stiffness;     ///< tangent stiffness dF/d(delta), N/m (for tangential/rolling springs)
   double energy;        ///< elastic energy stored, J
+  /// sqrt(m* K) delta^{1/4} (Hertz) or sqrt(m* k_n) (linear): the dashpots scale with it, the
+  /// tangential one as eta_t = factor sqrt(2 k_t / (7 k_n)) damping_scale [Deen07 eq. 30].
+  double damping_scale;
+  double sqrt_overlap; ///< delta^{1/2} (Hertz; 0 for the linear spring, which does not need it)
 };
 
 /// Damping factor -2 ln e / sqrt(pi^2 + ln^2 e) (2 for e = 0) [Deen07 eq. 27, 30].
@@ -29,15 +33,17 @@ inline double restitution_damping_factor(double e) {
 
 /// Linear spring [Deen07 eq. 24, 27]. `damping_factor` from restitution_damping_factor().
 inline NormalResponse linear_normal(double k, double damping_factor, double m_eff, double delta) {
-  return {k * delta, damping_factor * std::sqrt(m_eff * k), k, 0.5 * k * delta * delta};
+  const double scale = std::sqrt(m_eff * k);
+  return {k * delta, damping_factor * scale, k, 0.5 * k * delta * delta, scale, 0.0};
 }
 
 /// Hertz spring with Tsuji damping [Chang08 eq. 2.15, 2.22]. `k_hertz` = 4/3 E* sqrt(R*).
 inline NormalResponse hertz_normal(double k_hertz, double alpha, double m_eff, double delta) {
   const double sd = std::sqrt(delta);
   const double qd = std::sqrt(sd); // delta^{1/4}
-  return {k_hertz * delta * sd, alpha * std::sqrt(m_eff * k_hertz) * qd, 1.5 * k_hertz * sd,
-          0.4 * k_hertz * delta * delta * sd};
+  const double elastic = k_hertz * delta * sd;
+  const double scale = std::sqrt(m_eff * k_hertz) * qd;
+  return {elastic, alpha * scale, 1.5 * k_hertz * sd, 0.4 * elastic * delta, scale, sd};
 }
 
 } // namespace fluidem::kernels

@@ -96,7 +96,7 @@ Result run(std::size_t layers, bool record, int threads = 0) {
   r.p = make_particles(layers);
   NeighbourList nl(box_of(spec), 0.1 * kD, contact_history_width(table));
   nl.build(r.p);
-  NonconservativeForces nc;
+  ContactScratch nc;
   r.rec.enabled = record;
   const int saved = omp_get_max_threads();
   if (threads > 0) omp_set_num_threads(threads);

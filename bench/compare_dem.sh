@@ -1,0 +1,117 @@
+#!/usr/bin/env bash
+# Side-by-side whole-run benchmark of the soft-sphere DEM: fluidem, LAMMPS (GRANULAR,
+# gran/hertz/history) and LIGGGHTS (hertz with tangential history) on the identical settled beds of
+# ../shared/bench/dem (10^4 and 10^5 spheres of 4 mm, 2700 kg/m3, box 0.15 x (0.01 or 0.10) x 0.6 m
+# with frictional walls, Hertz E = 1e7 Pa, nu = 0.25, e = 0.9, mu = 0.3, dt = 1e-5 s, skin 1 mm,
+# gravity -z), in one go, so that the ratios are taken minutes apart on the same machine.
+# The peers install from Debian when missing (apt-get install -y lammps liggghts).
+#
+# fluidem runs with 1 thread (pinned to core 0) and with 2 threads (cores 0-1); the peers with one
+# core (pinned to core 0). fluidem's rate is its own "particle-steps/s" (the whole time loop from
+# the settled bed, output included; set-up and the first neighbour build excluded); the peers'
+# is atoms x steps / "Loop time" of the timed run after NWARM warm-up steps. Peak RSS from
+# /usr/bin/time -v; fluidem also reports its own count of bytes per particle (particle store,
+# neighbour list with contact history, contact scratch arrays).
+#
+# usage: bench/compare_dem.sh [SIZE ...]     SIZE: 10k, 100k (default: both)
+# env:   FLUIDEM  fluidem binary (default: build/fluidem; built in Release if missing)
+#        WORK     work folder (default: ${TMPDIR:-/tmp}/fluidem-compare-dem): beds, logs, results.csv
+#        DEM      the peer benchmark folder (default: ../shared/bench/dem next to the repository)
+#        THREADS  fluidem thread counts (default: "1 2")
+#        PEERS    which peers (default: "lammps liggghts"; empty: fluidem only)
+#        NWARM    peer warm-up steps before the timed run (default: 100)
+# The step counts are the cases' own (bench/cases/bed10k.toml: 2000, bed100k.toml: 500); the
+# peers run the same number of timed steps.
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+WORK=${WORK:-${TMPDIR:-/tmp}/fluidem-compare-dem}
+read -r -a THREADS <<<"${THREADS:-1 2}"
+read -r -a PEERS <<<"${PEERS-lammps liggghts}"
+NWARM=${NWARM:-100}
+SIZES=("$@")
+[ ${#SIZES[@]} -gt 0 ] || SIZES=(10k 100k)
+# shellcheck source=bench/bench_lib.sh
+source "$ROOT/bench/bench_lib.sh"
+[ -d "$DEM" ] || die "no peer benchmark folder $DEM (set DEM=...)"
+mkdir -p "$WORK"
+ensure_fluidem
+
+declare -A PEER_BIN
+for pr in "${PEERS[@]}"; do
+  case $pr in
+  lammps) PEER_BIN[$pr]=$(peer lmp lammps) ;;
+  liggghts) PEER_BIN[$pr]=$(peer liggghts liggghts) ;;
+  *) die "unknown peer $pr (lammps, liggghts)" ;;
+  esac
+  [ -n "${PEER_BIN[$pr]}" ] || echo "$pr is not available: left out" >&2
+done
+
+CSV=$WORK/results.csv
+[ -f "$CSV" ] || echo "date,commit,code,threads,N,steps,seconds,particle_steps_per_s,peak_rss_mb,bytes_per_particle" >"$CSV"
+ROWS=()
+
+# peer_run NAME N STEPS DATA: one peer run on core 0; prints "rate rss".
+peer_run() {
+  local name=$1 n=$2 steps=$3 data=$4 log=$WORK/${1}_$2.log
+  local exe=() model
+  case $name in
+  lammps) exe=("${PEER_BIN[lammps]}" -in "$DEM/in.bench.lmp") model=hertzhist ;;
+  liggghts) exe=("${PEER_BIN[liggghts]}" -in "$DEM/in.bench.lig") model=hertz ;;
+  esac
+  (
+    cd "$WORK"
+    cp -f "$DEM"/model_*.lig .
+    /usr/bin/time -v "${PIN1[@]}" "${exe[@]}" -var model "$model" -var data "$data" \
+      -var nsteps "$steps" -var nwarm "$NWARM" -log "$log" >"$log.out" 2>"$log.time"
+  ) || { tail -20 "$log.out" >&2; die "$name failed on bed$n (log $log)"; }
+  local lt secs atoms
+  lt=$(grep 'Loop time of' "$log" | tail -1)
+  secs=$(echo "$lt" | awk '{print $4}')
+  atoms=$(echo "$lt" | awk '{for (i = 1; i <= NF; i++) if ($i == "with") print $(i + 1)}')
+  echo "$(awk -v a="$atoms" -v s="$steps" -v t="$secs" 'BEGIN {printf "%.4g", a * s / t}') $(rss_mb "$log.time") $secs"
+}
+
+for n in "${SIZES[@]}"; do
+  case_file=$ROOT/bench/cases/bed$n.toml
+  [ -f "$case_file" ] || die "no case $case_file"
+  data=$(bed_data "$n" "$WORK")
+  declare -A RATE=()
+  for t in "${THREADS[@]}"; do
+    echo "== fluidem, bed$n, $t thread(s)" >&2
+    read -r np steps secs rate bpp rss < <(run_fluidem "$WORK/fluidem_${n}_t$t.log" "$t" "$case_file" \
+      --set "insert[0].file=$data" --out "$WORK/fluidem_${n}_t$t")
+    grep -E '^(time in|memory)' "$WORK/fluidem_${n}_t$t.log" >&2
+    echo "$STAMP,$COMMIT,fluidem,$t,$np,$steps,$secs,$rate,$rss,$bpp" >>"$CSV"
+    RATE[fluidem_$t]=$rate
+    ROWS+=("| $n | fluidem | $t | $rate | @fluidem_$t@ | $rss | $bpp |")
+  done
+  for pr in "${PEERS[@]}"; do
+    [ -n "${PEER_BIN[$pr]}" ] || continue
+    echo "== $pr, bed$n, 1 core, $NWARM warm-up + $steps timed steps" >&2
+    read -r rate rss secs < <(peer_run "$pr" "$n" "$steps" "$data")
+    echo "$STAMP,$COMMIT,$pr,1,$np,$steps,$secs,$rate,$rss," >>"$CSV"
+    RATE[$pr]=$rate
+    ROWS+=("| $n | $pr | 1 | $rate | @$pr@ | $rss | - |")
+  done
+  # Ratios against LAMMPS (or, without it, the one-thread fluidem run) for this size.
+  ref=${RATE[lammps]:-${RATE[fluidem_1]}}
+  for k in "${!ROWS[@]}"; do
+    row=${ROWS[$k]}
+    [[ $row == "| $n |"* ]] || continue
+    key=$(echo "$row" | sed -nE 's/.*@([a-z_0-9]+)@.*/\1/p')
+    [ -n "$key" ] || continue
+    ratio=$(awk -v a="${RATE[$key]}" -v b="$ref" 'BEGIN {printf "%.2f", a / b}')
+    ROWS[$k]=${row/@$key@/$ratio}
+  done
+  if [ -n "${RATE[fluidem_1]:-}" ] && [ -n "${RATE[fluidem_2]:-}" ]; then
+    echo "bed$n: fluidem 2 threads / 1 thread = $(awk -v a="${RATE[fluidem_2]}" -v b="${RATE[fluidem_1]}" 'BEGIN {printf "%.2f", a / b}')" >&2
+  fi
+  unset RATE
+done
+
+echo
+echo "commit $COMMIT, $STAMP, $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "| N | code | threads | particle-steps/s | ratio to LAMMPS (1 core) | peak RSS MB | bytes/particle (own count) |"
+echo "|---|---|---|---|---|---|---|"
+printf '%s\n' "${ROWS[@]}"
+echo "(all rows appended to $CSV)"

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Cost of the soft-sphere DEM against the number of particles: fluidem on settled beds of 10^4,
+# 10^5 and 10^6 spheres (bench/cases/bed10k.toml, bed100k.toml, bed1m.toml: the beds of
+# ../shared/bench/dem, the largest being bed100k repeated ten times along y), with 1 and 2 threads
+# (pinned to cores 0 and 0-1). Reported per run: particle-steps per second, nanoseconds per
+# particle-step, relative to the smallest bed, the neighbour-list entries per particle (the work
+# per particle: the 10^4 bed is only 2.5 diameters deep, so it has fewer contacts per particle),
+# fluidem's own bytes per particle and the peak RSS.
+#
+# usage: bench/scaling.sh [SIZE ...]     SIZE: 10k, 100k, 1m (default: all three)
+# env:   FLUIDEM  fluidem binary (default: build/fluidem; built in Release if missing)
+#        WORK     work folder (default: ${TMPDIR:-/tmp}/fluidem-scaling): beds, logs, results.csv
+#        DEM      the peer benchmark folder (default: ../shared/bench/dem next to the repository)
+#        THREADS  thread counts (default: "1 2")
+# The step counts are the cases' own (2000, 500, 100 steps); about 3 minutes in all.
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+WORK=${WORK:-${TMPDIR:-/tmp}/fluidem-scaling}
+read -r -a THREADS <<<"${THREADS:-1 2}"
+SIZES=("$@")
+[ ${#SIZES[@]} -gt 0 ] || SIZES=(10k 100k 1m)
+# shellcheck source=bench/bench_lib.sh
+source "$ROOT/bench/bench_lib.sh"
+mkdir -p "$WORK"
+ensure_fluidem
+
+CSV=$WORK/results.csv
+[ -f "$CSV" ] || echo "date,commit,threads,N,steps,seconds,particle_steps_per_s,ns_per_particle_step,pairs_per_particle,peak_rss_mb,bytes_per_particle" >"$CSV"
+ROWS=()
+declare -A BASE=()
+for n in "${SIZES[@]}"; do
+  data=$(bed_data "$n" "$WORK")
+  for t in "${THREADS[@]}"; do
+    echo "== fluidem, bed$n, $t thread(s)" >&2
+    log=$WORK/fluidem_${n}_t$t.log
+    read -r np steps secs rate bpp rss < <(run_fluidem "$log" "$t" "$ROOT/bench/cases/bed$n.toml" \
+      --set "insert[0].file=$data" --out "$WORK/fluidem_${n}_t$t")
+    pairs=$(sed -nE 's/^neighbour pairs +([0-9.]+) per particle.*/\1/p' "$log")
+    ns=$(awk -v r="$rate" -v t="$t" 'BEGIN {printf "%.1f", 1e9 / r}')
+    [ -n "${BASE[$t]:-}" ] || BASE[$t]=$ns
+    rel=$(awk -v a="$ns" -v b="${BASE[$t]}" 'BEGIN {printf "%.2f", a / b}')
+    echo "$STAMP,$COMMIT,$t,$np,$steps,$secs,$rate,$ns,${pairs:-},$rss,$bpp" >>"$CSV"
+    ROWS+=("| $np | $t | $steps | $rate | $ns | $rel | ${pairs:--} | $bpp | $rss |")
+    echo "N=$np threads=$t: $rate particle-steps/s, $ns ns per particle-step (x$rel of the smallest)" >&2
+  done
+done
+
+echo
+echo "commit $COMMIT, $STAMP, $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "| N | threads | steps | particle-steps/s | ns per particle-step | vs smallest N | pair entries per particle | bytes/particle (own count) | peak RSS MB |"
+echo "|---|---|---|---|---|---|---|---|---|"
+printf '%s\n' "${ROWS[@]}"
+echo "(all rows appended to $CSV)"
