@@ -8,6 +8,13 @@
 
 namespace fluidem {
 
+namespace {
+template <class T>
+void release(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
+} // namespace
+
 NeighbourList::NeighbourList(const BoxGeometry& box, double skin, int history_width)
     : box_(box), skin_(skin), hw_(history_width) {}
 
@@ -228,6 +235,15 @@ void NeighbourList::build(const ParticleStore& p) {
   y0_ = p.y;
   z0_ = p.z;
   ++builds_;
+  // The previous list is needed only while its history is carried over: released here, so that
+  // a run holds one list, not two (the next build allocates its arrays again; builds are rare
+  // next to steps, and the history carried over is ~100 bytes per particle).
+  release(old_offset_);
+  release(old_partner_);
+  release(old_history_);
+  release(old_wall_particle_);
+  release(old_wall_face_);
+  release(old_wall_history_);
 }
 
 std::size_t NeighbourList::bytes() const {
