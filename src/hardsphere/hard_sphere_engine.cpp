@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <omp.h>
 
 #include <fmt/format.h>
 
@@ -12,6 +16,9 @@
 namespace fluidem {
 
 namespace {
+/// Below this many particles the per-step loops run on one thread (a fork costs more).
+constexpr std::size_t kParallelMin = 512;
+
 hardsphere::CollisionLaw law_from(const MixedCoefficients& m) {
   return {m.restitution, m.friction, m.tangential_restitution};
 }
@@ -19,7 +26,7 @@ hardsphere::CollisionLaw law_from(const MixedCoefficients& m) {
 
 HardSphereEngine::HardSphereEngine(const CaseSpec& spec, const BoxGeometry& box)
     : dimension_(spec.simulation.dimension), nspecies_(static_cast<int>(spec.species.size())),
-      opts_(spec.hardsphere), nl_(box, 0.0, 0) {
+      opts_(spec.hardsphere), box_(box) {
   pair_law_.resize(nspecies_ * nspecies_);
   wall_law_.resize(nspecies_ * 6);
   for (int i = 0; i < nspecies_; ++i) {
@@ -31,25 +38,100 @@ HardSphereEngine::HardSphereEngine(const CaseSpec& spec, const BoxGeometry& box)
   }
 }
 
-void HardSphereEngine::build_full_list(const ParticleStore& p) {
-  // Both directions of every pair of the half list: a particle's events are computed with all
-  // its neighbours.
+void HardSphereEngine::build_list(const ParticleStore& p) {
+  // Cells at least 2 R_max + skin wide; each particle scans the (up to 27, deduplicated on
+  // periodic axes with fewer than 3 cells) cells around its own and keeps every partner closer
+  // than R_i + R_j + skin, in cell-scan order: the full list in one pass, each row computed
+  // from the positions alone, so the list does not depend on the number of threads.
   const std::size_t n = p.size();
-  full_offset_.assign(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    full_offset_[i + 1] += nl_.offset[i + 1] - nl_.offset[i];
-    for (std::uint32_t e = nl_.offset[i]; e < nl_.offset[i + 1]; ++e)
-      ++full_offset_[nl_.partner[e] + 1];
+  double rmax = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : rmax) if (n >= kParallelMin)
+  for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, p.radius[i]);
+  const double cell_size = 2.0 * rmax + skin_;
+  std::array<double, 3> inv_cell{};
+  for (int a = 0; a < 3; ++a) {
+    const double l = box_.length(a);
+    ncell_[a] = std::clamp(static_cast<int>(std::floor(l / cell_size)), 1, 1 << 20);
+    inv_cell[a] = ncell_[a] / l;
   }
-  for (std::size_t i = 0; i < n; ++i) full_offset_[i + 1] += full_offset_[i];
-  full_partner_.resize(full_offset_[n]);
-  std::vector<std::uint32_t> fill(full_offset_.begin(), full_offset_.end() - 1);
-  for (std::uint32_t i = 0; i < n; ++i)
-    for (std::uint32_t e = nl_.offset[i]; e < nl_.offset[i + 1]; ++e) {
-      const std::uint32_t j = nl_.partner[e];
-      full_partner_[fill[i]++] = j;
-      full_partner_[fill[j]++] = i;
+  const std::size_t ncells = static_cast<std::size_t>(ncell_[0]) * ncell_[1] * ncell_[2];
+  particle_cell_.resize(n);
+  const std::array<const double*, 3> pos{p.x.data(), p.y.data(), p.z.data()};
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::array<int, 3> c{};
+    for (int a = 0; a < 3; ++a) {
+      double rel = pos[a][i] - box_.lo[a];
+      if (box_.periodic[a]) rel -= box_.length(a) * std::floor(rel / box_.length(a));
+      c[a] = std::clamp(static_cast<int>(rel * inv_cell[a]), 0, ncell_[a] - 1);
     }
+    particle_cell_[i] = static_cast<std::uint32_t>((c[2] * ncell_[1] + c[1]) * ncell_[0] + c[0]);
+  }
+  // Counting sort, stable: the particles of a cell in ascending index order.
+  cell_start_.assign(ncells + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++cell_start_[particle_cell_[i] + 1];
+  for (std::size_t c = 0; c < ncells; ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_particles_.resize(n);
+  cell_fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+    cell_particles_[cell_fill_[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
+
+  full_offset_.assign(n + 1, 0);
+  const int nthreads = n >= kParallelMin ? omp_get_max_threads() : 1;
+  if (static_cast<int>(thread_rows_.size()) < nthreads) thread_rows_.resize(nthreads);
+#pragma omp parallel num_threads(nthreads)
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    const std::size_t i0 = n * t / nt, i1 = n * (t + 1) / nt;
+    std::vector<std::uint32_t>& rows = thread_rows_[t];
+    rows.clear();
+    for (std::size_t i = i0; i < i1; ++i) {
+      const std::uint32_t c = particle_cell_[i];
+      const int cx = static_cast<int>(c % ncell_[0]);
+      const int cy = static_cast<int>((c / ncell_[0]) % ncell_[1]);
+      const int cz = static_cast<int>(c / (static_cast<std::uint32_t>(ncell_[0]) * ncell_[1]));
+      const double xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.radius[i];
+      std::uint32_t seen[27];
+      int nseen = 0;
+      const std::size_t before = rows.size();
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            int q[3] = {cx + dx, cy + dy, cz + dz};
+            bool ok = true;
+            for (int a = 0; a < 3 && ok; ++a) {
+              if (q[a] < 0 || q[a] >= ncell_[a]) {
+                if (box_.periodic[a])
+                  q[a] = (q[a] + ncell_[a]) % ncell_[a];
+                else
+                  ok = false;
+              }
+            }
+            if (!ok) continue;
+            const auto cell =
+                static_cast<std::uint32_t>((q[2] * ncell_[1] + q[1]) * ncell_[0] + q[0]);
+            if (std::find(seen, seen + nseen, cell) != seen + nseen) continue;
+            seen[nseen++] = cell;
+            for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+              const std::uint32_t j = cell_particles_[k];
+              if (j == i) continue;
+              const double ddx = min_image(p.x[j] - xi, 0);
+              const double ddy = min_image(p.y[j] - yi, 1);
+              const double ddz = min_image(p.z[j] - zi, 2);
+              const double cut = ri + p.radius[j] + skin_;
+              if (ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) rows.push_back(j);
+            }
+          }
+      full_offset_[i + 1] = static_cast<std::uint32_t>(rows.size() - before);
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      for (std::size_t i = 0; i < n; ++i) full_offset_[i + 1] += full_offset_[i];
+      full_partner_.resize(full_offset_[n]);
+    }
+    std::copy(rows.begin(), rows.end(), full_partner_.begin() + full_offset_[i0]);
+  }
 }
 
 void HardSphereEngine::push(const Event& ev) {
@@ -57,7 +139,8 @@ void HardSphereEngine::push(const Event& ev) {
   std::push_heap(heap_.begin(), heap_.end(), Later{});
 }
 
-void HardSphereEngine::schedule(const ParticleStore& p, std::uint32_t i, double now) {
+HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::uint32_t i,
+                                                  double now) const {
   const auto n = static_cast<std::uint32_t>(p.size());
   const double ai = now - clock_[i];
   const Vec3 xi{p.x[i] + (p.vx[i] + 0.5 * g_.x * ai) * ai,
@@ -72,9 +155,9 @@ void HardSphereEngine::schedule(const ParticleStore& p, std::uint32_t i, double 
   for (std::uint32_t k = full_offset_[i]; k < full_offset_[i + 1]; ++k) {
     const std::uint32_t j = full_partner_[k];
     const double aj = now - clock_[j];
-    const Vec3 r{nl_.min_image(xi.x - (p.x[j] + (p.vx[j] + 0.5 * g_.x * aj) * aj), 0),
-                 nl_.min_image(xi.y - (p.y[j] + (p.vy[j] + 0.5 * g_.y * aj) * aj), 1),
-                 nl_.min_image(xi.z - (p.z[j] + (p.vz[j] + 0.5 * g_.z * aj) * aj), 2)};
+    const Vec3 r{min_image(xi.x - (p.x[j] + (p.vx[j] + 0.5 * g_.x * aj) * aj), 0),
+                 min_image(xi.y - (p.y[j] + (p.vy[j] + 0.5 * g_.y * aj) * aj), 1),
+                 min_image(xi.z - (p.z[j] + (p.vz[j] + 0.5 * g_.z * aj) * aj), 2)};
     const Vec3 v = vi - (p.velocity(j) + g_ * aj);
     const double b = dot(r, v);
     if (b >= 0.0) continue; // moving apart
@@ -95,7 +178,7 @@ void HardSphereEngine::schedule(const ParticleStore& p, std::uint32_t i, double 
   }
   // Walls [Hoomans96 eq. 31], on the parabola: the gap d(t) = d0 + u t + g_n t^2 / 2 along the
   // wall's inward normal (u, g_n: velocity and gravity towards the wall).
-  const auto& box = nl_.box();
+  const auto& box = box_;
   for (int f = 0; f < 6; ++f) {
     if (!box.wall[f]) continue;
     const int a = f / 2;
@@ -106,8 +189,13 @@ void HardSphereEngine::schedule(const ParticleStore& p, std::uint32_t i, double 
     const double dt = wall_time(gap, u, gn);
     if (now + dt < best) best = now + dt, partner = n + static_cast<std::uint32_t>(f);
   }
-  if (partner == std::numeric_limits<std::uint32_t>::max()) return;
-  push({best, i, partner, counter_[i], partner < n ? counter_[partner] : 0u});
+  if (partner == std::numeric_limits<std::uint32_t>::max()) return {best, i, partner, 0u, 0u};
+  return {best, i, partner, counter_[i], partner < n ? counter_[partner] : 0u};
+}
+
+void HardSphereEngine::schedule(const ParticleStore& p, std::uint32_t i, double now) {
+  const Event ev = predict(p, i, now);
+  if (ev.b != std::numeric_limits<std::uint32_t>::max()) push(ev);
 }
 
 double HardSphereEngine::wall_time(double gap, double u, double gn) const {
@@ -153,8 +241,8 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
   if (!wall) {
     move_to(b);
     bb = body(b);
-    const Vec3 r{nl_.min_image(p.x[a] - p.x[b], 0), nl_.min_image(p.y[a] - p.y[b], 1),
-                 nl_.min_image(p.z[a] - p.z[b], 2)};
+    const Vec3 r{min_image(p.x[a] - p.x[b], 0), min_image(p.y[a] - p.y[b], 1),
+                 min_image(p.z[a] - p.z[b], 2)};
     normal = r / norm(r);
     law = pair_law_[p.species[a] * nspecies_ + p.species[b]];
     recent = recent || ev.t - last_collision_[b] < opts_.tc_time;
@@ -216,21 +304,32 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
 }
 
 void HardSphereEngine::check_no_overlap(const ParticleStore& p, double time) const {
+  // Every pair of the list once (j > i); the first overlapping particle (lowest index) is
+  // reported, whatever the number of threads.
   const std::size_t n = p.size();
+  auto overlaps = [&](std::size_t i, std::uint32_t j) {
+    const double dx = min_image(p.x[j] - p.x[i], 0);
+    const double dy = min_image(p.y[j] - p.y[i], 1);
+    const double dz = min_image(p.z[j] - p.z[i], 2);
+    const double sigma = p.radius[i] + p.radius[j];
+    return dx * dx + dy * dy + dz * dz < sigma * sigma * (1.0 - 1e-6);
+  };
+  std::size_t first = n;
+#pragma omp parallel for schedule(static) reduction(min : first) if (n >= kParallelMin)
   for (std::size_t i = 0; i < n; ++i)
-    for (std::uint32_t e = nl_.offset[i]; e < nl_.offset[i + 1]; ++e) {
-      const std::uint32_t j = nl_.partner[e];
-      const double dx = nl_.min_image(p.x[j] - p.x[i], 0);
-      const double dy = nl_.min_image(p.y[j] - p.y[i], 1);
-      const double dz = nl_.min_image(p.z[j] - p.z[i], 2);
-      const double sigma = p.radius[i] + p.radius[j];
-      if (dx * dx + dy * dy + dz * dz < sigma * sigma * (1.0 - 1e-6)) {
-        throw InstabilityError(fmt::format(
-            "hard-sphere run failed at t = {:.6g} s: particles {} and {} overlap (a collision "
-            "was missed); reduce simulation.time_step",
-            time, p.id[i], p.id[j]));
-      }
+    for (std::uint32_t e = full_offset_[i]; e < full_offset_[i + 1]; ++e)
+      if (full_partner_[e] > i && overlaps(i, full_partner_[e])) first = std::min(first, i);
+  if (first == n) return;
+  std::uint32_t partner = 0;
+  for (std::uint32_t e = full_offset_[first]; e < full_offset_[first + 1]; ++e)
+    if (full_partner_[e] > first && overlaps(first, full_partner_[e])) {
+      partner = full_partner_[e];
+      break;
     }
+  throw InstabilityError(
+      fmt::format("hard-sphere run failed at t = {:.6g} s: particles {} and {} overlap (a "
+                  "collision was missed); reduce simulation.time_step",
+                  time, p.id[first], p.id[partner]));
 }
 
 void HardSphereEngine::advance_particle(ParticleStore& p, std::uint32_t i, double a) const {
@@ -247,24 +346,28 @@ void HardSphereEngine::update_neighbour_list(const ParticleStore& p, double dt) 
   // largest displacement since the build plus s is below skin / 2. It is rebuilt, with a skin
   // of 8 s (valid for about four steps), only when that fails.
   const std::size_t n = p.size();
-  double vmax = 0.0, rmin = std::numeric_limits<double>::infinity(), moved2 = 0.0;
+  double vmax2 = 0.0, rmin = std::numeric_limits<double>::infinity(), moved2 = 0.0;
   const bool have = built_x_.size() == n;
+#pragma omp parallel for schedule(static) reduction(max                                            \
+                                                    : vmax2, moved2)                               \
+    reduction(min                                                                                  \
+              : rmin) if (n >= kParallelMin)
   for (std::size_t i = 0; i < n; ++i) {
-    vmax = std::max(vmax, std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]));
+    vmax2 = std::max(vmax2, p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
     rmin = std::min(rmin, p.radius[i]);
     if (have) {
-      const double dx = nl_.min_image(p.x[i] - built_x_[i], 0);
-      const double dy = nl_.min_image(p.y[i] - built_y_[i], 1);
-      const double dz = nl_.min_image(p.z[i] - built_z_[i], 2);
+      const double dx = min_image(p.x[i] - built_x_[i], 0);
+      const double dy = min_image(p.y[i] - built_y_[i], 1);
+      const double dz = min_image(p.z[i] - built_z_[i], 2);
       moved2 = std::max(moved2, dx * dx + dy * dy + dz * dz);
     }
   }
   rmin_ = rmin;
+  const double vmax = std::sqrt(vmax2);
   const double step = 1.5 * (vmax + norm(g_) * dt) * dt;
-  if (have && std::sqrt(moved2) + step <= 0.5 * nl_.skin()) return;
-  nl_.set_skin(std::max(8.0 * step, 1e-3 * rmin));
-  nl_.build(p);
-  build_full_list(p);
+  if (have && std::sqrt(moved2) + step <= 0.5 * skin_) return;
+  skin_ = std::max(8.0 * step, 1e-3 * rmin);
+  build_list(p);
   built_x_ = p.x, built_y_ = p.y, built_z_ = p.z;
   ++list_builds_;
 }
@@ -289,7 +392,13 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
   stats_.pair_collisions_last_step = 0;
   stats_.wall_collisions_last_step = 0;
   log_.clear();
-  for (std::uint32_t i = 0; i < n; ++i) schedule(p, i, time);
+  // Every particle's first event, in parallel (predict only reads); queued in index order, so
+  // the queue is the same for any number of threads.
+  predicted_.resize(n);
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  for (std::uint32_t i = 0; i < n; ++i) predicted_[i] = predict(p, i, time);
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (predicted_[i].b != std::numeric_limits<std::uint32_t>::max()) push(predicted_[i]);
   const auto limit = static_cast<long>(opts_.max_events_per_particle * static_cast<double>(n));
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), Later{});
@@ -311,7 +420,8 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
   }
   // Everybody to the end of the step; periodic axes wrapped (the list's reference positions
   // with them, so that displacements stay minimum-image).
-  const auto& box = nl_.box();
+  const auto& box = box_;
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (std::uint32_t i = 0; i < n; ++i) {
     advance_particle(p, i, t_end_ - clock_[i]);
     double* q[3] = {&p.x[i], &p.y[i], &p.z[i]};
@@ -324,14 +434,21 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
 
 std::size_t HardSphereEngine::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return nl_.bytes() + b(full_offset_) + b(full_partner_) + b(clock_) + b(last_collision_) +
-         b(counter_) + b(heap_) + b(built_x_) + b(built_y_) + b(built_z_);
+  std::size_t rows = 0;
+  for (const auto& r : thread_rows_) rows += b(r);
+  return b(cell_start_) + b(cell_particles_) + b(particle_cell_) + b(cell_fill_) + b(full_offset_) +
+         b(full_partner_) + rows + b(predicted_) + b(clock_) + b(last_collision_) + b(counter_) +
+         b(heap_) + b(built_x_) + b(built_y_) + b(built_z_);
 }
 
 } // namespace fluidem
 
 namespace fluidem {
 
+// The list in a checkpoint: its skin and build positions (built_x_, ...) and its pairs, from
+// which restore() rebuilds the same list and checks it against them. (Checkpoints written
+// before the engine had its own list hold the half list of NeighbourList, each pair once: the
+// check compares the sets of pairs, so both load.)
 HardSphereEngine::State HardSphereEngine::state() const {
   State s;
   s.last_collision = last_collision_;
@@ -341,13 +458,52 @@ HardSphereEngine::State HardSphereEngine::state() const {
   s.counter = counter_;
   s.list_builds = list_builds_;
   s.stats = stats_;
-  s.list = nl_.state();
+  s.list.skin = skin_;
+  s.list.builds = list_builds_;
+  s.list.x0 = built_x_;
+  s.list.y0 = built_y_;
+  s.list.z0 = built_z_;
+  s.list.offset = full_offset_;
+  s.list.partner = full_partner_;
   return s;
 }
 
+namespace {
+/// The pairs (i < j) of a CSR list, sorted.
+std::vector<std::uint64_t> pair_set(const std::vector<std::uint32_t>& offset,
+                                    const std::vector<std::uint32_t>& partner) {
+  std::vector<std::uint64_t> out;
+  for (std::size_t i = 0; i + 1 < offset.size(); ++i)
+    for (std::uint32_t e = offset[i]; e < offset[i + 1] && e < partner.size(); ++e) {
+      const std::uint64_t a = std::min<std::uint64_t>(i, partner[e]);
+      const std::uint64_t b = std::max<std::uint64_t>(i, partner[e]);
+      out.push_back(a << 32 | b);
+    }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+} // namespace
+
 void HardSphereEngine::restore(const ParticleStore& p, const State& s) {
-  nl_.restore(p, s.list);
-  if (!s.list.x0.empty()) build_full_list(p);
+  skin_ = s.list.skin;
+  full_offset_.clear();
+  full_partner_.clear();
+  if (!s.list.x0.empty()) {
+    if (s.list.x0.size() != p.size() || s.list.y0.size() != p.size() ||
+        s.list.z0.size() != p.size())
+      throw std::runtime_error("hard-sphere list: the restored build positions are for " +
+                               std::to_string(s.list.x0.size()) + " particles, not " +
+                               std::to_string(p.size()));
+    ParticleStore at_build = p;
+    at_build.x = s.list.x0;
+    at_build.y = s.list.y0;
+    at_build.z = s.list.z0;
+    build_list(at_build);
+    if (pair_set(full_offset_, full_partner_) != pair_set(s.list.offset, s.list.partner))
+      throw std::runtime_error("hard-sphere list: the list rebuilt from the checkpoint's build "
+                               "positions differs from the saved one");
+  }
   last_collision_ = s.last_collision;
   built_x_ = s.built_x;
   built_y_ = s.built_y;

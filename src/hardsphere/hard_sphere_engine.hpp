@@ -25,7 +25,7 @@
 
 #include "core/case_spec.hpp"
 #include "hardsphere/collision_operator.hpp"
-#include "neighbour/neighbour_list.hpp"
+#include "neighbour/neighbour_list.hpp" // BoxGeometry, NeighbourList::State (checkpoints)
 #include "particles/particle_store.hpp"
 
 namespace fluidem {
@@ -90,12 +90,26 @@ private:
     bool operator()(const Event& x, const Event& y) const { return x.t > y.t; }
   };
 
-  void build_full_list(const ParticleStore& p);
+  /// The engine's own cell list: every pair (both directions, CSR by particle) closer than
+  /// R_i + R_j + skin_ at the positions of `p`.
+  void build_list(const ParticleStore& p);
   void update_neighbour_list(const ParticleStore& p, double dt);
+  /// Minimum-image separation along axis a (round to nearest even, as std::nearbyint in the
+  /// default rounding mode, without the library call: exact for |d / l| < 2^51).
+  double min_image(double d, int a) const {
+    if (!box_.periodic[a]) return d;
+    constexpr double magic = 6755399441055744.0; // 1.5 * 2^52
+    const double l = box_.length(a);
+    const double k = (d / l + magic) - magic;
+    return d - l * k;
+  }
   void advance_particle(ParticleStore& p, std::uint32_t i, double a) const;
   /// Time until a particle at distance `gap` from a wall, moving towards it at `u` and
   /// accelerated towards it at `gn`, touches it (infinity if never).
   double wall_time(double gap, double u, double gn) const;
+  /// The earliest event of particle i after `now` (before the end of the step); partner
+  /// UINT32_MAX if none. Reads only, so it may run for many particles at once.
+  Event predict(const ParticleStore& p, std::uint32_t i, double now) const;
   void schedule(const ParticleStore& p, std::uint32_t i, double now);
   void process(ParticleStore& p, const Event& ev);
   void push(const Event& ev);
@@ -105,8 +119,15 @@ private:
   int nspecies_;
   std::vector<hardsphere::CollisionLaw> pair_law_, wall_law_;
   HardSphereSpec opts_;
-  NeighbourList nl_;
+  BoxGeometry box_;
+  double skin_ = 0.0;
+  // Cell grid of the last build and the full list (CSR: the partners of i are
+  // full_partner_[full_offset_[i] .. full_offset_[i + 1])).
+  std::array<int, 3> ncell_{1, 1, 1};
+  std::vector<std::uint32_t> cell_start_, cell_particles_, particle_cell_, cell_fill_;
   std::vector<std::uint32_t> full_offset_, full_partner_;
+  std::vector<std::vector<std::uint32_t>> thread_rows_; ///< per-thread rows during a build
+  std::vector<Event> predicted_;                        ///< per particle, start of a step
   std::vector<double> clock_, last_collision_;
   std::vector<std::uint32_t> counter_;
   std::vector<Event> heap_;
