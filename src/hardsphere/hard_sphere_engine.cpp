@@ -142,11 +142,11 @@ void HardSphereEngine::push(const Event& ev) {
 HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::uint32_t i,
                                                   double now) const {
   const auto n = static_cast<std::uint32_t>(p.size());
-  const double ai = now - clock_[i];
-  const Vec3 xi{p.x[i] + (p.vx[i] + 0.5 * g_.x * ai) * ai,
-                p.y[i] + (p.vy[i] + 0.5 * g_.y * ai) * ai,
-                p.z[i] + (p.vz[i] + 0.5 * g_.z * ai) * ai};
-  const Vec3 vi = p.velocity(i) + g_ * ai;
+  const Kin& ki = kin_[i];
+  const double ai = now - ki.t;
+  const Vec3 xi{ki.x + (ki.vx + 0.5 * g_.x * ai) * ai, ki.y + (ki.vy + 0.5 * g_.y * ai) * ai,
+                ki.z + (ki.vz + 0.5 * g_.z * ai) * ai};
+  const Vec3 vi = Vec3{ki.vx, ki.vy, ki.vz} + g_ * ai;
   double best = t_end_;
   std::uint32_t partner = std::numeric_limits<std::uint32_t>::max();
   // Pairs: both fall with the same g, so their relative motion is a straight line and the
@@ -154,14 +154,15 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
   // cancellation.
   for (std::uint32_t k = full_offset_[i]; k < full_offset_[i + 1]; ++k) {
     const std::uint32_t j = full_partner_[k];
-    const double aj = now - clock_[j];
-    const Vec3 r{min_image(xi.x - (p.x[j] + (p.vx[j] + 0.5 * g_.x * aj) * aj), 0),
-                 min_image(xi.y - (p.y[j] + (p.vy[j] + 0.5 * g_.y * aj) * aj), 1),
-                 min_image(xi.z - (p.z[j] + (p.vz[j] + 0.5 * g_.z * aj) * aj), 2)};
-    const Vec3 v = vi - (p.velocity(j) + g_ * aj);
+    const Kin& kj = kin_[j];
+    const double aj = now - kj.t;
+    const Vec3 r{min_image(xi.x - (kj.x + (kj.vx + 0.5 * g_.x * aj) * aj), 0),
+                 min_image(xi.y - (kj.y + (kj.vy + 0.5 * g_.y * aj) * aj), 1),
+                 min_image(xi.z - (kj.z + (kj.vz + 0.5 * g_.z * aj) * aj), 2)};
+    const Vec3 v = vi - (Vec3{kj.vx, kj.vy, kj.vz} + g_ * aj);
     const double b = dot(r, v);
     if (b >= 0.0) continue; // moving apart
-    const double sigma = p.radius[i] + p.radius[j];
+    const double sigma = ki.r + kj.r;
     const double c = norm2(r) - sigma * sigma;
     double dt;
     if (c <= 0.0) {
@@ -170,6 +171,10 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
       if (dot(v, r / norm(r)) >= 0.0) continue;
       dt = 0.0;
     } else {
+      // The root is at least c / (2 |b|) (sqrt(disc) <= |b|): a pair that cannot meet before
+      // the best event so far is passed over without the square root and the division. The
+      // margin 1e-9 covers the round-off of the root, so the choice is the same as with it.
+      if (c > -2.0 * b * (best - now) * (1.0 + 1e-9)) continue;
       const double disc = b * b - norm2(v) * c;
       if (disc < 0.0) continue; // miss
       dt = c / (-b + std::sqrt(disc));
@@ -184,8 +189,12 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
     const int a = f / 2;
     const double sign = (f % 2 == 0) ? -1.0 : 1.0; // towards the wall
     const double u = sign * vi[a], gn = sign * g_[a];
-    const double gap =
-        (f % 2 == 0) ? xi[a] - box.lo[a] - p.radius[i] : box.hi[a] - p.radius[i] - xi[a];
+    const double gap = (f % 2 == 0) ? xi[a] - box.lo[a] - ki.r : box.hi[a] - ki.r - xi[a];
+    // Out of reach before the best event so far (the distance covered in a time T is at most
+    // max(u, 0) T + max(g_n, 0) T^2 / 2; margin for the round-off of the root as above).
+    const double horizon = best - now;
+    if (gap > (std::max(u, 0.0) + 0.5 * std::max(gn, 0.0) * horizon) * horizon * (1.0 + 1e-9))
+      continue;
     const double dt = wall_time(gap, u, gn);
     if (now + dt < best) best = now + dt, partner = n + static_cast<std::uint32_t>(f);
   }
@@ -223,12 +232,12 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
   const std::uint32_t a = ev.a, b = ev.b;
   const bool wall = b >= n;
   auto move_to = [&](std::uint32_t i) {
-    advance_particle(p, i, ev.t - clock_[i]);
-    clock_[i] = ev.t;
+    advance_particle(kin_[i], ev.t - kin_[i].t);
+    kin_[i].t = ev.t;
   };
   auto body = [&](std::uint32_t i) {
-    return hardsphere::Body{p.velocity(i), p.angular_velocity(i), p.radius[i], p.inv_mass[i],
-                            p.inv_inertia[i]};
+    return hardsphere::Body{Vec3{kin_[i].vx, kin_[i].vy, kin_[i].vz}, p.angular_velocity(i),
+                            p.radius[i], p.inv_mass[i], p.inv_inertia[i]};
   };
   auto kinetic = [&](const hardsphere::Body& x, std::uint32_t i) {
     return x.inv_m > 0.0 ? 0.5 * p.mass[i] * norm2(x.v) + 0.5 / x.inv_i * norm2(x.w) : 0.0;
@@ -241,8 +250,8 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
   if (!wall) {
     move_to(b);
     bb = body(b);
-    const Vec3 r{min_image(p.x[a] - p.x[b], 0), min_image(p.y[a] - p.y[b], 1),
-                 min_image(p.z[a] - p.z[b], 2)};
+    const Vec3 r{min_image(kin_[a].x - kin_[b].x, 0), min_image(kin_[a].y - kin_[b].y, 1),
+                 min_image(kin_[a].z - kin_[b].z, 2)};
     normal = r / norm(r);
     law = pair_law_[p.species[a] * nspecies_ + p.species[b]];
     recent = recent || ev.t - last_collision_[b] < opts_.tc_time;
@@ -270,7 +279,7 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
     return;
   }
   auto store = [&](std::uint32_t i, const hardsphere::Body& x) {
-    p.vx[i] = x.v.x, p.vy[i] = x.v.y, p.vz[i] = x.v.z;
+    kin_[i].vx = x.v.x, kin_[i].vy = x.v.y, kin_[i].vz = x.v.z;
     p.wx[i] = x.w.x, p.wy[i] = x.w.y, p.wz[i] = x.w.z;
   };
   store(a, ba);
@@ -297,7 +306,7 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
   if (record_) {
     // normal: from b (or the wall) towards a; the contact point is r_a behind a's centre.
     log_.push_back({p.id[a], wall ? -1 - static_cast<std::int64_t>(b - n) : p.id[b],
-                    p.position(a) - normal * p.radius[a]});
+                    Vec3{kin_[a].x, kin_[a].y, kin_[a].z} - normal * p.radius[a]});
   }
   schedule(p, a, ev.t);
   if (!wall) schedule(p, b, ev.t);
@@ -332,11 +341,11 @@ void HardSphereEngine::check_no_overlap(const ParticleStore& p, double time) con
                   time, p.id[first], p.id[partner]));
 }
 
-void HardSphereEngine::advance_particle(ParticleStore& p, std::uint32_t i, double a) const {
-  p.x[i] += (p.vx[i] + 0.5 * g_.x * a) * a;
-  p.y[i] += (p.vy[i] + 0.5 * g_.y * a) * a;
-  p.z[i] += (p.vz[i] + 0.5 * g_.z * a) * a;
-  p.vx[i] += g_.x * a, p.vy[i] += g_.y * a, p.vz[i] += g_.z * a;
+void HardSphereEngine::advance_particle(Kin& k, double a) const {
+  k.x += (k.vx + 0.5 * g_.x * a) * a;
+  k.y += (k.vy + 0.5 * g_.y * a) * a;
+  k.z += (k.vz + 0.5 * g_.z * a) * a;
+  k.vx += g_.x * a, k.vy += g_.y * a, k.vz += g_.z * a;
 }
 
 void HardSphereEngine::update_neighbour_list(const ParticleStore& p, double dt) {
@@ -383,7 +392,11 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
   elastic_below_ =
       opts_.elastic_below ? *opts_.elastic_below : std::sqrt(2.0 * norm(g_) * 1e-3 * 2.0 * rmin_);
 
-  clock_.assign(n, time);
+  // The kinematics of the hot loops, one cache line per particle.
+  kin_.resize(n);
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  for (std::size_t i = 0; i < n; ++i)
+    kin_[i] = {p.x[i], p.y[i], p.z[i], time, p.vx[i], p.vy[i], p.vz[i], p.radius[i]};
   counter_.resize(n, 0);
   last_collision_.resize(n, -std::numeric_limits<double>::infinity());
   t_end_ = time + dt;
@@ -423,11 +436,14 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
   const auto& box = box_;
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (std::uint32_t i = 0; i < n; ++i) {
-    advance_particle(p, i, t_end_ - clock_[i]);
-    double* q[3] = {&p.x[i], &p.y[i], &p.z[i]};
+    Kin& k = kin_[i];
+    advance_particle(k, t_end_ - k.t);
+    double* q[3] = {&k.x, &k.y, &k.z};
     for (int ax = 0; ax < 3; ++ax)
       if (box.periodic[ax])
         *q[ax] -= box.length(ax) * std::floor((*q[ax] - box.lo[ax]) / box.length(ax));
+    p.x[i] = k.x, p.y[i] = k.y, p.z[i] = k.z;
+    p.vx[i] = k.vx, p.vy[i] = k.vy, p.vz[i] = k.vz;
   }
   check_no_overlap(p, t_end_);
 }
@@ -437,7 +453,7 @@ std::size_t HardSphereEngine::bytes() const {
   std::size_t rows = 0;
   for (const auto& r : thread_rows_) rows += b(r);
   return b(cell_start_) + b(cell_particles_) + b(particle_cell_) + b(cell_fill_) + b(full_offset_) +
-         b(full_partner_) + rows + b(predicted_) + b(clock_) + b(last_collision_) + b(counter_) +
+         b(full_partner_) + rows + b(predicted_) + b(kin_) + b(last_collision_) + b(counter_) +
          b(heap_) + b(built_x_) + b(built_y_) + b(built_z_);
 }
 

@@ -103,7 +103,12 @@ private:
     const double k = (d / l + magic) - magic;
     return d - l * k;
   }
-  void advance_particle(ParticleStore& p, std::uint32_t i, double a) const;
+  /// Kinematics of the hot loops, one cache line per particle: position and velocity at the
+  /// particle's clock t (its lazy time, [Deen07 §4]), radius.
+  struct alignas(64) Kin {
+    double x, y, z, t, vx, vy, vz, r;
+  };
+  void advance_particle(Kin& k, double a) const;
   /// Time until a particle at distance `gap` from a wall, moving towards it at `u` and
   /// accelerated towards it at `gn`, touches it (infinity if never).
   double wall_time(double gap, double u, double gn) const;
@@ -128,7 +133,8 @@ private:
   std::vector<std::uint32_t> full_offset_, full_partner_;
   std::vector<std::vector<std::uint32_t>> thread_rows_; ///< per-thread rows during a build
   std::vector<Event> predicted_;                        ///< per particle, start of a step
-  std::vector<double> clock_, last_collision_;
+  std::vector<Kin> kin_; ///< copied in at the start of a step, out at its end
+  std::vector<double> last_collision_;
   std::vector<std::uint32_t> counter_;
   std::vector<Event> heap_;
   std::vector<double> built_x_, built_y_, built_z_; ///< positions at the last list build
