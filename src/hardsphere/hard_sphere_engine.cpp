@@ -134,9 +134,71 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
   }
 }
 
-void HardSphereEngine::push(const Event& ev) {
-  heap_.push_back(ev);
-  std::push_heap(heap_.begin(), heap_.end(), Later{});
+// The event calendar: a binary min-heap of the particles that have an event before the end of
+// the step, keyed by the time of their one current event (next_[i]); ties by index. A new
+// prediction replaces the particle's entry in place, so no stale events pile up.
+bool HardSphereEngine::earlier(std::uint32_t i, std::uint32_t j) const {
+  return next_[i].t < next_[j].t || (next_[i].t == next_[j].t && i < j);
+}
+
+void HardSphereEngine::sift_up(std::uint32_t k) {
+  const std::uint32_t i = queue_[k];
+  while (k > 0) {
+    const std::uint32_t up = (k - 1) / 2;
+    if (!earlier(i, queue_[up])) break;
+    queue_[k] = queue_[up];
+    slot_[queue_[k]] = k;
+    k = up;
+  }
+  queue_[k] = i;
+  slot_[i] = k;
+}
+
+void HardSphereEngine::sift_down(std::uint32_t k) {
+  const auto size = static_cast<std::uint32_t>(queue_.size());
+  const std::uint32_t i = queue_[k];
+  for (;;) {
+    std::uint32_t c = 2 * k + 1;
+    if (c >= size) break;
+    if (c + 1 < size && earlier(queue_[c + 1], queue_[c])) ++c;
+    if (!earlier(queue_[c], i)) break;
+    queue_[k] = queue_[c];
+    slot_[queue_[k]] = k;
+    k = c;
+  }
+  queue_[k] = i;
+  slot_[i] = k;
+}
+
+void HardSphereEngine::set_event(const Event& ev) {
+  const std::uint32_t i = ev.a;
+  const bool has = ev.b != kNone;
+  std::uint32_t k = slot_[i];
+  if (k == kNone) {
+    if (!has) return;
+    next_[i] = ev;
+    k = static_cast<std::uint32_t>(queue_.size());
+    queue_.push_back(i);
+    sift_up(k);
+    return;
+  }
+  const double before = next_[i].t;
+  if (!has) { // leaves the calendar: the last entry takes its place
+    slot_[i] = kNone;
+    const std::uint32_t last = queue_.back();
+    queue_.pop_back();
+    if (last == i) return;
+    queue_[k] = last;
+    slot_[last] = k;
+    sift_up(k);
+    sift_down(slot_[last]);
+    return;
+  }
+  next_[i] = ev;
+  if (ev.t < before)
+    sift_up(k);
+  else
+    sift_down(k);
 }
 
 HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::uint32_t i,
@@ -148,7 +210,7 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
                 ki.z + (ki.vz + 0.5 * g_.z * ai) * ai};
   const Vec3 vi = Vec3{ki.vx, ki.vy, ki.vz} + g_ * ai;
   double best = t_end_;
-  std::uint32_t partner = std::numeric_limits<std::uint32_t>::max();
+  std::uint32_t partner = kNone;
   // Pairs: both fall with the same g, so their relative motion is a straight line and the
   // collision time is [Deen07 eq. 45], written as c / (-b + sqrt(b^2 - v^2 c)) to avoid
   // cancellation.
@@ -198,13 +260,12 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
     const double dt = wall_time(gap, u, gn);
     if (now + dt < best) best = now + dt, partner = n + static_cast<std::uint32_t>(f);
   }
-  if (partner == std::numeric_limits<std::uint32_t>::max()) return {best, i, partner, 0u, 0u};
+  if (partner == kNone) return {best, i, partner, 0u, 0u};
   return {best, i, partner, counter_[i], partner < n ? counter_[partner] : 0u};
 }
 
 void HardSphereEngine::schedule(const ParticleStore& p, std::uint32_t i, double now) {
-  const Event ev = predict(p, i, now);
-  if (ev.b != std::numeric_limits<std::uint32_t>::max()) push(ev);
+  set_event(predict(p, i, now));
 }
 
 double HardSphereEngine::wall_time(double gap, double u, double gn) const {
@@ -400,25 +461,25 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
   counter_.resize(n, 0);
   last_collision_.resize(n, -std::numeric_limits<double>::infinity());
   t_end_ = time + dt;
-  heap_.clear();
   stats_.events_last_step = 0;
   stats_.pair_collisions_last_step = 0;
   stats_.wall_collisions_last_step = 0;
   log_.clear();
   // Every particle's first event, in parallel (predict only reads); queued in index order, so
   // the queue is the same for any number of threads.
-  predicted_.resize(n);
+  next_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (std::uint32_t i = 0; i < n; ++i) predicted_[i] = predict(p, i, time);
+  for (std::uint32_t i = 0; i < n; ++i) next_[i] = predict(p, i, time);
+  queue_.clear();
+  slot_.assign(n, kNone);
   for (std::uint32_t i = 0; i < n; ++i)
-    if (predicted_[i].b != std::numeric_limits<std::uint32_t>::max()) push(predicted_[i]);
+    if (next_[i].b != kNone)
+      slot_[i] = static_cast<std::uint32_t>(queue_.size()), queue_.push_back(i);
+  for (auto k = static_cast<std::uint32_t>(queue_.size() / 2); k-- > 0;) sift_down(k);
   const auto limit = static_cast<long>(opts_.max_events_per_particle * static_cast<double>(n));
-  while (!heap_.empty()) {
-    std::pop_heap(heap_.begin(), heap_.end(), Later{});
-    const Event ev = heap_.back();
-    heap_.pop_back();
+  while (!queue_.empty()) {
+    const Event ev = next_[queue_[0]];
     if (ev.t > t_end_) break;
-    if (counter_[ev.a] != ev.ca) continue;     // the owner collided since: a newer event exists
     if (ev.b < n && counter_[ev.b] != ev.cb) { // the partner changed course: look again
       schedule(p, ev.a, ev.t);
       continue;
@@ -453,8 +514,8 @@ std::size_t HardSphereEngine::bytes() const {
   std::size_t rows = 0;
   for (const auto& r : thread_rows_) rows += b(r);
   return b(cell_start_) + b(cell_particles_) + b(particle_cell_) + b(cell_fill_) + b(full_offset_) +
-         b(full_partner_) + rows + b(predicted_) + b(kin_) + b(last_collision_) + b(counter_) +
-         b(heap_) + b(built_x_) + b(built_y_) + b(built_z_);
+         b(full_partner_) + rows + b(kin_) + b(last_collision_) + b(counter_) + b(next_) +
+         b(queue_) + b(slot_) + b(built_x_) + b(built_y_) + b(built_z_);
 }
 
 } // namespace fluidem

@@ -86,9 +86,7 @@ private:
     std::uint32_t a, b;   ///< b >= n: wall face b - n
     std::uint32_t ca, cb; ///< collision counters of a and b when scheduled
   };
-  struct Later {
-    bool operator()(const Event& x, const Event& y) const { return x.t > y.t; }
-  };
+  static constexpr std::uint32_t kNone = 0xffffffffu; ///< no partner, no calendar slot
 
   /// The engine's own cell list: every pair (both directions, CSR by particle) closer than
   /// R_i + R_j + skin_ at the positions of `p`.
@@ -113,11 +111,16 @@ private:
   /// accelerated towards it at `gn`, touches it (infinity if never).
   double wall_time(double gap, double u, double gn) const;
   /// The earliest event of particle i after `now` (before the end of the step); partner
-  /// UINT32_MAX if none. Reads only, so it may run for many particles at once.
+  /// kNone if none. Reads only, so it may run for many particles at once.
   Event predict(const ParticleStore& p, std::uint32_t i, double now) const;
   void schedule(const ParticleStore& p, std::uint32_t i, double now);
   void process(ParticleStore& p, const Event& ev);
-  void push(const Event& ev);
+  /// The calendar (a binary heap of particles by the time of their current event).
+  bool earlier(std::uint32_t i, std::uint32_t j) const;
+  void sift_up(std::uint32_t k);
+  void sift_down(std::uint32_t k);
+  /// Make ev the current event of particle ev.a (ev.b == kNone: it has none).
+  void set_event(const Event& ev);
   void check_no_overlap(const ParticleStore& p, double time) const;
 
   int dimension_;
@@ -132,11 +135,12 @@ private:
   std::vector<std::uint32_t> cell_start_, cell_particles_, particle_cell_, cell_fill_;
   std::vector<std::uint32_t> full_offset_, full_partner_;
   std::vector<std::vector<std::uint32_t>> thread_rows_; ///< per-thread rows during a build
-  std::vector<Event> predicted_;                        ///< per particle, start of a step
   std::vector<Kin> kin_; ///< copied in at the start of a step, out at its end
   std::vector<double> last_collision_;
   std::vector<std::uint32_t> counter_;
-  std::vector<Event> heap_;
+  std::vector<Event> next_;          ///< per particle: its current event
+  std::vector<std::uint32_t> queue_; ///< the calendar: particles with an event, a heap
+  std::vector<std::uint32_t> slot_;  ///< per particle: its place in queue_, or kNone
   std::vector<double> built_x_, built_y_, built_z_; ///< positions at the last list build
   long list_builds_ = 0;
   Vec3 g_;
