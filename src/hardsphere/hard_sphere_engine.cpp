@@ -122,6 +122,8 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
               if (ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) rows.push_back(j);
             }
           }
+      // Rows in ascending partner order: the partners above i (each pair once) form the tail.
+      std::sort(rows.begin() + static_cast<std::ptrdiff_t>(before), rows.end());
       full_offset_[i + 1] = static_cast<std::uint32_t>(rows.size() - before);
     }
 #pragma omp barrier
@@ -129,8 +131,80 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
     {
       for (std::size_t i = 0; i < n; ++i) full_offset_[i + 1] += full_offset_[i];
       full_partner_.resize(full_offset_[n]);
+      split_.resize(n);
+      mirror_.resize(full_offset_[n]);
     }
     std::copy(rows.begin(), rows.end(), full_partner_.begin() + full_offset_[i0]);
+#pragma omp barrier
+    // split_[i]: the first entry of row i above i; mirror_[e] for an entry (i, j < i): the
+    // entry (j, i) in row j, which holds the pair's time in the sweep.
+    for (std::size_t i = i0; i < i1; ++i) {
+      const auto row0 = full_partner_.begin() + full_offset_[i];
+      const auto row1 = full_partner_.begin() + full_offset_[i + 1];
+      const auto up = std::upper_bound(row0, row1, static_cast<std::uint32_t>(i));
+      split_[i] = static_cast<std::uint32_t>(up - full_partner_.begin());
+      for (auto e = row0; e != up; ++e) {
+        const std::uint32_t j = *e;
+        const auto it = std::lower_bound(full_partner_.begin() + full_offset_[j],
+                                         full_partner_.begin() + full_offset_[j + 1],
+                                         static_cast<std::uint32_t>(i));
+        mirror_[e - full_partner_.begin()] = static_cast<std::uint32_t>(it - full_partner_.begin());
+      }
+    }
+  }
+}
+
+void HardSphereEngine::first_events(double now) {
+  // At the start of a step every clock is `now`: the flights of predict() vanish (x + 0 = x),
+  // and a pair's time is the same from either side (r and v change sign exactly). So each pair
+  // is computed once (under its lower index), and each particle then takes the earliest of its
+  // row in row order, as predict() does: the same events, with half the pair arithmetic.
+  const std::size_t n = kin_.size();
+  pair_time_.resize(full_partner_.size());
+  constexpr double none = std::numeric_limits<double>::infinity();
+#pragma omp parallel if (n >= kParallelMin)
+  {
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const Kin& ki = kin_[i];
+      for (std::uint32_t e = split_[i]; e < full_offset_[i + 1]; ++e) {
+        const Kin& kj = kin_[full_partner_[e]];
+        const Vec3 r{min_image(ki.x - kj.x, 0), min_image(ki.y - kj.y, 1),
+                     min_image(ki.z - kj.z, 2)};
+        const Vec3 v{ki.vx - kj.vx, ki.vy - kj.vy, ki.vz - kj.vz};
+        pair_time_[e] = none;
+        const double b = dot(r, v);
+        if (b >= 0.0) continue;
+        const double sigma = ki.r + kj.r;
+        const double c = norm2(r) - sigma * sigma;
+        double dt;
+        if (c <= 0.0) {
+          if (dot(v, r / norm(r)) >= 0.0) continue;
+          dt = 0.0;
+        } else {
+          if (c > -2.0 * b * (t_end_ - now) * (1.0 + 1e-9)) continue;
+          const double disc = b * b - norm2(v) * c;
+          if (disc < 0.0) continue;
+          dt = c / (-b + std::sqrt(disc));
+        }
+        pair_time_[e] = now + dt;
+      }
+    }
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      double best = t_end_;
+      std::uint32_t partner = kNone;
+      for (std::uint32_t e = full_offset_[i]; e < full_offset_[i + 1]; ++e) {
+        const double t = pair_time_[e < split_[i] ? mirror_[e] : e];
+        if (t < best) best = t, partner = full_partner_[e];
+      }
+      const Kin& ki = kin_[i];
+      wall_event(ki, Vec3{ki.x, ki.y, ki.z}, Vec3{ki.vx, ki.vy, ki.vz}, now, best, partner);
+      const auto ii = static_cast<std::uint32_t>(i);
+      next_[i] = partner == kNone
+                     ? Event{best, ii, partner, 0u, 0u}
+                     : Event{best, ii, partner, counter_[i], partner < n ? counter_[partner] : 0u};
+    }
   }
 }
 
@@ -243,8 +317,16 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
     }
     if (now + dt < best) best = now + dt, partner = j;
   }
+  wall_event(ki, xi, vi, now, best, partner);
+  if (partner == kNone) return {best, i, partner, 0u, 0u};
+  return {best, i, partner, counter_[i], partner < n ? counter_[partner] : 0u};
+}
+
+void HardSphereEngine::wall_event(const Kin& ki, const Vec3& xi, const Vec3& vi, double now,
+                                  double& best, std::uint32_t& partner) const {
   // Walls [Hoomans96 eq. 31], on the parabola: the gap d(t) = d0 + u t + g_n t^2 / 2 along the
   // wall's inward normal (u, g_n: velocity and gravity towards the wall).
+  const auto n = static_cast<std::uint32_t>(kin_.size());
   const auto& box = box_;
   for (int f = 0; f < 6; ++f) {
     if (!box.wall[f]) continue;
@@ -260,8 +342,6 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
     const double dt = wall_time(gap, u, gn);
     if (now + dt < best) best = now + dt, partner = n + static_cast<std::uint32_t>(f);
   }
-  if (partner == kNone) return {best, i, partner, 0u, 0u};
-  return {best, i, partner, counter_[i], partner < n ? counter_[partner] : 0u};
 }
 
 void HardSphereEngine::schedule(const ParticleStore& p, std::uint32_t i, double now) {
@@ -468,8 +548,7 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
   // Every particle's first event, in parallel (predict only reads); queued in index order, so
   // the queue is the same for any number of threads.
   next_.resize(n);
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (std::uint32_t i = 0; i < n; ++i) next_[i] = predict(p, i, time);
+  first_events(time);
   queue_.clear();
   slot_.assign(n, kNone);
   for (std::uint32_t i = 0; i < n; ++i)
@@ -514,8 +593,9 @@ std::size_t HardSphereEngine::bytes() const {
   std::size_t rows = 0;
   for (const auto& r : thread_rows_) rows += b(r);
   return b(cell_start_) + b(cell_particles_) + b(particle_cell_) + b(cell_fill_) + b(full_offset_) +
-         b(full_partner_) + rows + b(kin_) + b(last_collision_) + b(counter_) + b(next_) +
-         b(queue_) + b(slot_) + b(built_x_) + b(built_y_) + b(built_z_);
+         b(full_partner_) + b(split_) + b(mirror_) + b(pair_time_) + rows + b(kin_) +
+         b(last_collision_) + b(counter_) + b(next_) + b(queue_) + b(slot_) + b(built_x_) +
+         b(built_y_) + b(built_z_);
 }
 
 } // namespace fluidem

@@ -114,6 +114,11 @@ private:
   /// kNone if none. Reads only, so it may run for many particles at once.
   Event predict(const ParticleStore& p, std::uint32_t i, double now) const;
   void schedule(const ParticleStore& p, std::uint32_t i, double now);
+  /// The earliest wall event of a particle at xi, vi (time `now`) if before `best`.
+  void wall_event(const Kin& ki, const Vec3& xi, const Vec3& vi, double now, double& best,
+                  std::uint32_t& partner) const;
+  /// Every particle's first event at the start of a step (all clocks at `now`), into next_.
+  void first_events(double now);
   void process(ParticleStore& p, const Event& ev);
   /// The calendar (a binary heap of particles by the time of their current event).
   bool earlier(std::uint32_t i, std::uint32_t j) const;
@@ -134,6 +139,8 @@ private:
   std::array<int, 3> ncell_{1, 1, 1};
   std::vector<std::uint32_t> cell_start_, cell_particles_, particle_cell_, cell_fill_;
   std::vector<std::uint32_t> full_offset_, full_partner_;
+  std::vector<std::uint32_t> split_, mirror_; ///< first entry above i; the entry (j, i) of (i, j)
+  std::vector<double> pair_time_;             ///< per entry above the split: the pair's time
   std::vector<std::vector<std::uint32_t>> thread_rows_; ///< per-thread rows during a build
   std::vector<Kin> kin_; ///< copied in at the start of a step, out at its end
   std::vector<double> last_collision_;
