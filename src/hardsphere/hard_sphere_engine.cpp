@@ -457,22 +457,25 @@ void HardSphereEngine::check_no_overlap(const ParticleStore& p, double time) con
   // Every pair of the list once (j > i); the first overlapping particle (lowest index) is
   // reported, whatever the number of threads.
   const std::size_t n = p.size();
-  auto overlaps = [&](std::size_t i, std::uint32_t j) {
-    const double dx = min_image(p.x[j] - p.x[i], 0);
-    const double dy = min_image(p.y[j] - p.y[i], 1);
-    const double dz = min_image(p.z[j] - p.z[i], 2);
-    const double sigma = p.radius[i] + p.radius[j];
+  auto overlaps = [&](std::size_t i, std::uint32_t j) { // kin_: the positions at the end
+    const double dx = min_image(kin_[j].x - kin_[i].x, 0);
+    const double dy = min_image(kin_[j].y - kin_[i].y, 1);
+    const double dz = min_image(kin_[j].z - kin_[i].z, 2);
+    const double sigma = kin_[i].r + kin_[j].r;
     return dx * dx + dy * dy + dz * dz < sigma * sigma * (1.0 - 1e-6);
   };
   std::size_t first = n;
 #pragma omp parallel for schedule(static) reduction(min : first) if (n >= kParallelMin)
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::uint32_t e = full_offset_[i]; e < full_offset_[i + 1]; ++e)
-      if (full_partner_[e] > i && overlaps(i, full_partner_[e])) first = std::min(first, i);
+  for (std::size_t i = 0; i < n; ++i) {
+    bool any = false;
+    for (std::uint32_t e = split_[i]; e < full_offset_[i + 1]; ++e)
+      any |= overlaps(i, full_partner_[e]);
+    if (any) first = std::min(first, i);
+  }
   if (first == n) return;
   std::uint32_t partner = 0;
-  for (std::uint32_t e = full_offset_[first]; e < full_offset_[first + 1]; ++e)
-    if (full_partner_[e] > first && overlaps(first, full_partner_[e])) {
+  for (std::uint32_t e = split_[first]; e < full_offset_[first + 1]; ++e)
+    if (overlaps(first, full_partner_[e])) {
       partner = full_partner_[e];
       break;
     }
