@@ -453,10 +453,13 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
   if (!wall) schedule(p, b, ev.t);
 }
 
-void HardSphereEngine::check_no_overlap(const ParticleStore& p, double time) const {
-  // Every pair of the list once (j > i); the first overlapping particle (lowest index) is
-  // reported, whatever the number of threads.
+void HardSphereEngine::finish_step(ParticleStore& p) {
+  // Everybody to the end of the step, periodic axes wrapped (the list's build positions are
+  // not: displacements are taken minimum-image), into the particle store; then the overlap
+  // check over every pair of the list once (j > i), which reports the first overlapping
+  // particle (lowest index) whatever the number of threads. One parallel region for both.
   const std::size_t n = p.size();
+  const double time = t_end_;
   auto overlaps = [&](std::size_t i, std::uint32_t j) { // kin_: the positions at the end
     const double dx = min_image(kin_[j].x - kin_[i].x, 0);
     const double dy = min_image(kin_[j].y - kin_[i].y, 1);
@@ -464,13 +467,28 @@ void HardSphereEngine::check_no_overlap(const ParticleStore& p, double time) con
     const double sigma = kin_[i].r + kin_[j].r;
     return dx * dx + dy * dy + dz * dz < sigma * sigma * (1.0 - 1e-6);
   };
+  const auto& box = box_;
   std::size_t first = n;
-#pragma omp parallel for schedule(static) reduction(min : first) if (n >= kParallelMin)
-  for (std::size_t i = 0; i < n; ++i) {
-    bool any = false;
-    for (std::uint32_t e = split_[i]; e < full_offset_[i + 1]; ++e)
-      any |= overlaps(i, full_partner_[e]);
-    if (any) first = std::min(first, i);
+#pragma omp parallel if (n >= kParallelMin)
+  {
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      Kin& k = kin_[i];
+      advance_particle(k, t_end_ - k.t);
+      double* q[3] = {&k.x, &k.y, &k.z};
+      for (int ax = 0; ax < 3; ++ax)
+        if (box.periodic[ax])
+          *q[ax] -= box.length(ax) * std::floor((*q[ax] - box.lo[ax]) / box.length(ax));
+      p.x[i] = k.x, p.y[i] = k.y, p.z[i] = k.z;
+      p.vx[i] = k.vx, p.vy[i] = k.vy, p.vz[i] = k.vz;
+    }
+#pragma omp for schedule(static) reduction(min : first)
+    for (std::size_t i = 0; i < n; ++i) {
+      bool any = false;
+      for (std::uint32_t e = split_[i]; e < full_offset_[i + 1]; ++e)
+        any |= overlaps(i, full_partner_[e]);
+      if (any) first = std::min(first, i);
+    }
   }
   if (first == n) return;
   std::uint32_t partner = 0;
@@ -492,13 +510,15 @@ void HardSphereEngine::advance_particle(Kin& k, double a) const {
   k.vx += g_.x * a, k.vy += g_.y * a, k.vz += g_.z * a;
 }
 
-void HardSphereEngine::update_neighbour_list(const ParticleStore& p, double dt) {
+void HardSphereEngine::update_neighbour_list(const ParticleStore& p, double time, double dt) {
   // The list must hold every pair that can meet before the end of the step: a particle moves
   // at most s = 1.5 (v_max + |g| DT) DT in one step [Deen07 eq. 44] (the 1.5 allows for
   // collisions speeding it up), so the list built with skin `skin` stays valid while the
   // largest displacement since the build plus s is below skin / 2. It is rebuilt, with a skin
-  // of 8 s (valid for about four steps), only when that fails.
+  // of 8 s (valid for about four steps), only when that fails. The same pass copies the
+  // kinematics of the hot loops into kin_ (one cache line per particle, clocks at `time`).
   const std::size_t n = p.size();
+  kin_.resize(n);
   double vmax2 = 0.0, rmin = std::numeric_limits<double>::infinity(), moved2 = 0.0;
   const bool have = built_x_.size() == n;
 #pragma omp parallel for schedule(static) reduction(max                                            \
@@ -506,6 +526,7 @@ void HardSphereEngine::update_neighbour_list(const ParticleStore& p, double dt) 
     reduction(min                                                                                  \
               : rmin) if (n >= kParallelMin)
   for (std::size_t i = 0; i < n; ++i) {
+    kin_[i] = {p.x[i], p.y[i], p.z[i], time, p.vx[i], p.vy[i], p.vz[i], p.radius[i]};
     vmax2 = std::max(vmax2, p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
     rmin = std::min(rmin, p.radius[i]);
     if (have) {
@@ -530,17 +551,12 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
   const std::size_t n = p.size();
   g_ = Vec3{accel[0], accel[1], accel[2]};
   step_dt_ = dt;
-  update_neighbour_list(p, dt);
+  update_neighbour_list(p, time, dt);
   // Default: the impact speed after a fall through a thousandth of the smallest diameter,
   // sqrt(2 |g| 1e-3 d_min): a bed whose gaps are below that is at rest for every purpose.
   elastic_below_ =
       opts_.elastic_below ? *opts_.elastic_below : std::sqrt(2.0 * norm(g_) * 1e-3 * 2.0 * rmin_);
 
-  // The kinematics of the hot loops, one cache line per particle.
-  kin_.resize(n);
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (std::size_t i = 0; i < n; ++i)
-    kin_[i] = {p.x[i], p.y[i], p.z[i], time, p.vx[i], p.vy[i], p.vz[i], p.radius[i]};
   counter_.resize(n, 0);
   last_collision_.resize(n, -std::numeric_limits<double>::infinity());
   t_end_ = time + dt;
@@ -574,21 +590,7 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
           ev.t, opts_.max_events_per_particle));
     }
   }
-  // Everybody to the end of the step; periodic axes wrapped (the list's reference positions
-  // with them, so that displacements stay minimum-image).
-  const auto& box = box_;
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (std::uint32_t i = 0; i < n; ++i) {
-    Kin& k = kin_[i];
-    advance_particle(k, t_end_ - k.t);
-    double* q[3] = {&k.x, &k.y, &k.z};
-    for (int ax = 0; ax < 3; ++ax)
-      if (box.periodic[ax])
-        *q[ax] -= box.length(ax) * std::floor((*q[ax] - box.lo[ax]) / box.length(ax));
-    p.x[i] = k.x, p.y[i] = k.y, p.z[i] = k.z;
-    p.vx[i] = k.vx, p.vy[i] = k.vy, p.vz[i] = k.vz;
-  }
-  check_no_overlap(p, t_end_);
+  finish_step(p);
 }
 
 std::size_t HardSphereEngine::bytes() const {

@@ -91,7 +91,7 @@ private:
   /// The engine's own cell list: every pair (both directions, CSR by particle) closer than
   /// R_i + R_j + skin_ at the positions of `p`.
   void build_list(const ParticleStore& p);
-  void update_neighbour_list(const ParticleStore& p, double dt);
+  void update_neighbour_list(const ParticleStore& p, double time, double dt);
   /// Minimum-image separation along axis a (round to nearest even, as std::nearbyint in the
   /// default rounding mode, without the library call: exact for |d / l| < 2^51).
   double min_image(double d, int a) const {
@@ -126,7 +126,8 @@ private:
   void sift_down(std::uint32_t k);
   /// Make ev the current event of particle ev.a (ev.b == kNone: it has none).
   void set_event(const Event& ev);
-  void check_no_overlap(const ParticleStore& p, double time) const;
+  /// Flight to the end of the step, copy out, overlap check (InstabilityError on an overlap).
+  void finish_step(ParticleStore& p);
 
   int dimension_;
   int nspecies_;
