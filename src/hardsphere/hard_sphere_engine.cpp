@@ -16,8 +16,11 @@
 namespace fluidem {
 
 namespace {
-/// Below this many particles the per-step loops run on one thread (a fork costs more).
-constexpr std::size_t kParallelMin = 512;
+/// Below this many particles the per-step loops run on one thread, as in NeighbourList: a fork
+/// and its barriers cost more than the loops (and, on a machine whose cores are shared, a
+/// barrier can wait a whole time slice: the 2400-sphere bubble bed took 99 ms per step on two
+/// threads at load 12 with the loops parallel above 512 particles).
+constexpr std::size_t kParallelMin = 4096;
 
 hardsphere::CollisionLaw law_from(const MixedCoefficients& m) {
   return {m.restitution, m.friction, m.tangential_restitution};

@@ -39,8 +39,8 @@
 //     lets a row of discs span it with zero slack, a rigid jam in which hard spheres collide
 //     infinitely often (the stall guard then stops the run).
 // (e) The number of threads changes nothing: the per-step loops of the engine (list build,
-//     first events, flight to the end of the step, overlap check) run in OpenMP above 512
-//     particles, and a run of 1200 spheres (inelastic, frictional, gravity, walls and one
+//     first events, flight to the end of the step, overlap check) run in OpenMP above 4096
+//     particles, and a run of 5000 spheres (inelastic, frictional, gravity, walls and one
 //     periodic axis, so pairs, walls, the TC rules and list rebuilds all occur) gives bitwise
 //     identical positions, velocities, spins and collision counts on 1 and 2 threads.
 #include <gtest/gtest.h>
@@ -412,12 +412,12 @@ struct ThreadRun {
 ThreadRun run_on(int threads) {
   const int saved = omp_get_max_threads();
   omp_set_num_threads(threads);
-  const std::string text = header(3, -kG, {0.06, 0.06, 0.12}, "[true, false, false]") +
+  const std::string text = header(3, -kG, {0.1, 0.1, 0.16}, "[true, false, false]") +
                            walls(0.9, 0.3) + species("s", kD, kRho, 0.9, 0.3) +
-                           "[[insert]]\nspecies = \"s\"\ncount = 1200\nplacement = \"random\"\n"
+                           "[[insert]]\nspecies = \"s\"\ncount = 5000\nplacement = \"random\"\n"
                            "velocity_spread = 0.5\nseed = 3\n";
   Simulation sim(read_case_string(text, "threads.toml"));
-  sim.advance(300);
+  sim.advance(200);
   omp_set_num_threads(saved);
   const auto& p = sim.particles();
   ThreadRun r;
@@ -433,7 +433,7 @@ ThreadRun run_on(int threads) {
 
 TEST(HardSphereEngine, OneAndTwoThreadsGiveBitwiseIdenticalRuns) {
   const ThreadRun one = run_on(1), two = run_on(2);
-  std::cout << fmt::format("1200 spheres, 300 steps: {} collisions ({} with walls, {} elastic "
+  std::cout << fmt::format("5000 spheres, 200 steps: {} collisions ({} with walls, {} elastic "
                            "by the TC rules), {} list builds\n",
                            one.collisions, one.wall_collisions, one.tc, one.builds);
   ASSERT_GT(one.collisions, 1000) << "the case must collide";
