@@ -32,6 +32,8 @@
 #        THREADS  OpenMP threads of parts (a)-(c) (default 1, pinned to core 0; more: not pinned)
 #        BUBBLE_END      simulated seconds of the bubble runs (default 1.0)
 #        BUBBLE_THREADS  thread counts of the bubble runs (default "1 2")
+#        COMMIT   label of the rows (default: the checkout's commit; set it when FLUIDEM is another
+#                 build, e.g. a baseline)
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -77,7 +79,7 @@ fi
 
 CSV=$WORK/results.csv
 [ -f "$CSV" ] || echo "date,commit,case,N,dt,runs,collisions,loop_seconds,collisions_per_s,ns_per_collision,bytes_per_particle" >"$CSV"
-COMMIT=$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)
+COMMIT=${COMMIT:-$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)}
 STAMP=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 
 # run LOG ARGS...: one fluidem run; prints "collisions loop_seconds bytes_per_particle".
