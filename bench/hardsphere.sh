@@ -17,12 +17,23 @@
 #      costs O(log N) per event; everything else should be O(1)).
 #  (c) flow-step sweep at N = 10^4: DT from 2.5e-5 to 8e-4 s (the neighbour lists are rebuilt
 #      and every particle rescheduled once per DT, so the cost per collision depends on DT).
+#  (d) bubble: the Tsuji bed with the bubble at an orifice, cases/hoomans96/bubble_orifice.toml
+#      (2400 hard spheres coupled to the gas, ~3 million collisions per simulated second), for
+#      BUBBLE_END s (default 1) on 1 and 2 threads (BUBBLE_THREADS); reported: wall time per
+#      simulated second and its split from the run log's time lines: the engine ("time in
+#      contacts", hard_->advance), the gas and coupling, and the rest (outputs, setup of steps).
+#      One thread is pinned to core 0; two threads are not pinned.
 #
-# usage: bench/hardsphere.sh [PART ...]     PART: pouring, gas, sweep (default: all three)
+# usage: bench/hardsphere.sh [PART ...]     PART: pouring, gas, sweep, bubble (default: all four)
 #        bench/hardsphere.sh --data N FILE  write the N^3 lattice of the gas cases to FILE
 # env:   FLUIDEM  fluidem binary (default: build/fluidem; built in Release if missing)
 #        WORK     work folder (default: ${TMPDIR:-/tmp}/fluidem-bench-hs): data, logs, results.csv
 #        REPEATS  repeats of the 1k,10k,100k gas runs (default: "100 10 1")
+#        THREADS  OpenMP threads of parts (a)-(c) (default 1, pinned to core 0; more: not pinned)
+#        BUBBLE_END      simulated seconds of the bubble runs (default 1.0)
+#        BUBBLE_THREADS  thread counts of the bubble runs (default "1 2")
+#        COMMIT   label of the rows (default: the checkout's commit; set it when FLUIDEM is another
+#                 build, e.g. a baseline)
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -52,12 +63,13 @@ if [ "${1:-}" = "--data" ]; then
 fi
 
 PARTS=("$@")
-[ ${#PARTS[@]} -gt 0 ] || PARTS=(pouring gas sweep)
+[ ${#PARTS[@]} -gt 0 ] || PARTS=(pouring gas sweep bubble)
 want() { local p; for p in "${PARTS[@]}"; do [ "$p" = "$1" ] && return 0; done; return 1; }
 
 mkdir -p "$WORK"
+THREADS=${THREADS:-1}
 PIN=()
-if command -v taskset >/dev/null 2>&1; then PIN=(taskset -c 0); fi
+if [ "$THREADS" = 1 ] && command -v taskset >/dev/null 2>&1; then PIN=(taskset -c 0); fi
 if [ ! -x "$FLUIDEM" ]; then
   echo "building fluidem (Release) in $ROOT/build" >&2
   cmake -S "$ROOT" -B "$ROOT/build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
@@ -67,14 +79,14 @@ fi
 
 CSV=$WORK/results.csv
 [ -f "$CSV" ] || echo "date,commit,case,N,dt,runs,collisions,loop_seconds,collisions_per_s,ns_per_collision,bytes_per_particle" >"$CSV"
-COMMIT=$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)
+COMMIT=${COMMIT:-$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)}
 STAMP=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 
 # run LOG ARGS...: one fluidem run; prints "collisions loop_seconds bytes_per_particle".
 run() {
   local log=$1
   shift
-  "${PIN[@]}" "$FLUIDEM" run "$@" --threads 1 >"$log" 2>&1 || { tail -5 "$log" >&2; die "fluidem failed (log $log)"; }
+  "${PIN[@]}" "$FLUIDEM" run "$@" --threads "$THREADS" >"$log" 2>&1 || { tail -5 "$log" >&2; die "fluidem failed (log $log)"; }
   local coll secs bpp
   coll=$(awk '/ collisions, .* collisions per second of wall time/ {print $1}' "$log")
   secs=$(awk '/^done:/ {print $5}' "$log")
@@ -93,6 +105,33 @@ record() {
 fmt_rate() { awk -v r="$1" 'BEGIN {if (r >= 1e6) printf "%.2f M", r / 1e6; else printf "%.0f k", r / 1e3}'; }
 
 OUT=()
+
+# --- (d) the Tsuji bubble bed, coupled: wall time per simulated second and its split ---
+BUBBLE_END=${BUBBLE_END:-1.0}
+read -r -a BUBBLE_THREADS <<<"${BUBBLE_THREADS:-1 2}"
+if want bubble; then
+  BUBBLE=()
+  for th in "${BUBBLE_THREADS[@]}"; do
+    echo "== (d) bubble_orifice, $BUBBLE_END s, $th thread(s)" >&2
+    log=$WORK/bubble_t$th.log
+    pin=()
+    [ "$th" = 1 ] && command -v taskset >/dev/null 2>&1 && pin=(taskset -c 0)
+    "${pin[@]}" "$FLUIDEM" run "$ROOT/cases/hoomans96/bubble_orifice.toml" --out "$WORK/bubble_t$th" \
+      --force --threads "$th" --set "simulation.end_time=$BUBBLE_END" >"$log" 2>&1 ||
+      { tail -5 "$log" >&2; die "fluidem failed (log $log)"; }
+    read -r wall engine gas coll < <(awk '
+      /^done:/ {w = $5}
+      /^time in contacts/ {e = $4; for (i = 1; i < NF; i++) if ($i == "coupling") g = $(i + 1)}
+      / collisions, .* collisions per second of wall time/ {c = $1}
+      END {print w, e, g, c}' "$log")
+    [ -n "$wall" ] && [ -n "$engine" ] && [ -n "$gas" ] || die "no time lines in $log"
+    row=$(awk -v w="$wall" -v e="$engine" -v g="$gas" -v t="$BUBBLE_END" -v c="$coll" -v th="$th" 'BEGIN {
+      printf "| %d | %.1f | %.2f | %.2f | %.2f | %.2f | %.0f |", th, c / t / 1e3, w / t, e / t, g / t, (w - e - g) / t, c / e }')
+    echo "$STAMP,$COMMIT,bubble_orifice_t$th,2400,1e-4,1,$coll,$wall,engine=$engine,gas=$gas," >>"$CSV"
+    echo "threads=$th: wall $wall s, engine $engine s, gas+coupling $gas s, $coll collisions over $BUBBLE_END s" >&2
+    BUBBLE+=("$row")
+  done
+fi
 
 # --- (a) pouring ---
 if want pouring; then
@@ -165,7 +204,7 @@ if want sweep; then
 fi
 
 echo
-echo "commit $COMMIT, $STAMP, $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), one thread${PIN:+ pinned to core 0}"
+echo "commit $COMMIT, $STAMP, $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $THREADS thread(s)${PIN:+ pinned to core 0}; load: $(uptime | sed 's/.*load average/load average/')"
 for l in "${OUT[@]}"; do echo "$l"; done
 if want gas; then
   echo
@@ -181,5 +220,12 @@ if want sweep; then
   echo "| DT (s) | collisions | loop wall s | collisions/s | ns per collision | bytes/particle |"
   echo "|---|---|---|---|---|---|"
   printf '%s\n' "${SWEEP[@]}"
+fi
+if want bubble; then
+  echo
+  echo "(d) bubble_orifice (2400 hard spheres + gas), $BUBBLE_END s; seconds of wall time per simulated second"
+  echo "| threads | k collisions / sim. s | wall | engine (time in contacts) | gas and coupling | rest | collisions per engine second |"
+  echo "|---|---|---|---|---|---|---|"
+  printf '%s\n' "${BUBBLE[@]}"
 fi
 echo "(all rows appended to $CSV)"

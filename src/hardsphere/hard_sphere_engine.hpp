@@ -25,7 +25,7 @@
 
 #include "core/case_spec.hpp"
 #include "hardsphere/collision_operator.hpp"
-#include "neighbour/neighbour_list.hpp"
+#include "neighbour/neighbour_list.hpp" // BoxGeometry, NeighbourList::State (checkpoints)
 #include "particles/particle_store.hpp"
 
 namespace fluidem {
@@ -86,30 +86,69 @@ private:
     std::uint32_t a, b;   ///< b >= n: wall face b - n
     std::uint32_t ca, cb; ///< collision counters of a and b when scheduled
   };
-  struct Later {
-    bool operator()(const Event& x, const Event& y) const { return x.t > y.t; }
-  };
+  static constexpr std::uint32_t kNone = 0xffffffffu; ///< no partner, no calendar slot
 
-  void build_full_list(const ParticleStore& p);
-  void update_neighbour_list(const ParticleStore& p, double dt);
-  void advance_particle(ParticleStore& p, std::uint32_t i, double a) const;
+  /// The engine's own cell list: every pair (both directions, CSR by particle) closer than
+  /// R_i + R_j + skin_ at the positions of `p`.
+  void build_list(const ParticleStore& p);
+  void update_neighbour_list(const ParticleStore& p, double time, double dt);
+  /// Minimum-image separation along axis a (round to nearest even, as std::nearbyint in the
+  /// default rounding mode, without the library call: exact for |d / l| < 2^51).
+  double min_image(double d, int a) const {
+    if (!box_.periodic[a]) return d;
+    constexpr double magic = 6755399441055744.0; // 1.5 * 2^52
+    const double l = box_.length(a);
+    const double k = (d / l + magic) - magic;
+    return d - l * k;
+  }
+  /// Kinematics of the hot loops, one cache line per particle: position and velocity at the
+  /// particle's clock t (its lazy time, [Deen07 §4]), radius.
+  struct alignas(64) Kin {
+    double x, y, z, t, vx, vy, vz, r;
+  };
+  void advance_particle(Kin& k, double a) const;
   /// Time until a particle at distance `gap` from a wall, moving towards it at `u` and
   /// accelerated towards it at `gn`, touches it (infinity if never).
   double wall_time(double gap, double u, double gn) const;
+  /// The earliest event of particle i after `now` (before the end of the step); partner
+  /// kNone if none. Reads only, so it may run for many particles at once.
+  Event predict(const ParticleStore& p, std::uint32_t i, double now) const;
   void schedule(const ParticleStore& p, std::uint32_t i, double now);
+  /// The earliest wall event of a particle at xi, vi (time `now`) if before `best`.
+  void wall_event(const Kin& ki, const Vec3& xi, const Vec3& vi, double now, double& best,
+                  std::uint32_t& partner) const;
+  /// Every particle's first event at the start of a step (all clocks at `now`), into next_.
+  void first_events(double now);
   void process(ParticleStore& p, const Event& ev);
-  void push(const Event& ev);
-  void check_no_overlap(const ParticleStore& p, double time) const;
+  /// The calendar (a binary heap of particles by the time of their current event).
+  bool earlier(std::uint32_t i, std::uint32_t j) const;
+  void sift_up(std::uint32_t k);
+  void sift_down(std::uint32_t k);
+  /// Make ev the current event of particle ev.a (ev.b == kNone: it has none).
+  void set_event(const Event& ev);
+  /// Flight to the end of the step, copy out, overlap check (InstabilityError on an overlap).
+  void finish_step(ParticleStore& p);
 
   int dimension_;
   int nspecies_;
   std::vector<hardsphere::CollisionLaw> pair_law_, wall_law_;
   HardSphereSpec opts_;
-  NeighbourList nl_;
+  BoxGeometry box_;
+  double skin_ = 0.0;
+  // Cell grid of the last build and the full list (CSR: the partners of i are
+  // full_partner_[full_offset_[i] .. full_offset_[i + 1])).
+  std::array<int, 3> ncell_{1, 1, 1};
+  std::vector<std::uint32_t> cell_start_, cell_particles_, particle_cell_, cell_fill_;
   std::vector<std::uint32_t> full_offset_, full_partner_;
-  std::vector<double> clock_, last_collision_;
+  std::vector<std::uint32_t> split_, mirror_; ///< first entry above i; the entry (j, i) of (i, j)
+  std::vector<double> pair_time_;             ///< per entry above the split: the pair's time
+  std::vector<std::vector<std::uint32_t>> thread_rows_; ///< per-thread rows during a build
+  std::vector<Kin> kin_; ///< copied in at the start of a step, out at its end
+  std::vector<double> last_collision_;
   std::vector<std::uint32_t> counter_;
-  std::vector<Event> heap_;
+  std::vector<Event> next_;          ///< per particle: its current event
+  std::vector<std::uint32_t> queue_; ///< the calendar: particles with an event, a heap
+  std::vector<std::uint32_t> slot_;  ///< per particle: its place in queue_, or kNone
   std::vector<double> built_x_, built_y_, built_z_; ///< positions at the last list build
   long list_builds_ = 0;
   Vec3 g_;
