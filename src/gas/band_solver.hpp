@@ -40,7 +40,8 @@ public:
 private:
   std::size_t n_ = 0;
   int b_ = 0;
-  std::vector<double> a_; ///< row i: columns i - b .. i (the diagonal last)
+  std::vector<double> a_;   ///< row i: columns i - b .. i (the diagonal last)
+  std::vector<double> inv_; ///< 1 / L(i, i)
 };
 
 } // namespace fluidem::gas
