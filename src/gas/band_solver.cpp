@@ -5,29 +5,14 @@
 
 namespace fluidem::gas {
 
-namespace {
-/// sum_k a[k] b[k], k < len, in four interleaved partial sums (independent chains the compiler
-/// can pipeline; a fixed order, so the result does not depend on anything but the inputs).
-inline double dot(const double* a, const double* b, long len) {
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-  long k = 0;
-  for (; k + 4 <= len; k += 4) {
-    s0 += a[k] * b[k];
-    s1 += a[k + 1] * b[k + 1];
-    s2 += a[k + 2] * b[k + 2];
-    s3 += a[k + 3] * b[k + 3];
-  }
-  for (; k < len; ++k) s0 += a[k] * b[k];
-  return (s0 + s1) + (s2 + s3);
-}
-} // namespace
-
 BandCholesky::BandCholesky(std::array<int, 3> extent) {
   n_ = static_cast<std::size_t>(extent[0]) * static_cast<std::size_t>(extent[1]) *
        static_cast<std::size_t>(extent[2]);
   b_ = extent[2] > 1 ? extent[0] * extent[1] : (extent[1] > 1 ? extent[0] : 1);
   if (extent[0] == 1 && extent[1] == 1 && extent[2] == 1) b_ = 0;
-  a_.assign(n_ * static_cast<std::size_t>(b_ + 1), 0.0);
+  // Row k of U = L^T holds U(k, k .. k + b); b spare entries at the end keep the updates of the
+  // last rows inside the array (they only ever touch columns >= n, which are never read).
+  a_.assign((n_ + 1) * static_cast<std::size_t>(b_ + 1), 0.0);
   inv_.assign(n_, 0.0);
 }
 
@@ -35,49 +20,56 @@ void BandCholesky::clear() {
   std::fill(a_.begin(), a_.end(), 0.0);
 }
 
-// Row-oriented band Cholesky [Golub & Van Loan, Alg. 4.3.5]: for row i and column j <= i,
-//   L(i, j) = (A(i, j) - sum_{k < j} L(i, k) L(j, k)) / L(j, j),  L(i, i) = sqrt(A(i, i) - ...),
-// the sums running over the columns inside both rows' bands.
+// Right-looking band Cholesky on U = L^T stored by rows [Golub & Van Loan, Alg. 4.3.5 in its
+// outer-product form]: for k = 0 .. n-1,
+//   U(k, k) = sqrt(A(k, k)),  U(k, k+m) = A(k, k+m) / U(k, k)  (m = 1 .. b),
+//   A(k+i, k+i+m) -= U(k, k+i) U(k, k+i+m)  (i = 1 .. b, m = 0 .. b-i),
+// each update a contiguous axpy of two rows (no reduction chain: it vectorises).
 bool BandCholesky::factor() {
-  const std::size_t w = static_cast<std::size_t>(b_) + 1;
-  const long b = b_;
-  for (std::size_t i = 0; i < n_; ++i) {
-    double* ri = &a_[i * w]; // ri[b - (i - j)] = L(i, j)
-    const long li = static_cast<long>(i);
-    const long j0 = std::max(0L, li - b);
-    for (long j = j0; j <= li; ++j) {
-      const double* rj = &a_[static_cast<std::size_t>(j) * w];
-      const long k0 = std::max(j0, j - b); // columns shared by both bands
-      // L(i, k) = ri[b - (i - k)], L(j, k) = rj[b - (j - k)].
-      const double s = ri[b - (li - j)] - dot(ri + (b - (li - k0)), rj + (b - (j - k0)), j - k0);
-      if (j < li) {
-        ri[b - (li - j)] = s * inv_[static_cast<std::size_t>(j)];
-      } else {
-        if (!(s > 0.0)) return false;
-        ri[b] = std::sqrt(s);
-        inv_[i] = 1.0 / ri[b];
-      }
+  const std::size_t w = static_cast<std::size_t>(b_) + 1, b = static_cast<std::size_t>(b_);
+  for (std::size_t k = 0; k < n_; ++k) {
+    double* rk = &a_[k * w];
+    if (!(rk[0] > 0.0)) return false;
+    const double d = std::sqrt(rk[0]), inv = 1.0 / d;
+    rk[0] = d;
+    inv_[k] = inv;
+    const std::size_t last = std::min(b, n_ - 1 - k); // columns k+1 .. k+last exist
+    for (std::size_t m = 1; m <= last; ++m) rk[m] *= inv;
+    for (std::size_t i = 1; i <= last; ++i) {
+      const double u = rk[i];
+      if (u == 0.0) continue;
+      double* ri = &a_[(k + i) * w];
+      const double* src = rk + i;
+      const std::size_t len = last - i + 1;
+      for (std::size_t m = 0; m < len; ++m) ri[m] -= u * src[m];
     }
   }
   return true;
 }
 
 void BandCholesky::solve(const double* rhs, double* x) const {
-  const std::size_t w = static_cast<std::size_t>(b_) + 1;
-  const long b = b_, n = static_cast<long>(n_);
-  // L y = rhs (forward), row by row.
-  for (long i = 0; i < n; ++i) {
-    const double* ri = &a_[static_cast<std::size_t>(i) * w];
-    const long j0 = std::max(0L, i - b);
-    x[i] = (rhs[i] - dot(ri + (b - (i - j0)), x + j0, i - j0)) * inv_[static_cast<std::size_t>(i)];
+  const std::size_t w = static_cast<std::size_t>(b_) + 1, b = static_cast<std::size_t>(b_);
+  if (x != rhs) std::copy(rhs, rhs + n_, x);
+  // U^T y = rhs (forward), column-oriented: once y_k is final, remove it from rows k+1 .. k+b.
+  for (std::size_t k = 0; k < n_; ++k) {
+    const double* rk = &a_[k * w];
+    x[k] *= inv_[k];
+    const double yk = x[k];
+    const std::size_t last = std::min(b, n_ - 1 - k);
+    for (std::size_t m = 1; m <= last; ++m) x[k + m] -= rk[m] * yk;
   }
-  // L^T x = y (backward), column-oriented: after x_i is final, remove it from rows j < i.
-  for (long i = n - 1; i >= 0; --i) {
-    const double* ri = &a_[static_cast<std::size_t>(i) * w];
-    x[i] *= inv_[static_cast<std::size_t>(i)];
-    const double xi = x[i];
-    const long j0 = std::max(0L, i - b);
-    for (long j = j0; j < i; ++j) x[j] -= ri[b - (i - j)] * xi;
+  // U x = y (backward): x_k = (y_k - sum_m U(k, k+m) x_{k+m}) / U(k, k).
+  for (std::size_t k = n_; k-- > 0;) {
+    const double* rk = &a_[k * w];
+    const std::size_t last = std::min(b, n_ - 1 - k);
+    double s0 = 0.0, s1 = 0.0; // two partial sums, fixed order
+    std::size_t m = 1;
+    for (; m + 1 <= last; m += 2) {
+      s0 += rk[m] * x[k + m];
+      s1 += rk[m + 1] * x[k + m + 1];
+    }
+    if (m <= last) s0 += rk[m] * x[k + m];
+    x[k] = (x[k] - (s0 + s1)) * inv_[k];
   }
 }
 

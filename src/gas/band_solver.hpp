@@ -25,11 +25,13 @@ public:
   /// Multiply-adds of one factorisation, ~ N b^2 / 2.
   double factor_work() const { return 0.5 * static_cast<double>(n_) * b_ * b_; }
 
-  /// Lower band of row i: entry (i, i - off) for off = 0 (diagonal) .. b; zero it first with
-  /// clear(). Only the couplings of the 7-point stencil (off = 0, 1, e1, e1 e2) are set.
+  /// Entry (i, i - off) = (i - off, i) of the symmetric matrix, off = 0 (diagonal) .. b; zero
+  /// the band first with clear(). Only the couplings of the 7-point stencil (off = 0, 1, e1,
+  /// e1 e2) need to be set. (Stored as the upper band, row i - off, the factor's layout.)
   void clear();
   double& lower(std::size_t i, int off) {
-    return a_[i * static_cast<std::size_t>(b_ + 1) + static_cast<std::size_t>(b_ - off)];
+    return a_[(i - static_cast<std::size_t>(off)) * static_cast<std::size_t>(b_ + 1) +
+              static_cast<std::size_t>(off)];
   }
   /// Factorises in place. False if a pivot is not positive (not SPD to round-off): the band
   /// is then unusable until set again.
@@ -40,7 +42,7 @@ public:
 private:
   std::size_t n_ = 0;
   int b_ = 0;
-  std::vector<double> a_;   ///< row i: columns i - b .. i (the diagonal last)
+  std::vector<double> a_;   ///< row k: U(k, k .. k + b) of U = L^T (the diagonal first)
   std::vector<double> inv_; ///< 1 / L(i, i)
 };
 
