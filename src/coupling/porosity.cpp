@@ -115,13 +115,30 @@ double disc_quadrant_area(double r, double Y, double Z) {
   };
   // Chord length at y below z = Z: clamp(Z + s, 0, 2 s); the kinks are at |y| = yz.
   const double yz = std::sqrt(std::max(r * r - Z * Z, 0.0));
+  // P is only ever needed at -r, -yz, yz, r (the interval ends) and Y (an end cut by Y); P is
+  // odd (bitwise: y s and asin are), and P(r) = r^2 asin(1) / 2. So at most two asin calls.
+  static const double half_pi = std::asin(1.0);
+  const double Pr = 0.5 * (r * r * half_pi), Pyz = P(yz);
+  double PY = 0.0;
+  bool have_Y = false;
+  auto Pm = [&](double y) {
+    if (y == yz) return Pyz;
+    if (y == -yz) return -Pyz;
+    if (y == r) return Pr;
+    if (y == -r) return -Pr;
+    if (!have_Y) { // the only other argument: Y
+      PY = P(Y);
+      have_Y = true;
+    }
+    return PY;
+  };
   auto two_s = [&](double a, double b) {
     b = std::min(b, Y);
-    return b > a ? 2.0 * (P(b) - P(a)) : 0.0;
+    return b > a ? 2.0 * (Pm(b) - Pm(a)) : 0.0;
   };
   auto z_plus_s = [&](double a, double b) {
     b = std::min(b, Y);
-    return b > a ? Z * (b - a) + P(b) - P(a) : 0.0;
+    return b > a ? Z * (b - a) + Pm(b) - Pm(a) : 0.0;
   };
   if (Z >= 0.0) return two_s(-r, -yz) + z_plus_s(-yz, yz) + two_s(yz, r);
   return z_plus_s(-yz, yz);
