@@ -262,13 +262,17 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
     // One particle's share over the weights (index q[m], weight wt[m], m < nw).
     const auto deposit = [&](std::size_t i, const long* qs, const double* wt, std::size_t nw) {
       double wsum = 0.0;
-      for (std::size_t m = 0; m < nw; ++m)
-        if (solved_face(role[static_cast<std::size_t>(qs[m])])) wsum += wt[m];
+      bool solved[8] = {}; // stencils: nw <= 8; the porous cube's lists may be longer
+      for (std::size_t m = 0; m < nw; ++m) {
+        const bool sv = solved_face(role[static_cast<std::size_t>(qs[m])]);
+        if (m < 8) solved[m] = sv;
+        if (sv) wsum += wt[m];
+      }
       if (!(wsum > 0.0)) return;
       const double ci = f.coeff[i] * inv_v / wsum;
       for (std::size_t m = 0; m < nw; ++m) {
         const auto q = static_cast<std::size_t>(qs[m]);
-        if (!solved_face(role[q])) continue;
+        if (!(m < 8 ? solved[m] : solved_face(role[q]))) continue;
         const double w = wt[m] * ci;
         K[q] += w;
         Kus[q] += w * v[i];
@@ -276,10 +280,15 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
       }
     };
     const bool cached = f.face_stencils.size() == 3 * p.size();
+    const bool any_periodic = periodic[0] || periodic[1] || periodic[2];
     for (std::size_t i = 0; i < p.size(); ++i) {
       // The weights the particle's gas velocity came from (periodic images resolved).
       if (cached) {
         const Stencil& st = f.face_stencils[3 * i + static_cast<std::size_t>(d)];
+        if (!any_periodic) {
+          deposit(i, st.q.data(), st.w.data(), static_cast<std::size_t>(st.n));
+          continue;
+        }
         std::array<long, 8> qs{};
         for (std::size_t m = 0; m < static_cast<std::size_t>(st.n); ++m)
           qs[m] = periodic_image(g, periodic, d, st.q[m]);
