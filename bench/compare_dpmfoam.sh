@@ -44,8 +44,8 @@ echo "== fluidem $(cd "$ROOT" && git rev-parse --short HEAD 2>/dev/null || echo 
 if [[ ${REUSE_SETTLED:-0} == 1 && -d $D/$T0 ]]; then
   echo "== DPMFoam: reusing the settled case in $D"
   rm -rf "$D/postProcessing"
-  find "$D" -maxdepth 1 -regex '.*/[0-9.]+' | while read -r t; do
-    awk -v t="$(basename "$t")" -v t0=$T0 'BEGIN { exit !(t + 0 > t0 + 0) }' && rm -rf "$t"
+  for t in "$D"/[0-9]*; do # the time folders written after the settling
+    if awk -v t="$(basename "$t")" -v t0=$T0 'BEGIN { exit !(t + 0 > t0 + 0) }'; then rm -rf "$t"; fi
   done
   cp "$D/settled.U.air" "$D/$T0/U.air"
 else
