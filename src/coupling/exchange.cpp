@@ -21,6 +21,28 @@ bool solved_face(unsigned char r) {
   return r == gas::GasSolver::solved || r == gas::GasSolver::pressure_face;
 }
 
+/// Gas velocity and pressure gradient at a particle from its 3 face stencils: the arithmetic of
+/// velocity_and_pressure_gradient_at (interpolation.cpp) on stencils built before.
+void velocity_and_pressure_gradient(const gas::GasSolver& gs, const Stencil* st, Vec3& u,
+                                    Vec3& grad_p) {
+  const gas::GasGrid& g = gs.grid();
+  const std::vector<double>& p = gs.pressure();
+  for (int d = 0; d < 3; ++d) {
+    const Stencil& s = st[d];
+    const std::vector<double>& ud = gs.velocity(d);
+    const auto sd = static_cast<std::size_t>(g.stride[static_cast<std::size_t>(d)]);
+    double uv = 0.0, gv = 0.0;
+    for (int m = 0; m < s.n; ++m) {
+      const auto q = static_cast<std::size_t>(s.q[static_cast<std::size_t>(m)]);
+      const double w = s.w[static_cast<std::size_t>(m)];
+      uv += w * ud[q];
+      gv += w * (p[q + sd] - p[q]);
+    }
+    u[d] = uv;
+    grad_p[d] = gv / g.h[static_cast<std::size_t>(d)];
+  }
+}
+
 /// u_c: mean of the two faces of cell q (grid index) along d (the face at q is the HIGH one).
 double cell_gas_velocity(const gas::GasSolver& gs, long q, int d) {
   const std::vector<double>& u = gs.velocity(d);
@@ -106,7 +128,13 @@ void validate(const CouplingSettings& c, const gas::GasSettings& /*gas: Models A
 }
 
 void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingSettings& c) {
-  compute_porosity(gs.grid(), p, c.porosity, gs.porosity(), periodic_axes(gs));
+  PorosityScratch scratch;
+  update_porosity(gs, p, c, scratch);
+}
+
+void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingSettings& c,
+                     PorosityScratch& scratch) {
+  compute_porosity(gs.grid(), p, c.porosity, gs.porosity(), periodic_axes(gs), scratch);
 }
 
 void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
@@ -125,10 +153,12 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const double mu = gs.settings().viscosity;
   const bool model_a = gs.settings().model == gas::PressureModel::A;
   const Vec3 grav = gs.settings().gravity;
+  const bool stencils = c.porosity.method != PorosityMethod::porous_cube;
+  out.face_stencils.resize(stencils ? 3 * n : 0);
   drag::with_drag_closure(c.drag, [&](auto closure) {
     using C = decltype(closure);
     // Independent per particle: parallel, and the same result for any thread count.
-#pragma omp parallel if (n > 2048)
+#pragma omp parallel if (n >= parallel_particles)
     {
       ParticleMapping map(gs, c.porosity); // per thread: scratch space
 #pragma omp for schedule(static)
@@ -137,7 +167,13 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
         drag::DragInput in;
         in.d = 2.0 * p.radius[i];
         Vec3 u, gp;
-        map.velocity_and_pressure_gradient(x, in.d, u, gp);
+        if (stencils) { // [Hoomans96 eq. 40-41], the stencils kept for the rest of the step
+          Stencil* st = &out.face_stencils[3 * i];
+          face_stencils(gs.grid(), x, st);
+          velocity_and_pressure_gradient(gs, st, u, gp);
+        } else {
+          map.velocity_and_pressure_gradient(x, in.d, u, gp);
+        }
         map.porosity_and_density(x, in.d, in.eps, in.rho);
         in.mu = mu;
         in.d_mean = c.d_mean;
@@ -223,21 +259,43 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
       continue;
     }
     const std::vector<double>& v = d == 0 ? p.vx : (d == 1 ? p.vy : p.vz);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      // The weights the particle's gas velocity came from (periodic images resolved).
-      const CubeWeights& s = map.face_weights(d, p.position(i), 2.0 * p.radius[i]);
+    // One particle's share over the weights (index q[m], weight wt[m], m < nw).
+    const auto deposit = [&](std::size_t i, const long* qs, const double* wt, std::size_t nw) {
       double wsum = 0.0;
-      for (std::size_t m = 0; m < s.size(); ++m)
-        if (solved_face(role[static_cast<std::size_t>(s.q[m])])) wsum += s.w[m];
-      if (!(wsum > 0.0)) continue;
+      bool solved[8] = {}; // stencils: nw <= 8; the porous cube's lists may be longer
+      for (std::size_t m = 0; m < nw; ++m) {
+        const bool sv = solved_face(role[static_cast<std::size_t>(qs[m])]);
+        if (m < 8) solved[m] = sv;
+        if (sv) wsum += wt[m];
+      }
+      if (!(wsum > 0.0)) return;
       const double ci = f.coeff[i] * inv_v / wsum;
-      for (std::size_t m = 0; m < s.size(); ++m) {
-        const auto q = static_cast<std::size_t>(s.q[m]);
-        if (!solved_face(role[q])) continue;
-        const double w = s.w[m] * ci;
+      for (std::size_t m = 0; m < nw; ++m) {
+        const auto q = static_cast<std::size_t>(qs[m]);
+        if (!(m < 8 ? solved[m] : solved_face(role[q]))) continue;
+        const double w = wt[m] * ci;
         K[q] += w;
         Kus[q] += w * v[i];
-        if (model_b) src[q] -= s.w[m] * pr[i] * inv_v / wsum;
+        if (model_b) src[q] -= wt[m] * pr[i] * inv_v / wsum;
+      }
+    };
+    const bool cached = f.face_stencils.size() == 3 * p.size();
+    const bool any_periodic = periodic[0] || periodic[1] || periodic[2];
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      // The weights the particle's gas velocity came from (periodic images resolved).
+      if (cached) {
+        const Stencil& st = f.face_stencils[3 * i + static_cast<std::size_t>(d)];
+        if (!any_periodic) {
+          deposit(i, st.q.data(), st.w.data(), static_cast<std::size_t>(st.n));
+          continue;
+        }
+        std::array<long, 8> qs{};
+        for (std::size_t m = 0; m < static_cast<std::size_t>(st.n); ++m)
+          qs[m] = periodic_image(g, periodic, d, st.q[m]);
+        deposit(i, qs.data(), st.w.data(), static_cast<std::size_t>(st.n));
+      } else {
+        const CubeWeights& s = map.face_weights(d, p.position(i), 2.0 * p.radius[i]);
+        deposit(i, s.q.data(), s.w.data(), s.size());
       }
     }
   }
@@ -248,14 +306,17 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const std::size_t n = p.size();
   const bool model_a = gs.settings().model == gas::PressureModel::A;
   const bool scheme2 = f.scheme == ExchangeScheme::scheme2;
-#pragma omp parallel if (n > 2048)
+  const bool cached = f.face_stencils.size() == 3 * n;
+#pragma omp parallel if (n >= parallel_particles)
   {
     ParticleMapping map(gs, f.porosity); // per thread: scratch space
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec3 x = p.position(i);
       Vec3 u, gp;
-      map.velocity_and_pressure_gradient(x, 2.0 * p.radius[i], u, gp);
+      if (cached)
+        velocity_and_pressure_gradient(gs, &f.face_stencils[3 * i], u, gp);
+      else
+        map.velocity_and_pressure_gradient(p.position(i), 2.0 * p.radius[i], u, gp);
       Vec3 v = p.velocity(i);
       if (scheme2) { // s_i C_c (u_c,new - v_c): minus what the gas received [Chang08 eq. 2.11]
         const long q = f.cell[i];

@@ -81,6 +81,7 @@
 // per particle in all three schemes.
 #pragma once
 #include "coupling/drag/drag_model.hpp"
+#include "coupling/interpolation.hpp"
 #include "coupling/porosity.hpp"
 #include "gas/gas_solver.hpp"
 #include "particles/particle_store.hpp"
@@ -110,17 +111,30 @@ struct ParticleGasForces {
   std::vector<long> cell;         ///< schemes 1, 2: grid index of i's cell
   std::vector<double> cell_coeff; ///< schemes 1, 2: C_c = V_s,c K_c (/ eps_c in B), kg/s
   std::vector<double> cell_vx, cell_vy, cell_vz; ///< schemes 1, 2: v_c, m/s
+  /// Trilinear-stencil kernel (porosity by cell): the 3 face stencils of particle i at
+  /// 3 i + d, built once per flow step by compute_particle_forces and reused by
+  /// deposit_momentum_source and update_particle_forces, which therefore need the particles
+  /// at the positions compute_particle_forces saw (as in a flow step: the particles do not move
+  /// within it). Empty for the porous cube.
+  std::vector<Stencil> face_stencils;
   void resize(std::size_t n);
 };
 
 /// Sets gs.porosity() (interior cells) from the particles (porosity.hpp).
 void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingSettings& c);
+/// The same with caller-kept work space (no allocation once warmed up).
+void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingSettings& c,
+                     PorosityScratch& scratch);
 
 /// Gas -> particles: reads gs velocity, pressure, porosity, density and p.x/y/z, vx/vy/vz,
 /// radius, mass; writes `out` (and out.scheme = c.scheme; the cell averages for schemes 1, 2).
 /// The store is not modified (see add_forces()).
 void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
                              const CouplingSettings& c, ParticleGasForces& out);
+
+/// The particle loops of compute_particle_forces and update_particle_forces run with OpenMP
+/// threads from this many particles on (per-particle results: independent of the thread count).
+inline constexpr std::size_t parallel_particles = 256;
 
 /// Particles -> gas: overwrites gs.drag_coefficient(d), drag_velocity_term(d) and
 /// explicit_source(d) for all d (the latter 0 in Model A, minus the buoyancy terms f.pres_* in

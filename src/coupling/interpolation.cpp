@@ -58,6 +58,55 @@ Stencil face_stencil(const gas::GasGrid& g, int d, const Vec3& x) {
   return tensor(g, i0, t, active);
 }
 
+void face_stencils(const gas::GasGrid& g, const Vec3& x, Stencil* out) {
+  // Per axis the two node lattices of face_stencil: the faces normal to it (shift 0, lower
+  // node 0..n-1) and the cell centres with the ghosts (shift -1/2, lower node 0..n); the
+  // same arithmetic as axis(), so the stencils are bitwise those of face_stencil.
+  const bool two_d = g.dimension == 2;
+  std::array<int, 3> i_face{1, 1, 1}, i_cell{1, 1, 1};
+  std::array<double, 3> t_face{0.0, 0.0, 0.0}, t_cell{0.0, 0.0, 0.0};
+  for (int e = 0; e < 3; ++e) {
+    if (two_d && e == 1) continue; // one cell across y: i0 = 1, inactive
+    axis(x[e], g.lo[e], g.h[e], 0.0, 0, g.n[e] - 1, i_face[e], t_face[e]);
+    axis(x[e], g.lo[e], g.h[e], -0.5, 0, g.n[e], i_cell[e], t_cell[e]);
+  }
+  const long sy = g.stride[1], sz = g.stride[2];
+  for (int d = 0; d < 3; ++d) {
+    Stencil& s = out[d];
+    if (two_d && d == 1) {
+      s.n = 0;
+      continue;
+    }
+    const auto sel = [&](int e, int& i0, double& t) {
+      i0 = e == d ? i_face[e] : i_cell[e];
+      t = e == d ? t_face[e] : t_cell[e];
+    };
+    int ix, iy, iz;
+    double tx, ty, tz;
+    sel(0, ix, tx);
+    sel(1, iy, ty);
+    sel(2, iz, tz);
+    const double wx[2] = {1.0 - tx, tx}, wz[2] = {1.0 - tz, tz};
+    const long base = g.idx(ix, iy, iz);
+    if (two_d) { // tensor(): nodes in the order (x0 z0), (x1 z0), (x0 z1), (x1 z1)
+      for (int m = 0; m < 4; ++m) {
+        const int bx = m & 1, bz = m >> 1;
+        s.q[static_cast<std::size_t>(m)] = base + bx + bz * sz;
+        s.w[static_cast<std::size_t>(m)] = wx[bx] * wz[bz];
+      }
+      s.n = 4;
+      continue;
+    }
+    const double wy[2] = {1.0 - ty, ty};
+    for (int m = 0; m < 8; ++m) {
+      const int bx = m & 1, by = (m >> 1) & 1, bz = m >> 2;
+      s.q[static_cast<std::size_t>(m)] = base + bx + by * sy + bz * sz;
+      s.w[static_cast<std::size_t>(m)] = wx[bx] * wy[by] * wz[bz];
+    }
+    s.n = 8;
+  }
+}
+
 Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool, 3>& periodic) {
   std::array<int, 3> i0{1, 1, 1};
   std::array<double, 3> t{0.0, 0.0, 0.0};
@@ -121,8 +170,10 @@ void velocity_and_pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x, 
                                        Vec3& grad_p) {
   const gas::GasGrid& g = gs.grid();
   const std::vector<double>& p = gs.pressure();
+  Stencil st[3];
+  face_stencils(g, x, st);
   for (int d = 0; d < 3; ++d) {
-    const Stencil s = face_stencil(g, d, x);
+    const Stencil& s = st[d];
     const std::vector<double>& ud = gs.velocity(d);
     const auto sd = static_cast<std::size_t>(g.stride[d]);
     double uv = 0.0, gv = 0.0;

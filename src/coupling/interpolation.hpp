@@ -27,6 +27,9 @@ struct Stencil {
 /// Stencil of velocity component d (faces normal to d) at point x. Points outside the domain
 /// are clamped onto it.
 Stencil face_stencil(const gas::GasGrid& g, int d, const Vec3& x);
+/// The stencils of all three components at x into out[0..2] (out[1].n = 0 in 2-D): bitwise
+/// face_stencil(g, d, x) for d = 0, 1, 2, the axis positions shared between them.
+void face_stencils(const gas::GasGrid& g, const Vec3& x, Stencil* out);
 /// Stencil of the cell centres at point x: interior centres along walled axes (clamped, zero
 /// gradient at the boundary), ghost centres (periodic images) included along periodic axes.
 Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool, 3>& periodic);

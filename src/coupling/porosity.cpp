@@ -115,13 +115,30 @@ double disc_quadrant_area(double r, double Y, double Z) {
   };
   // Chord length at y below z = Z: clamp(Z + s, 0, 2 s); the kinks are at |y| = yz.
   const double yz = std::sqrt(std::max(r * r - Z * Z, 0.0));
+  // P is only ever needed at -r, -yz, yz, r (the interval ends) and Y (an end cut by Y); P is
+  // odd (bitwise: y s and asin are), and P(r) = r^2 asin(1) / 2. So at most two asin calls.
+  static const double half_pi = std::asin(1.0);
+  const double Pr = 0.5 * (r * r * half_pi), Pyz = P(yz);
+  double PY = 0.0;
+  bool have_Y = false;
+  auto Pm = [&](double y) {
+    if (y == yz) return Pyz;
+    if (y == -yz) return -Pyz;
+    if (y == r) return Pr;
+    if (y == -r) return -Pr;
+    if (!have_Y) { // the only other argument: Y
+      PY = P(Y);
+      have_Y = true;
+    }
+    return PY;
+  };
   auto two_s = [&](double a, double b) {
     b = std::min(b, Y);
-    return b > a ? 2.0 * (P(b) - P(a)) : 0.0;
+    return b > a ? 2.0 * (Pm(b) - Pm(a)) : 0.0;
   };
   auto z_plus_s = [&](double a, double b) {
     b = std::min(b, Y);
-    return b > a ? Z * (b - a) + P(b) - P(a) : 0.0;
+    return b > a ? Z * (b - a) + Pm(b) - Pm(a) : 0.0;
   };
   if (Z >= 0.0) return two_s(-r, -yz) + z_plus_s(-yz, yz) + two_s(yz, r);
   return z_plus_s(-yz, yz);
@@ -190,10 +207,114 @@ int wrap_index(int i, int n) {
 int raw_cell(const gas::GasGrid& g, int d, double x) {
   return static_cast<int>(std::floor((x - g.lo[d]) / g.h[d])) + 1;
 }
+
+/// Particles from which the per-particle loops of solid_fraction run threaded (a parallel
+/// region costs a few microseconds; one particle's exact volumes ~0.3 us).
+constexpr std::size_t parallel_particles = 256;
+
+/// The cells the sphere of particle i covers, c0..c1 per axis (1..1 across y in 2-D); along
+/// periodic axes on the unwrapped index range (folded onto their images by the caller).
+struct CellRange {
+  std::array<int, 3> c0{1, 1, 1}, c1{1, 1, 1};
+  long count() const {
+    return static_cast<long>(c1[0] - c0[0] + 1) * (c1[1] - c0[1] + 1) * (c1[2] - c0[2] + 1);
+  }
+};
+
+CellRange covered_cells(const gas::GasGrid& g, const Vec3& x, double R, int na,
+                        const std::array<int, 3>& axes, const std::array<bool, 3>& wrap) {
+  CellRange r;
+  for (int m = 0; m < na; ++m) {
+    const int d = axes[static_cast<std::size_t>(m)];
+    if (wrap[d]) {
+      r.c0[d] = raw_cell(g, d, x[d] - R);
+      r.c1[d] = raw_cell(g, d, x[d] + R);
+      continue;
+    }
+    // GasGrid::cell_of along d alone.
+    const auto cell = [&](double v) {
+      const int i = static_cast<int>((v - g.lo[d]) / g.h[d]) + 1;
+      return i < 1 ? 1 : (i > g.n[d] ? g.n[d] : i);
+    };
+    r.c0[d] = cell(x[d] - R);
+    r.c1[d] = cell(x[d] + R);
+  }
+  return r;
+}
+
+/// [Deen07 eq. 33]: the exact volume (2-D: area) of sphere i inside each cell of its range,
+/// divided by the cell measure `measure`, written to cell[e], part[e] from e = first on, cells in
+/// the order k, j, i (i fastest). Each cell is the inclusion-exclusion of the ball octants (2-D:
+/// disc quadrants) at its 8 (4) corners, as sphere_box_volume (disc_rect_area) does; a corner
+/// is shared by up to 8 (4) cells, so the octant volume of each grid node of the range is
+/// evaluated once (nodes at lo + (m - 1) h, m the cell whose low face they are on).
+void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const CellRange& r,
+                       bool two_d, const std::array<bool, 3>& wrap, double measure, long* cell,
+                       double* part) {
+  constexpr int max_nodes = 4; // per axis for the node table; larger ranges: corners directly
+  std::array<int, 3> nn{};
+  for (int d = 0; d < 3; ++d) nn[d] = r.c1[d] - r.c0[d] + 2;
+  // Node offsets from the centre per axis (m = c0 .. c1 + 1).
+  auto node = [&](int d, int m) { return g.lo[d] + (m - 1) * g.h[d] - x[d]; };
+  const bool table = two_d ? (nn[0] <= max_nodes && nn[2] <= max_nodes)
+                           : (nn[0] <= max_nodes && nn[1] <= max_nodes && nn[2] <= max_nodes);
+  std::array<double, max_nodes * max_nodes * max_nodes> oct{};
+  auto at = [&](int a, int b, int c) { // table index of node (a, b, c), offsets from c0
+    return static_cast<std::size_t>(a + max_nodes * (b + max_nodes * c));
+  };
+  if (table) {
+    for (int c = 0; c < (two_d ? 1 : nn[2]); ++c)
+      for (int b = 0; b < (two_d ? nn[2] : nn[1]); ++b)
+        for (int a = 0; a < nn[0]; ++a) {
+          if (two_d) // node (a, b) in x-z
+            oct[at(a, b, 0)] = disc_quadrant_area(R, node(0, r.c0[0] + a), node(2, r.c0[2] + b));
+          else
+            oct[at(a, b, c)] = ball_octant_volume(R, node(0, r.c0[0] + a), node(1, r.c0[1] + b),
+                                                  node(2, r.c0[2] + c));
+        }
+  }
+  long e = 0;
+  for (int k = r.c0[2]; k <= r.c1[2]; ++k)
+    for (int j = r.c0[1]; j <= r.c1[1]; ++j)
+      for (int ii = r.c0[0]; ii <= r.c1[0]; ++ii, ++e) {
+        const int a = ii - r.c0[0], b = j - r.c0[1], c = k - r.c0[2];
+        double v = 0.0;
+        if (two_d) {
+          // disc_rect_area: Q(x1, z1) - Q(x0, z1) - Q(x1, z0) + Q(x0, z0).
+          auto Q = [&](int da, int dc) {
+            return table ? oct[at(a + da, c + dc, 0)]
+                         : disc_quadrant_area(R, node(0, ii + da), node(2, k + dc));
+          };
+          v = Q(1, 1) - Q(0, 1) - Q(1, 0) + Q(0, 0);
+        } else {
+          // sphere_box_volume: corner m (bit set: high side), sign (-1)^(low sides).
+          for (int m = 0; m < 8; ++m) {
+            const int da = m & 1, db = (m >> 1) & 1, dc = (m >> 2) & 1;
+            const double o =
+                table ? oct[at(a + da, b + db, c + dc)]
+                      : ball_octant_volume(R, node(0, ii + da), node(1, j + db), node(2, k + dc));
+            const int n_lo = 3 - da - db - dc;
+            v += (n_lo % 2 ? -1.0 : 1.0) * o;
+          }
+        }
+        const int wi = wrap[0] ? wrap_index(ii, g.n[0]) : ii;
+        const int wj = wrap[1] ? wrap_index(j, g.n[1]) : j;
+        const int wk = wrap[2] ? wrap_index(k, g.n[2]) : k;
+        cell[e] = g.idx(wi, wj, wk);
+        part[e] = v / measure;
+      }
+}
 } // namespace
 
 void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
                     std::vector<double>& out, const std::array<bool, 3>& periodic) {
+  PorosityScratch scratch;
+  solid_fraction(g, p, s, out, periodic, scratch);
+}
+
+void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
+                    std::vector<double>& out, const std::array<bool, 3>& periodic,
+                    PorosityScratch& scratch) {
   out.assign(g.size(), 0.0);
   const bool two_d = g.dimension == 2;
   const std::array<int, 3> axes_3d{0, 1, 2};
@@ -210,7 +331,7 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
     // [Deen07 eq. 36-37]: the cube of side a d carries the particle's volume (2-D: disc area)
     // spread uniformly; the cell gets the fraction of the cube inside it, the weights of
     // cube_mapping.hpp (shifted into the domain at walls, wrapped at periodic axes).
-    CubeWeights w;
+    CubeWeights& w = scratch.cube;
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double R = p.radius[i];
       const double measure = two_d ? pi * R * R : 4.0 / 3.0 * pi * R * R * R;
@@ -220,49 +341,44 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
     }
     return;
   }
-  for (std::size_t i = 0; i < p.size(); ++i) {
+  // Cell method: each particle's parts are computed independently (threaded), then added to
+  // the cells in particle order by one thread, so the sums do not depend on the thread count.
+  const std::size_t n = p.size();
+  std::vector<long>& offset = scratch.offset;
+  offset.resize(n + 1);
+  offset[0] = 0;
+#pragma omp parallel for schedule(static) if (n >= parallel_particles)
+  for (std::size_t i = 0; i < n; ++i)
+    offset[i + 1] = covered_cells(g, p.position(i), p.radius[i], na, axes, wrap).count();
+  for (std::size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
+  const auto total = static_cast<std::size_t>(offset[n]);
+  if (scratch.cell.size() < total) { // with slack: the count changes a little from step to step
+    scratch.cell.resize(total + total / 4);
+    scratch.part.resize(total + total / 4);
+  }
+  long* cell = scratch.cell.data();
+  double* part = scratch.part.data();
+#pragma omp parallel for schedule(static) if (n >= parallel_particles)
+  for (std::size_t i = 0; i < n; ++i) {
     const Vec3 x = p.position(i);
     const double R = p.radius[i];
-    // The cells the sphere covers; along periodic axes on the unwrapped index range, folded
-    // onto their images.
-    std::array<int, 3> c0{1, 1, 1}, c1{1, 1, 1};
-    for (int m = 0; m < na; ++m) {
-      const int d = axes[static_cast<std::size_t>(m)];
-      if (wrap[d]) {
-        c0[d] = raw_cell(g, d, x[d] - R);
-        c1[d] = raw_cell(g, d, x[d] + R);
-        continue;
-      }
-      Vec3 a = x, b = x;
-      a[d] -= R;
-      b[d] += R;
-      c0[d] = g.cell_of(a)[d];
-      c1[d] = g.cell_of(b)[d];
-    }
-    for (int k = c0[2]; k <= c1[2]; ++k)
-      for (int j = c0[1]; j <= c1[1]; ++j)
-        for (int ii = c0[0]; ii <= c1[0]; ++ii) {
-          std::array<double, 3> blo{}, bhi{};
-          const std::array<int, 3> ijk{ii, j, k};
-          for (int d = 0; d < 3; ++d) {
-            blo[d] = g.lo[d] + (ijk[d] - 1) * g.h[d];
-            bhi[d] = blo[d] + g.h[d];
-          }
-          // [Deen07 eq. 33]: the exact volume (2-D: area) of the particle inside the cell.
-          const double part = two_d ? disc_rect_area(x[0], x[2], R, blo[0], bhi[0], blo[2], bhi[2])
-                                    : sphere_box_volume(x, R, blo, bhi);
-          const int wi = wrap[0] ? wrap_index(ii, g.n[0]) : ii;
-          const int wj = wrap[1] ? wrap_index(j, g.n[1]) : j;
-          const int wk = wrap[2] ? wrap_index(k, g.n[2]) : k;
-          out[static_cast<std::size_t>(g.idx(wi, wj, wk))] += part / cell_measure;
-        }
+    const CellRange r = covered_cells(g, x, R, na, axes, wrap);
+    sphere_cell_parts(g, x, R, r, two_d, wrap, cell_measure, cell + offset[i], part + offset[i]);
   }
+  for (std::size_t e = 0; e < total; ++e) out[static_cast<std::size_t>(cell[e])] += part[e];
 }
 
 void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
                       std::vector<double>& eps, const std::array<bool, 3>& periodic) {
-  std::vector<double> solid;
-  solid_fraction(g, p, s, solid, periodic);
+  PorosityScratch scratch;
+  compute_porosity(g, p, s, eps, periodic, scratch);
+}
+
+void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
+                      std::vector<double>& eps, const std::array<bool, 3>& periodic,
+                      PorosityScratch& scratch) {
+  std::vector<double>& solid = scratch.solid;
+  solid_fraction(g, p, s, solid, periodic, scratch);
   eps.resize(g.size(), 1.0);
   for (int k = 1; k <= g.n[2]; ++k)
     for (int j = 1; j <= g.n[1]; ++j)

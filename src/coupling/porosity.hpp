@@ -17,6 +17,7 @@
 #pragma once
 #include "core/coupling_settings.hpp"
 #include "core/vec3.hpp"
+#include "coupling/cube_mapping.hpp"
 #include "gas/gas_grid.hpp"
 #include "particles/particle_store.hpp"
 #include <array>
@@ -48,16 +49,37 @@ inline constexpr double min_porosity = 1e-6;
 /// [Hoomans96 eq. 49]: 3-D porosity from the 2-D (area) porosity of a disc layer.
 double porosity_2d_to_3d(double eps_2d);
 
+/// Work space of solid_fraction / compute_porosity, kept between calls by the caller so that
+/// a flow step does not allocate (the per-particle parts of the cell method, the solid field,
+/// the porous cube's weights).
+struct PorosityScratch {
+  std::vector<long> offset; ///< cell method: first entry of particle i (size n + 1)
+  std::vector<long> cell;   ///< cell method: grid index of each entry
+  std::vector<double> part; ///< cell method: solid fraction of the entry's cell from its particle
+  std::vector<double> solid;
+  CubeWeights cube;
+};
+
 /// Solid volume fraction (1 - eps) per cell (padded layout of the grid; ghosts set to 0):
 /// 3-D: solid volume / V_cell; 2-D: solid AREA fraction in the x-z plane, before eq. 49.
 /// `periodic` per axis (y is ignored on 2-D grids).
+/// Cell method: the particles' parts are computed independently (OpenMP threads from a few
+/// hundred particles on) and then summed per cell in particle order by one thread: the result
+/// does not depend on the number of threads (bitwise).
 void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
                     std::vector<double>& out, const std::array<bool, 3>& periodic = {});
+/// The same with caller-kept work space (no allocation once warmed up).
+void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
+                    std::vector<double>& out, const std::array<bool, 3>& periodic,
+                    PorosityScratch& scratch);
 
 /// Porosity of every interior cell into eps (size = g.size()); ghosts along periodic axes get
 /// the images, other ghosts are untouched. 2-D grids use [Hoomans96 eq. 49]. Throws
 /// InstabilityError if a cell's porosity is below min_porosity.
 void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
                       std::vector<double>& eps, const std::array<bool, 3>& periodic);
+void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
+                      std::vector<double>& eps, const std::array<bool, 3>& periodic,
+                      PorosityScratch& scratch);
 
 } // namespace fluidem::coupling

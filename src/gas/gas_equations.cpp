@@ -241,8 +241,7 @@ void GasSolver::solve_momentum(int d, double dt) {
     }
   }
   const int ny = g_.n[1] - lo[1] + 1, rows = ny * (g_.n[2] - lo[2] + 1);
-#pragma omp parallel for schedule(static) if (parallel_)
-  for (int r = 0; r < rows; ++r) {
+  const auto assemble_row = [&](int r) {
     const int j = lo[1] + r % ny, k = lo[2] + r / ny;
     const bool inside = j >= in_lo[1] && j <= in_hi[1] && k >= in_lo[2] && k <= in_hi[2];
     const int i0 = inside ? std::max(in_lo[0], lo[0]) : g_.n[0] + 1;
@@ -250,6 +249,12 @@ void GasSolver::solve_momentum(int d, double dt) {
     for (int i = lo[0]; i < i0 && i <= g_.n[0]; ++i) row.template operator()<false>(i, j, k);
     for (int i = i0; i <= i1; ++i) row.template operator()<true>(i, j, k);
     for (int i = std::max(i1 + 1, i0); i <= g_.n[0]; ++i) row.template operator()<false>(i, j, k);
+  };
+  if (parallel_) { // unthreaded: no OpenMP region at all (its runtime call shows on small grids)
+#pragma omp parallel for schedule(static)
+    for (int r = 0; r < rows; ++r) assemble_row(r);
+  } else {
+    for (int r = 0; r < rows; ++r) assemble_row(r);
   }
   LinearSolveStats st;
   if (lin_.momentum == LinearSolverOptions::Momentum::gauss_seidel) {
@@ -277,34 +282,41 @@ void GasSolver::solve_momentum(int d, double dt) {
 void GasSolver::solve_pressure_correction(double dt) {
   const double V = g_.cell_volume();
   const double area[3] = {g_.face_area(0), g_.face_area(1), g_.face_area(2)};
-#pragma omp parallel for collapse(2) schedule(static) if (parallel_)
-  for (int k = 1; k <= g_.n[2]; ++k)
-    for (int j = 1; j <= g_.n[1]; ++j)
-      for (int i = 1; i <= g_.n[0]; ++i) {
-        const long q = g_.idx(i, j, k);
-        double R = V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
-        double diag = psi_ * eps_[q] * V / dt;
-        for (int e = 0; e < 3; ++e) {
-          const long se = g_.stride[e];
-          R += F_[e][q] - F_[e][q - se];
-          for (int side = 0; side < 2; ++side) {
-            const long f = side == 1 ? q : q - se;
-            const unsigned char r = role_[e][f];
-            slot(sys_, e, side)[q] = 0.0;
-            if (r != solved && r != periodic_copy && r != pressure_face) continue;
-            const long up = u_[e][f] >= 0.0 ? f : f + se;
-            const double c = eps_[up] * rho_[up] * area[e] * dcoef_[e][f];
-            if (r == pressure_face) {
-              diag += 2.0 * c; // p'_ghost = -p'_P: the pressure on the face is fixed
-            } else {
-              diag += c;
-              slot(sys_, e, side)[q] = -c;
-            }
+  const auto assemble = [&](int k, int j) {
+    for (int i = 1; i <= g_.n[0]; ++i) {
+      const long q = g_.idx(i, j, k);
+      double R = V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
+      double diag = psi_ * eps_[q] * V / dt;
+      for (int e = 0; e < 3; ++e) {
+        const long se = g_.stride[e];
+        R += F_[e][q] - F_[e][q - se];
+        for (int side = 0; side < 2; ++side) {
+          const long f = side == 1 ? q : q - se;
+          const unsigned char r = role_[e][f];
+          slot(sys_, e, side)[q] = 0.0;
+          if (r != solved && r != periodic_copy && r != pressure_face) continue;
+          const long up = u_[e][f] >= 0.0 ? f : f + se;
+          const double c = eps_[up] * rho_[up] * area[e] * dcoef_[e][f];
+          if (r == pressure_face) {
+            diag += 2.0 * c; // p'_ghost = -p'_P: the pressure on the face is fixed
+          } else {
+            diag += c;
+            slot(sys_, e, side)[q] = -c;
           }
         }
-        sys_.diag[q] = diag;
-        sys_.rhs[q] = -R;
       }
+      sys_.diag[q] = diag;
+      sys_.rhs[q] = -R;
+    }
+  };
+  if (parallel_) { // unthreaded: no OpenMP region at all
+#pragma omp parallel for collapse(2) schedule(static)
+    for (int k = 1; k <= g_.n[2]; ++k)
+      for (int j = 1; j <= g_.n[1]; ++j) assemble(k, j);
+  } else {
+    for (int k = 1; k <= g_.n[2]; ++k)
+      for (int j = 1; j <= g_.n[1]; ++j) assemble(k, j);
+  }
   if (!compressible_ && !bc_.any_pressure()) {
     // Pressure fixed up to a constant: pin the level by doubling one diagonal (the system is
     // consistent, so its solution with p'(1,1,1) = 0 is unchanged).

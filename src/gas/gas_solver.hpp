@@ -35,8 +35,18 @@ struct LinearSolverOptions {
   enum class Momentum { gauss_seidel, hypre };
   Momentum momentum = Momentum::gauss_seidel;
   int momentum_max_sweeps = 50;
-  /// Pressure correction: hypre PCG with this preconditioner and set-up reuse.
-  StructSolverOptions pressure;
+  /// Pressure correction: banded Cholesky on small grids (up to direct_max_work), else hypre
+  /// PCG with this preconditioner and set-up reuse.
+  StructSolverOptions pressure = default_pressure_options();
+
+  /// The defaults with the direct solver on for factorisations of up to 2e6 multiply-adds
+  /// (e.g. 1500 cells with a band of 50; the Tsuji grid 15 x 25 needs 4.2e4): measured
+  /// faster than hypre PCG + PFMG there (bench/gas_bench.cpp).
+  static StructSolverOptions default_pressure_options() {
+    StructSolverOptions o;
+    o.direct_max_work = 2e6;
+    return o;
+  }
 };
 
 /// Work done by the linear solvers since construction (for benchmarks and diagnostics).

@@ -43,8 +43,9 @@ double RedBlackGaussSeidel::half_sweep(const StencilSystem& s, std::vector<doubl
   double* x = xv.data();
   double* row_sum = row_sum_.data();
   const double* zeros = zeros_.data();
-#pragma omp parallel for schedule(static) if (parallel_)
-  for (int r = 0; r < rows_; ++r) {
+  // One row; the unthreaded path calls it without entering an OpenMP region at all (a region
+  // with if(false) still costs a runtime call per half-sweep, which shows on small grids).
+  const auto row = [&](int r) {
     const int j = lo_[1] + r % ny, k = lo_[2] + r / ny;
     const long base = j * sy + k * sz;
     // A box starting at index 0 (the low boundary faces of a velocity component) has no row
@@ -63,6 +64,12 @@ double RedBlackGaussSeidel::half_sweep(const StencilSystem& s, std::vector<doubl
       sum += res * res;
     }
     row_sum[r] = sum;
+  };
+  if (parallel_) {
+#pragma omp parallel for schedule(static)
+    for (int r = 0; r < rows_; ++r) row(r);
+  } else {
+    for (int r = 0; r < rows_; ++r) row(r);
   }
   double total = 0.0;
   for (int r = 0; r < rows_; ++r) total += row_sum[r]; // fixed order: thread-independent
@@ -73,12 +80,17 @@ LinearSolveStats RedBlackGaussSeidel::solve(const StencilSystem& s, std::vector<
                                             double rel_tol, int max_sweeps) {
   const int ny = hi_[1] - lo_[1] + 1;
   const double* rhs = s.rhs.data();
-#pragma omp parallel for schedule(static) if (parallel_)
-  for (int r = 0; r < rows_; ++r) {
+  const auto rhs_row = [&](int r) {
     const long base = (lo_[1] + r % ny) * sy_ + (lo_[2] + r / ny) * sz_;
     double sum = 0.0;
     for (int i = lo_[0]; i <= hi_[0]; ++i) sum += rhs[base + i] * rhs[base + i];
     row_sum_[r] = sum;
+  };
+  if (parallel_) {
+#pragma omp parallel for schedule(static)
+    for (int r = 0; r < rows_; ++r) rhs_row(r);
+  } else {
+    for (int r = 0; r < rows_; ++r) rhs_row(r);
   }
   double bb = 0.0;
   for (int r = 0; r < rows_; ++r) bb += row_sum_[r];

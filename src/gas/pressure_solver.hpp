@@ -21,7 +21,7 @@ struct StencilSystem {
 };
 
 struct LinearSolveStats {
-  int iterations = 0;             ///< Krylov iterations or Gauss-Seidel sweeps
+  int iterations = 0;             ///< Krylov iterations or Gauss-Seidel sweeps (direct: 1)
   double relative_residual = 0.0; ///< ||b - A x||_2 / ||b||_2
   bool converged = false;         ///< relative_residual <= the requested tolerance
   int setups = 0;                 ///< multigrid set-ups done for this solve (0: reused)
@@ -50,6 +50,13 @@ struct StructSolverOptions {
   /// periodic axes keep a period >= 3.
   int max_levels = 0;
   int min_coarse_cells = 64;
+  /// Symmetric systems on boxes without periodic axes: solved directly by banded Cholesky
+  /// (band_solver.hpp) instead of hypre when N b^2 / 2 (N unknowns, b the half bandwidth with
+  /// the longest axis numbered last) is at most this many multiply-adds; 0: never. A direct
+  /// solution whose relative residual misses the tolerance (or a failed factorisation) is
+  /// handed to hypre as its initial guess. The gas solver's pressure correction enables it
+  /// (LinearSolverOptions).
+  double direct_max_work = 0.0;
 };
 
 class StructLinearSolver {
@@ -72,9 +79,10 @@ public:
   /// Replaces the options; the next solve does a fresh set-up.
   void set_options(const StructSolverOptions& options);
   const StructSolverOptions& options() const;
-  /// Multigrid set-ups and solves since construction.
+  /// Multigrid set-ups and solves since construction; solves done by the direct solver.
   long setups() const;
   long solves() const;
+  long direct_solves() const;
 
 private:
   struct Impl;

@@ -63,7 +63,7 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
 GasCoupling::~GasCoupling() = default;
 
 void GasCoupling::step(const ParticleStore& p, double time, double dt) {
-  coupling::update_porosity(*gas_, p, settings_);
+  coupling::update_porosity(*gas_, p, settings_, porosity_scratch_);
   coupling::compute_particle_forces(*gas_, p, settings_, f_);
   coupling::deposit_momentum_source(*gas_, p, f_);
   if (settings_.hold_gas_at_rest) hold_at_rest(dt);

@@ -89,6 +89,7 @@ private:
   std::unique_ptr<gas::GasSolver> gas_;
   coupling::CouplingSettings settings_;
   coupling::ParticleGasForces f_;
+  coupling::PorosityScratch porosity_scratch_; ///< kept between flow steps: no allocation
   std::array<std::vector<double>, 3> force_;
   int vertical_ = 2;      ///< the axis of gravity (z if there is none)
   bool falls_low_ = true; ///< gravity points to the low side of that axis
