@@ -112,6 +112,18 @@ template <NormalModel Normal, bool Tangential, RollingModel Rolling>
   return out;
 }
 
+/// Add a slab's or wall chunk's statistics to the total (the deepest overlap: the first one
+/// found in the order of the calls).
+void add_stats(ContactStats& total, const ContactStats& part) {
+  total.n_contacts += part.n_contacts;
+  total.elastic_energy += part.elastic_energy;
+  total.spring_losses += part.spring_losses;
+  if (part.max_overlap_ratio > total.max_overlap_ratio) {
+    total.max_overlap_ratio = part.max_overlap_ratio;
+    total.max_overlap_particle = part.max_overlap_particle;
+  }
+}
+
 template <NormalModel Normal, bool Tangential, RollingModel Rolling>
 ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& table, double dt,
                      ContactScratch& nc, ContactRecord* rec) {
@@ -250,15 +262,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     rec->samples.reserve(total + nl.wall_particle.size());
     for (const auto& b : slab_samples) rec->samples.insert(rec->samples.end(), b.begin(), b.end());
   }
-  for (const auto& ss : slab_stats) {
-    st.n_contacts += ss.n_contacts;
-    st.elastic_energy += ss.elastic_energy;
-    st.spring_losses += ss.spring_losses;
-    if (ss.max_overlap_ratio > st.max_overlap_ratio) {
-      st.max_overlap_ratio = ss.max_overlap_ratio;
-      st.max_overlap_particle = ss.max_overlap_particle;
-    }
-  }
+  for (const auto& ss : slab_stats) add_stats(st, ss);
   // Particle-wall contacts: wall of infinite mass, its own material. The entries are cut into
   // chunks of about kWallChunk that never split one particle's entries (they are sorted by
   // particle), so the chunks run in parallel without races; each keeps its own statistics and
@@ -333,14 +337,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     for (std::size_t e = chunk_start(k); e < end; ++e) process_wall(e, wall_stats[k], buf);
   }
   for (std::size_t k = 0; k < nchunk; ++k) {
-    const ContactStats& ws = wall_stats[k];
-    st.n_contacts += ws.n_contacts;
-    st.elastic_energy += ws.elastic_energy;
-    st.spring_losses += ws.spring_losses;
-    if (ws.max_overlap_ratio > st.max_overlap_ratio) {
-      st.max_overlap_ratio = ws.max_overlap_ratio;
-      st.max_overlap_particle = ws.max_overlap_particle;
-    }
+    add_stats(st, wall_stats[k]);
     if (recording)
       rec->samples.insert(rec->samples.end(), chunk_samples[k].begin(), chunk_samples[k].end());
   }
