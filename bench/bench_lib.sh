@@ -20,7 +20,7 @@ ensure_fluidem() {
   [ -x "$FLUIDEM" ] && return 0
   echo "building fluidem (Release) in $ROOT/build" >&2
   cmake -S "$ROOT" -B "$ROOT/build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$ROOT/build" -j"$(nproc)" --target fluidem >/dev/null
+  cmake --build "$ROOT/build" -j"$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)" --target fluidem >/dev/null
   FLUIDEM=$ROOT/build/fluidem
 }
 

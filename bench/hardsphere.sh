@@ -73,7 +73,7 @@ if [ "$THREADS" = 1 ] && command -v taskset >/dev/null 2>&1; then PIN=(taskset -
 if [ ! -x "$FLUIDEM" ]; then
   echo "building fluidem (Release) in $ROOT/build" >&2
   cmake -S "$ROOT" -B "$ROOT/build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$ROOT/build" -j"$(nproc)" --target fluidem >/dev/null
+  cmake --build "$ROOT/build" -j"$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)" --target fluidem >/dev/null
   FLUIDEM=$ROOT/build/fluidem
 fi
 

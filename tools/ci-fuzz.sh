@@ -7,6 +7,8 @@
 # Extra arguments go to the fuzzer (e.g. -jobs=2 -workers=2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Parallel jobs: the cores (nproc alone would follow OMP_NUM_THREADS, which test.sh sets to 1).
+jobs=${FLUIDEM_JOBS:-$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)}
 root=$PWD
 seconds=${FUZZ_SECONDS:-60}
 build=build-fuzz
@@ -14,7 +16,7 @@ build=build-fuzz
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DFLUIDEM_FUZZ=ON \
   -DFLUIDEM_BUILD_TESTS=OFF -DFLUIDEM_BUILD_BENCH=OFF >/dev/null
-cmake --build "$build" -j"$(nproc)" --target case_reader_fuzz
+cmake --build "$build" -j"$jobs" --target case_reader_fuzz
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/fluidem-fuzz.XXXXXX")
 mkdir -p "$work/corpus" "$work/artifacts"

@@ -4,6 +4,8 @@
 # executables (and the fluidem binary the app tests run) are built. Extra arguments go to ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Parallel jobs: the cores (nproc alone would follow OMP_NUM_THREADS, which test.sh sets to 1).
+jobs=${FLUIDEM_JOBS:-$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)}
 build=build-asan
 
 # FLUIDEM_WERROR=OFF: GCC 12 reports false -Wmaybe-uninitialized inside libstdc++'s std::function
@@ -20,7 +22,7 @@ for f in tests/unit/*/*_test.cpp; do
   module=$(basename "$(dirname "$f")")
   targets+=("unit_${module}_$(basename "$f" .cpp)")
 done
-cmake --build "$build" -j"$(nproc)" --target "${targets[@]}"
+cmake --build "$build" -j"$jobs" --target "${targets[@]}"
 
 # detect_leaks=0: Open MPI (initialised by the gas tests through hypre) leaks its dlopen'ed
 # plugins' allocations at exit, with stack frames in unloaded modules that a suppression cannot
@@ -36,5 +38,5 @@ export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$supp/lsan.supp:print_suppressi
 #   same engine code is exercised by the shorter hard-sphere tests.
 exclude=("HardSphereEngine.Settled2DBedRunsWithABoundedCollisionRate"
          "HardSphereEngine.Settled3DBedRunsWithABoundedCollisionRate")
-ctest --test-dir "$build" --output-on-failure -j"$(nproc)" -L unit \
+ctest --test-dir "$build" --output-on-failure -j"$jobs" -L unit \
   ${exclude:+-E "$(IFS='|'; echo "${exclude[*]}")"} "$@"
