@@ -153,6 +153,9 @@ struct OutputSpec {
 
 struct NeighbourSpec {
   std::optional<double> skin; ///< m; empty = 0.2 x the largest diameter
+  /// Soft-sphere engine: the particles are sorted in space (neighbour/spatial_order.hpp) at
+  /// every sort_interval-th rebuild of the neighbour list; 0 = never.
+  int sort_interval = 20;
 };
 
 /// The whole case, plus where each key came from (for error messages).

@@ -218,4 +218,12 @@ void GasCoupling::cell_fields(const ParticleStore& p, CellFields& out) const {
       for (auto& v : out.solids_velocity) v[q] /= mass[q];
 }
 
+void GasCoupling::permute(const std::vector<std::uint32_t>& new_to_old) {
+  for (std::vector<double>& f : force_) {
+    if (f.size() != new_to_old.size()) continue; // no flow step yet
+    const std::vector<double> old = f;
+    for (std::size_t k = 0; k < new_to_old.size(); ++k) f[k] = old[new_to_old[k]];
+  }
+}
+
 } // namespace fluidem

@@ -12,6 +12,7 @@
 // 2-D depth (the domain's y extent) and gravity are the simulation's own.
 #pragma once
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,6 +64,9 @@ public:
     gas_->restore(s.gas);
     force_ = s.force;
   }
+  /// The particles were reordered (ParticleStore::permute with the same new_to_old): the force
+  /// on each particle, held until the next flow step, follows them.
+  void permute(const std::vector<std::uint32_t>& new_to_old);
   /// See gas::GasSolver::reset_solver_history (called when a checkpoint is written).
   void reset_solver_history() { gas_->reset_solver_history(); }
   const coupling::ParticleGasForces& exchange() const { return f_; }

@@ -1,5 +1,6 @@
 #include "integrate/simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include "analysis/bed_height.hpp"
 #include "fluidem_version.hpp"
 #include "io/case_writer.hpp"
+#include "neighbour/spatial_order.hpp"
 #include "output/fields_writer.hpp"
 #include "output/fields_xdmf.hpp"
 #include "output/h5md_writer.hpp"
@@ -324,7 +326,13 @@ void Simulation::step() {
   t_integration_ += seconds_since(t0);
 
   t0 = Clock::now();
-  if (nl_->needs_rebuild(p_)) nl_->build(p_);
+  if (nl_->needs_rebuild(p_)) {
+    const int every = spec_.neighbour.sort_interval;
+    if (every > 0 && nl_->builds() % every == 0)
+      sort_and_rebuild();
+    else
+      nl_->build(p_);
+  }
   t_neighbour_ += seconds_since(t0);
 
   // The contacts are recorded on the steps whose contacts an analysis uses.
@@ -343,6 +351,17 @@ void Simulation::step() {
   ++step_;
   time_ = static_cast<double>(step_) * dt_;
   record_collisions();
+}
+
+void Simulation::sort_and_rebuild() {
+  double rmax = 0.0;
+  for (const double r : p_.radius) rmax = std::max(rmax, r);
+  const std::vector<std::uint32_t> order = spatial_order(p_, nl_->box(), 2.0 * rmax + nl_->skin());
+  p_.permute(order);
+  if (gas_) gas_->permute(order);
+  nl_->build(p_, &order);
+  output_order_valid_ = false;
+  ++sorts_;
 }
 
 void Simulation::record_collisions() {
@@ -629,7 +648,18 @@ RunSummary Simulation::run(const std::string& out_dir,
     }
     if (time_ >= clock_.next_frame - eps || step_ == total) {
       while (clock_.next_frame <= time_ + eps) clock_.next_frame += frame_dt;
-      h5->write_frame(step_, time_, p_);
+      if (!output_order_valid_) { // frames list the particles by id, whatever the store's order
+        output_order_.clear();
+        if (!std::is_sorted(p_.id.begin(), p_.id.end())) {
+          output_order_.resize(p_.size());
+          for (std::size_t i = 0; i < p_.size(); ++i)
+            output_order_[i] = static_cast<std::uint32_t>(i);
+          std::sort(output_order_.begin(), output_order_.end(),
+                    [&](std::uint32_t a, std::uint32_t b) { return p_.id[a] < p_.id[b]; });
+        }
+        output_order_valid_ = true;
+      }
+      h5->write_frame(step_, time_, p_, output_order_.empty() ? nullptr : &output_order_);
       h5->flush();
       clock_.frame_times.push_back(time_);
       write_particles_xdmf(xmf, "particles.h5", p_.size(), clock_.frame_times);

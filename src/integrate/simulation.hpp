@@ -135,6 +135,8 @@ public:
   /// The continuum averager of [output.continuum] (its sums since the last written interval),
   /// or nullptr when the case has none.
   const ContinuumAverager* continuum() const { return continuum_.get(); }
+  /// Spatial sorts of the store done by this process (neighbour.sort_interval).
+  long spatial_sorts() const { return sorts_; }
   /// The contacts of the last step, when that step recorded them (else empty).
   const ContactRecord& contact_record() const { return record_; }
 
@@ -144,6 +146,9 @@ private:
   /// v += h a(x) for every particle: the `[body_force]` field at its position (none: no-op).
   void body_force_kick(double h);
   void step();
+  /// Sort the particles in space (neighbour/spatial_order.hpp) and rebuild the neighbour list
+  /// in the new order, keeping the contact histories and the gas forces with their particles.
+  void sort_and_rebuild();
   void check_stability() const;
   void record_collisions();
   /// True when the step about to be taken (number step_ + 1) is averaged by [output.continuum].
@@ -170,6 +175,11 @@ private:
   std::unique_ptr<ContinuumAverager> continuum_; ///< set with [output.continuum]
   double continuum_interval_ = 0.0;              ///< s
   double t_contacts_ = 0.0, t_integration_ = 0.0, t_neighbour_ = 0.0, t_gas_ = 0.0;
+  long sorts_ = 0; ///< spatial sorts in this process (not checkpointed: a log figure)
+  /// The store's indices in ascending particle id, for output frames (empty: the store is in id
+  /// order); stale after a sort, recomputed when a frame is written.
+  std::vector<std::uint32_t> output_order_;
+  bool output_order_valid_ = false;
 };
 
 } // namespace fluidem

@@ -106,7 +106,7 @@ const Keys& contact_keys() {
   return k;
 }
 const Keys& neighbour_keys() {
-  static const Keys k = {"skin"};
+  static const Keys k = {"skin", "sort_interval"};
   return k;
 }
 const Keys& hardsphere_keys() {
@@ -1155,6 +1155,11 @@ private:
 
   void read_neighbour(const toml::table* t) {
     auto_number(t, "neighbour", "skin", kLength, spec_.neighbour.skin);
+    if (t != nullptr)
+      if (const auto e = find(*t, "sort_interval", "neighbour.sort_interval"))
+        spec_.neighbour.sort_interval =
+            int_value(*e, "neighbour.sort_interval", 0,
+                      "an integer >= 0: neighbour-list rebuilds between spatial sorts, 0: never");
   }
 
   void read_hardsphere(const toml::table* t) {

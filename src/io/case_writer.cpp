@@ -304,7 +304,8 @@ std::string write_case_toml(const CaseSpec& spec) {
      << "max_overlap = " << format_double(c.max_overlap) << "\n";
 
   os << "\n[neighbour]\n"
-     << "skin = " << auto_or(spec.neighbour.skin) << "  # m\n";
+     << "skin = " << auto_or(spec.neighbour.skin) << "  # m\n"
+     << "sort_interval = " << spec.neighbour.sort_interval << "  # rebuilds between sorts\n";
 
   const HardSphereSpec& h = spec.hardsphere;
   os << "\n[hardsphere]\n"

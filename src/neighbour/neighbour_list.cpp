@@ -65,7 +65,52 @@ void NeighbourList::build_cells(const ParticleStore& p, double cell_size) {
     cell_particles_[count_[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
 }
 
-void NeighbourList::build(const ParticleStore& p) {
+void NeighbourList::renumber_old(const std::vector<std::uint32_t>& new_to_old) {
+  const std::size_t n = new_to_old.size();
+  const auto h = static_cast<std::size_t>(hw_);
+  std::vector<std::uint32_t> old_to_new(n);
+  for (std::size_t k = 0; k < n; ++k) old_to_new[new_to_old[k]] = static_cast<std::uint32_t>(k);
+  // Pairs: row k is the old row of new_to_old[k], its partners renumbered. Within a row the
+  // order is no longer ascending and an owner may now be the pair's higher index: the carry-over
+  // below searches both rows of a pair, so neither matters.
+  std::vector<std::uint32_t> offset_new(n + 1, 0), partner_new(old_partner_.size());
+  std::vector<double> history_new(old_history_.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t i = new_to_old[k];
+    const std::uint32_t begin = old_offset_[i], end = old_offset_[i + 1];
+    const std::uint32_t o = offset_new[k];
+    offset_new[k + 1] = o + (end - begin);
+    for (std::uint32_t e = begin; e < end; ++e) {
+      partner_new[o + (e - begin)] = old_to_new[old_partner_[e]];
+      std::copy_n(&old_history_[e * h], h, &history_new[(o + (e - begin)) * h]);
+    }
+  }
+  old_offset_.swap(offset_new);
+  old_partner_.swap(partner_new);
+  old_history_.swap(history_new);
+  // Walls: sorted again by (new particle, face), as the merge of the carry-over expects.
+  const std::size_t nw = old_wall_particle_.size();
+  std::vector<std::uint32_t> order(nw);
+  for (std::size_t e = 0; e < nw; ++e) order[e] = static_cast<std::uint32_t>(e);
+  auto key = [&](std::uint32_t e) {
+    return static_cast<std::uint64_t>(old_to_new[old_wall_particle_[e]]) * 8 + old_wall_face_[e];
+  };
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+  std::vector<std::uint32_t> wall_particle_new(nw);
+  std::vector<std::uint8_t> wall_face_new(nw);
+  std::vector<double> wall_history_new(old_wall_history_.size());
+  for (std::size_t e = 0; e < nw; ++e) {
+    wall_particle_new[e] = old_to_new[old_wall_particle_[order[e]]];
+    wall_face_new[e] = old_wall_face_[order[e]];
+    std::copy_n(&old_wall_history_[order[e] * h], h, &wall_history_new[e * h]);
+  }
+  old_wall_particle_.swap(wall_particle_new);
+  old_wall_face_.swap(wall_face_new);
+  old_wall_history_.swap(wall_history_new);
+}
+
+void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_t>* new_to_old) {
   const std::size_t n = p.size();
   double rmax = 0.0;
   for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, p.radius[i]);
@@ -78,6 +123,13 @@ void NeighbourList::build(const ParticleStore& p) {
   std::swap(old_wall_face_, wall_face);
   std::swap(old_wall_history_, wall_history);
   const bool carry = builds_ > 0 && old_offset_.size() == n + 1;
+  if (new_to_old) {
+    if (new_to_old->size() != n)
+      throw std::invalid_argument("NeighbourList::build: the new order has " +
+                                  std::to_string(new_to_old->size()) + " entries for " +
+                                  std::to_string(n) + " particles");
+    if (carry) renumber_old(*new_to_old);
+  }
 
   // Slabs along the axis over which the particles spread across the most cells.
   {

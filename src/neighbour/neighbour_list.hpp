@@ -31,8 +31,11 @@ public:
 
   /// True if some particle moved more than skin/2 since the last build (or never built).
   bool needs_rebuild(const ParticleStore& p) const;
-  /// Rebuild pair and wall lists; history of surviving contacts is kept.
-  void build(const ParticleStore& p);
+  /// Rebuild pair and wall lists; history of surviving contacts is kept. `new_to_old`: the
+  /// store was reordered since the last build (new index k holds the particle that was at
+  /// new_to_old[k], ParticleStore::permute); the previous list is renumbered through it before
+  /// its history is carried over.
+  void build(const ParticleStore& p, const std::vector<std::uint32_t>* new_to_old = nullptr);
 
   // Pair list (CSR by owner i): partners of i are partner[offset[i] .. offset[i+1]).
   std::vector<std::uint32_t> offset;
@@ -81,6 +84,8 @@ public:
 
 private:
   void build_cells(const ParticleStore& p, double cell_size);
+  /// Renumber the previous list (old_* arrays) into the new particle order.
+  void renumber_old(const std::vector<std::uint32_t>& new_to_old);
 
   BoxGeometry box_;
   double skin_;

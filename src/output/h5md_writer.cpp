@@ -362,7 +362,8 @@ H5mdWriter::~H5mdWriter() = default;
 H5mdWriter::H5mdWriter(H5mdWriter&&) noexcept = default;
 H5mdWriter& H5mdWriter::operator=(H5mdWriter&&) noexcept = default;
 
-void H5mdWriter::write_frame(long step, double time, const ParticleStore& p) {
+void H5mdWriter::write_frame(long step, double time, const ParticleStore& p,
+                             const std::vector<std::uint32_t>* order) {
   if (!impl_ || impl_->closed) throw std::logic_error("H5mdWriter: write_frame after close");
   Impl& m = *impl_;
   const std::size_t n = m.n;
@@ -382,23 +383,39 @@ void H5mdWriter::write_frame(long step, double time, const ParticleStore& p) {
   append_frame(m.time.get(), 1, nullptr, m.frames, H5T_NATIVE_DOUBLE, m.mem_one.get(), &time,
                m.path, "/particles/all/position/time");
 
+  if (order && order->size() != n)
+    throw std::invalid_argument("H5mdWriter('" + m.path + "'): the frame order has " +
+                                std::to_string(order->size()) + " entries for " +
+                                std::to_string(n) + " particles");
+  const auto at = [order](std::size_t k) { return order ? (*order)[k] : k; };
   const auto interleave = [&](const std::vector<double>& a, const std::vector<double>& b,
                               const std::vector<double>& c) {
     double* out = m.buffer.data();
-    for (std::size_t i = 0; i < n; ++i) {
-      out[3 * i] = a[i];
-      out[3 * i + 1] = b[i];
-      out[3 * i + 2] = c[i];
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = at(k);
+      out[3 * k] = a[i];
+      out[3 * k + 1] = b[i];
+      out[3 * k + 2] = c[i];
     }
     return static_cast<const void*>(out);
+  };
+  // A scalar array in frame order: the array itself, or gathered into `scratch`.
+  const auto in_order = [&](const auto& a, auto& scratch) {
+    if (!order) return static_cast<const void*>(a.data());
+    scratch.resize(n);
+    for (std::size_t k = 0; k < n; ++k) scratch[k] = a[at(k)];
+    return static_cast<const void*>(scratch.data());
   };
   m.append_value(kPosition, interleave(p.x, p.y, p.z), m.mem_vector.get());
   m.append_value(kVelocity, interleave(p.vx, p.vy, p.vz), m.mem_vector.get());
   m.append_value(kAngularVelocity, interleave(p.wx, p.wy, p.wz), m.mem_vector.get());
-  m.append_value(kRadius, p.radius.data(), m.mem_scalar.get());
-  m.append_value(kSpecies, p.species.data(), m.mem_scalar.get());
-  m.append_value(kId, p.id.data(), m.mem_scalar.get());
-  if (m.layer) m.append_value(kLayer, p.layer.data(), m.mem_scalar.get());
+  std::vector<double> radius;
+  std::vector<std::int32_t> ints;
+  std::vector<std::int64_t> ids;
+  m.append_value(kRadius, in_order(p.radius, radius), m.mem_scalar.get());
+  m.append_value(kSpecies, in_order(p.species, ints), m.mem_scalar.get());
+  m.append_value(kId, in_order(p.id, ids), m.mem_scalar.get());
+  if (m.layer) m.append_value(kLayer, in_order(p.layer, ints), m.mem_scalar.get());
 
   ++m.frames;
   const std::int64_t frames64 = static_cast<std::int64_t>(m.frames);

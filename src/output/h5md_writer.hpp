@@ -39,6 +39,7 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -84,7 +85,9 @@ public:
 
   /// Append one frame. `particles.size()` must equal n_particles() (std::invalid_argument).
   /// No allocation by the writer after the first frame.
-  void write_frame(long step, double time, const ParticleStore& particles);
+  /// `order`: write particle order[k] as the k-th row (nullptr: the store's order).
+  void write_frame(long step, double time, const ParticleStore& particles,
+                   const std::vector<std::uint32_t>* order = nullptr);
   /// Flush HDF5 buffers to disk, so that a reader opening the file now sees every frame.
   void flush();
   /// Close the file now (further writes throw std::logic_error). Idempotent.
