@@ -7,7 +7,9 @@
 #  - fluidem on the like-for-like of bench/tsuji.sh soft_3d (3-D box 4 x 150 x 500 mm, one gas
 #    cell deep, 15 x 25 cells, uniform 2.6 m/s, Hertz E = 1e7 Pa, e = 0.9, mu = 0.3, DT = 1e-4 s)
 #    from the settled packing cases/hoomans96/tsuji_bed.data for SIM simulated seconds (timed:
-#    the `done:` line of `fluidem run`, set-up excluded), one thread.
+#    the `done:` line of `fluidem run`, set-up excluded), one thread, twice: at fluidem's
+#    automatic particle step (1/50 of the contact duration) and at DEM_DT (default 2e-5 s, the
+#    sub-step DPMFoam takes on this case).
 # Both pinned to core 1 (taskset) when there are two cores. Prints the wall seconds per
 # simulated second of both, their ratio, and the mean pressure drop over the interval relative
 # to the bed weight per area W/A (a check that both beds are fluidised; over a short interval
@@ -18,6 +20,7 @@
 #        FLUIDEM  binary (default build/fluidem)
 #        CASE     the DPMFoam case (default /work/shared/bench/dpmfoam-tsuji)
 #        WORK     work folder (default ${TMPDIR:-/tmp}/fluidem-compare-dpmfoam)
+#        DEM_DT   fluidem's particle step for the matched run (default 2e-5 s)
 #        REUSE_SETTLED=1  keep a settled DPMFoam case already in $WORK (skips the settling)
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -86,24 +89,39 @@ print("%.1f" % (sum(v) / len(v)) if v else "nan")
 PYEOF
 )
 
-# --- fluidem: the soft_3d like-for-like, timed ---
+# --- fluidem: the soft_3d like-for-like, timed, at two particle time steps ---
+# "auto": fluidem's default, 1/50 of the Hertz contact duration (6.7e-6 s, 15 sub-steps per flow
+# step); DEM_DT (default 2e-5 s, 5 sub-steps): the resolution DPMFoam itself uses on this case
+# (collisionResolutionSteps 12: its particle sub-step was 1.4-2.5e-5 s, ../shared/bench/README.md).
 C=$ROOT/cases/hoomans96
-echo "== fluidem: 0 .. $SIM s of fluidisation from the settled packing ..."
-"${pin[@]}" "$FLUIDEM" run "$C/tsuji_setup_soft.toml" --set simulation.dimension=3 \
-  --set gas.boundary.bottom.velocity=2.6 --set simulation.end_time="$SIM" \
-  --set output.frame_interval=0.1 --threads 1 --out "$WORK/fluidem" --force >"$WORK/fluidem.log" 2>&1
-fl_wall=$(sed -n 's/^done: .* in \([0-9.]*\) s wall.*/\1/p' "$WORK/fluidem.log")
-fl_dp=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "pressure_drop") c = i; next }
-  c && $1 > 0 { s += $c; n++ } END { printf "%.1f", n ? s / n : 0 }' "$WORK/fluidem/series.csv")
+DEM_DT=${DEM_DT:-2e-5}
+fluidem_run() { # TAG DT: wall seconds and mean pressure drop into fl_wall[TAG], fl_dp[TAG]
+  local tag=$1 dt=$2
+  echo "== fluidem ($tag, particle dt $dt): 0 .. $SIM s of fluidisation from the settled packing ..."
+  "${pin[@]}" "$FLUIDEM" run "$C/tsuji_setup_soft.toml" --set simulation.dimension=3 \
+    --set gas.boundary.bottom.velocity=2.6 --set simulation.end_time="$SIM" \
+    --set simulation.time_step="$dt" --set output.frame_interval=0.1 --threads 1 \
+    --out "$WORK/fluidem_$tag" --force >"$WORK/fluidem_$tag.log" 2>&1
+  fl_wall[$tag]=$(sed -n 's/^done: .* in \([0-9.]*\) s wall.*/\1/p' "$WORK/fluidem_$tag.log")
+  fl_dp[$tag]=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "pressure_drop") c = i; next }
+    c && $1 > 0 { s += $c; n++ } END { printf "%.1f", n ? s / n : 0 }' "$WORK/fluidem_$tag/series.csv")
+}
+declare -A fl_wall=() fl_dp=()
+fluidem_run auto auto
+fluidem_run matched "$DEM_DT"
 
 # Bed weight per area: 2400 spheres of 4 mm, 2700 kg/m3, over 0.15 m x 4 mm.
 WA=$(awk 'BEGIN { printf "%.1f", 2400 * 2700 * 3.14159265358979 / 6 * 0.004^3 * 9.81 / (0.15 * 0.004) }')
 echo
-printf "%-9s %10s %10s %14s %12s %9s\n" code "sim s" "wall s" "wall s/sim s" "mean dp Pa" "dp/(W/A)"
+printf "%-22s %10s %10s %14s %12s %9s %9s\n" code "sim s" "wall s" "wall s/sim s" "mean dp Pa" "dp/(W/A)" "ratio"
 awk -v s="$dpm_sim" -v w="$dpm_wall" -v dp="$dpm_dp" -v wa="$WA" 'BEGIN {
-  printf "%-9s %10.4f %10.1f %14.1f %12.1f %9.3f\n", "DPMFoam", s, w, w / s, dp, dp / wa }'
-awk -v s="$SIM" -v w="$fl_wall" -v dp="$fl_dp" -v wa="$WA" 'BEGIN {
-  printf "%-9s %10.4f %10.1f %14.1f %12.1f %9.3f\n", "fluidem", s, w, w / s, dp, dp / wa }'
-awk -v a="$dpm_wall" -v as="$dpm_sim" -v b="$fl_wall" -v bs="$SIM" 'BEGIN {
-  printf "ratio DPMFoam / fluidem (wall per simulated second): %.1fx\n", (a / as) / (b / bs) }'
+  printf "%-22s %10.4f %10.1f %14.1f %12.1f %9.3f %9s\n", "DPMFoam", s, w, w / s, dp, dp / wa, "1" }'
+for tag in auto matched; do
+  label="fluidem dt=auto"
+  [[ $tag == matched ]] && label="fluidem dt=$DEM_DT"
+  awk -v l="$label" -v s="$SIM" -v w="${fl_wall[$tag]}" -v dp="${fl_dp[$tag]}" -v wa="$WA" \
+    -v a="$dpm_wall" -v as="$dpm_sim" 'BEGIN {
+    printf "%-22s %10.4f %10.1f %14.1f %12.1f %9.3f %8.1fx\n", l, s, w, w / s, dp, dp / wa, (a / as) / (w / s) }'
+done
+echo "ratio: DPMFoam's wall per simulated second over fluidem's"
 echo "(DPMFoam: $dpm_steps flow steps timed; logs in $WORK)"

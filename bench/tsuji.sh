@@ -18,6 +18,8 @@
 # usage: bench/tsuji.sh [PART ...]   PART: hard_2d soft_2d soft_3d hard_3d (default: all)
 # env:   FLUIDEM  binary (default build/fluidem)   END  simulated seconds (default 1.0)
 #        WORK     folder for the outputs (default ${TMPDIR:-/tmp}/fluidem-bench-tsuji)
+#        DEM_DT   particle time step of the soft parts (default: the case's, auto = 1/50 of
+#                 the contact duration; 2e-5 is DPMFoam's own sub-step on this bed)
 #        THREADS  OpenMP threads (default 1, pinned to core 1; 2: both cores, not pinned)
 # Also printed: the mean pressure drop over 0.2 s .. END relative to the bed weight per area
 # W/A = 3550 Pa (a check that the physics did not change with a speed-up).
@@ -45,6 +47,7 @@ for part in "${parts[@]}"; do
     hard_3d) args=("$C/tsuji_setup.toml" --set simulation.dimension=3 --set gas.boundary.bottom.velocity=2.6) ;;
     *) echo "tsuji.sh: unknown part $part" >&2; exit 1 ;;
   esac
+  if [[ -n ${DEM_DT:-} && $part == soft_* ]]; then args+=(--set simulation.time_step="$DEM_DT"); fi
   log=$WORK/$part.log
   "${pin[@]}" "$FLUIDEM" run "${args[@]}" "${common[@]}" --out "$WORK/$part" >"$log" 2>&1 || {
     echo "tsuji.sh: $part failed, see $log" >&2; tail -3 "$log" >&2; continue; }

@@ -264,8 +264,9 @@ int run_cli(int argc, char** argv) {
     fmt::print("done: {} steps in {:.3f} s wall, {:.4g} particle-steps/s\n", s.steps,
                s.wall_seconds, s.particle_steps_per_second);
     fmt::print("time in contacts {:.3f} s, integration {:.3f} s, neighbour lists {:.3f} s "
-               "({} builds), output {:.3f} s{}\n",
+               "({} builds{}), output {:.3f} s{}\n",
                s.seconds_contacts, s.seconds_integration, s.seconds_neighbour, s.neighbour_builds,
+               s.spatial_sorts > 0 ? fmt::format(", {} spatial sorts", s.spatial_sorts) : "",
                s.seconds_output,
                sim.gas() ? fmt::format(", gas and coupling {:.3f} s", s.seconds_gas) : "");
     if (s.collisions == 0 && s.pairs_per_particle > 0.0)

@@ -758,6 +758,7 @@ RunSummary Simulation::run(const std::string& out_dir,
   s.particle_steps_per_second = static_cast<double>(s.steps) * static_cast<double>(p_.size()) /
                                 std::max(s.wall_seconds, 1e-9);
   s.neighbour_builds = nl_->builds();
+  s.spatial_sorts = sorts_;
   s.seconds_contacts = t_contacts_;
   s.seconds_integration = t_integration_;
   s.seconds_neighbour = t_neighbour_;

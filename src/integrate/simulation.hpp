@@ -53,6 +53,7 @@ struct RunSummary {
   double wall_seconds = 0.0;
   double particle_steps_per_second = 0.0;
   long neighbour_builds = 0;
+  long spatial_sorts = 0; ///< soft spheres: sorts of the store in space by this process
   double seconds_contacts = 0.0, seconds_integration = 0.0, seconds_neighbour = 0.0,
          seconds_output = 0.0, seconds_gas = 0.0;
   std::size_t bytes_per_particle = 0;
