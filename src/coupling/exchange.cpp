@@ -62,7 +62,11 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
   out.cell_vx.assign(nc, 0.0);
   out.cell_vy.assign(nc, 0.0);
   out.cell_vz.assign(nc, 0.0);
-  std::vector<double> vs(nc, 0.0), mass(nc, 0.0), sd2(nc, 0.0), sd3(nc, 0.0);
+  std::vector<double>& vs = out.cell_solid;
+  std::vector<double>& mass = out.cell_mass;
+  std::vector<double>& sd2 = out.cell_d2;
+  std::vector<double>& sd3 = out.cell_d3;
+  for (std::vector<double>* a : {&vs, &mass, &sd2, &sd3}) a->assign(nc, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const auto cc = g.cell_of(p.position(i));
     const long q = g.idx(cc[0], cc[1], cc[2]);

@@ -111,6 +111,9 @@ struct ParticleGasForces {
   std::vector<long> cell;         ///< schemes 1, 2: grid index of i's cell
   std::vector<double> cell_coeff; ///< schemes 1, 2: C_c = V_s,c K_c (/ eps_c in B), kg/s
   std::vector<double> cell_vx, cell_vy, cell_vz; ///< schemes 1, 2: v_c, m/s
+  /// Schemes 1, 2: work space per cell (solid volume, mass, sums of d^2 and d^3), kept between
+  /// flow steps so that the time loop does not allocate.
+  std::vector<double> cell_solid, cell_mass, cell_d2, cell_d3;
   /// Trilinear-stencil kernel (porosity by cell): the 3 face stencils of particle i at
   /// 3 i + d, built once per flow step by compute_particle_forces and reused by
   /// deposit_momentum_source and update_particle_forces, which therefore need the particles
