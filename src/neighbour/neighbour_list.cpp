@@ -1,4 +1,5 @@
 #include "neighbour/neighbour_list.hpp"
+#include "neighbour/spatial_order.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -141,9 +142,7 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
       for (int a = 0; a < 3; ++a)
         cmin[a] = std::min(cmin[a], q[a]), cmax[a] = std::max(cmax[a], q[a]);
     }
-    slab_axis_ = 0;
-    for (int a = 1; a < 3; ++a)
-      if (n > 0 && cmax[a] - cmin[a] > cmax[slab_axis_] - cmin[slab_axis_]) slab_axis_ = a;
+    slab_axis_ = n > 0 ? slab_axis(cmin, cmax) : 0; // the rule spatial_order follows too
     nslab_ = ncell_[slab_axis_];
     // A periodic axis needs an even number of slabs (the last slab neighbours slab 0): the last
     // cell then joins the slab before it.

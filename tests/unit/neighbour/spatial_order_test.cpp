@@ -1,6 +1,7 @@
 // Spatial sorting (neighbour/spatial_order.hpp): the Morton code interleaves the bits of the cell
 // coordinates (checked against a bit-by-bit reference), the order is a permutation sorted by
-// code then index, periodic images fall into the box's cells, and a rebuild of the neighbour
+// slab, Morton code across the slab, then index; periodic images fall into the box's cells; the
+// slab axis is the neighbour list's (the axis of the widest span); and a rebuild of the neighbour
 // list after a reordering of the store keeps each pair's and each wall contact's history with
 // its particles (the reference: the same pairs looked up by particle id before and after).
 #include <gtest/gtest.h>
@@ -47,7 +48,7 @@ TEST(SpatialOrder, MortonCodeInterleavesTheBits) {
   EXPECT_EQ(morton_code((1u << 21) - 1, (1u << 21) - 1, (1u << 21) - 1), ~0ULL >> 1);
 }
 
-TEST(SpatialOrder, IsAPermutationSortedByCellCodeThenIndex) {
+TEST(SpatialOrder, SlabBySlabThenAlongAMortonCurveThenByIndex) {
   const BoxGeometry b = closed_box(0.04, 0.03, 0.05);
   const double cell = 0.004;
   ParticleStore p;
@@ -60,24 +61,33 @@ TEST(SpatialOrder, IsAPermutationSortedByCellCodeThenIndex) {
   std::vector<std::uint32_t> sorted = order;
   std::sort(sorted.begin(), sorted.end());
   for (std::uint32_t k = 0; k < sorted.size(); ++k) ASSERT_EQ(sorted[k], k);
-  auto code = [&](std::uint32_t i) { // 10 x 7 x 12 cells of 4 mm (7 = floor(0.03 / 0.004))
-    const auto c = [](double v, double l, int n) {
-      return static_cast<std::uint32_t>(std::min(static_cast<int>(v / l * n), n - 1));
-    };
-    return morton_reference(c(p.x[i], 0.04, 10), c(p.y[i], 0.03, 7), c(p.z[i], 0.05, 12));
+  // 10 x 7 x 12 cells of 4 mm (7 = floor(0.03 / 0.004)): the particles span the most cells
+  // along z, the slab axis; across a slab the Morton code of (x cell, y cell).
+  const auto c = [](double v, double l, int n) {
+    return static_cast<std::uint32_t>(std::min(static_cast<int>(v / l * n), n - 1));
   };
-  for (std::size_t k = 1; k < order.size(); ++k) {
-    const auto a = std::make_tuple(code(order[k - 1]), order[k - 1]);
-    const auto c = std::make_tuple(code(order[k]), order[k]);
-    ASSERT_LT(a, c) << "entry " << k;
-  }
-  // Locality, the purpose: the first 2^3 cells' block of the curve (x, y, z < 2 cells) comes
-  // first, before any particle outside it.
+  auto key = [&](std::uint32_t i) {
+    return std::make_tuple(c(p.z[i], 0.05, 12),
+                           morton_reference(c(p.x[i], 0.04, 10), c(p.y[i], 0.03, 7), 0), i);
+  };
+  for (std::size_t k = 1; k < order.size(); ++k)
+    ASSERT_LT(key(order[k - 1]), key(order[k])) << "entry " << k;
+  // Locality, the purpose: the particles of the first slab's first 2 x 2 block of cells come
+  // first, before any other.
   std::size_t in_block = 0;
   for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.x[i] < 0.008 && p.y[i] < 0.03 / 7 * 2 && p.z[i] < 0.05 / 12 * 2) ++in_block;
+    if (c(p.z[i], 0.05, 12) == 0 && c(p.x[i], 0.04, 10) < 2 && c(p.y[i], 0.03, 7) < 2) ++in_block;
   ASSERT_GT(in_block, 0u);
-  for (std::size_t k = 0; k < in_block; ++k) EXPECT_LT(code(order[k]), 8u);
+  for (std::size_t k = 0; k < in_block; ++k) {
+    EXPECT_EQ(std::get<0>(key(order[k])), 0u);
+    EXPECT_LT(std::get<1>(key(order[k])), 4u);
+  }
+}
+
+TEST(SpatialOrder, SlabAxisIsTheNeighbourListsRule) {
+  EXPECT_EQ(slab_axis({0, 0, 0}, {5, 3, 9}), 2);
+  EXPECT_EQ(slab_axis({0, 0, 0}, {9, 3, 9}), 0); // ties: the lowest axis
+  EXPECT_EQ(slab_axis({4, 0, 0}, {9, 7, 2}), 1);
 }
 
 TEST(SpatialOrder, PeriodicImagesFallIntoTheBox) {
