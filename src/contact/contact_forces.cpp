@@ -252,8 +252,13 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
 #pragma omp parallel for schedule(dynamic, 1) if (n > 4096)
     for (int sl = phase; sl < nslab; sl += 2) {
       std::vector<ContactSample>* buf = recording ? &slab_samples[sl] : nullptr;
+      // Summed on this thread's stack, stored once: the slabs' entries of slab_stats share
+      // cache lines, and updating them per contact from two threads made the lines bounce
+      // between the cores (false sharing).
+      ContactStats local;
       for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
-        process_row(nl.slab_particles[k], slab_stats[sl], buf);
+        process_row(nl.slab_particles[k], local, buf);
+      slab_stats[sl] = local;
     }
   }
   if (recording) {
@@ -334,7 +339,9 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   for (std::size_t k = 0; k < nchunk; ++k) {
     std::vector<ContactSample>* buf = recording ? &chunk_samples[k] : nullptr;
     const std::size_t end = chunk_start(k + 1);
-    for (std::size_t e = chunk_start(k); e < end; ++e) process_wall(e, wall_stats[k], buf);
+    ContactStats local; // on the stack, as the slabs' (no false sharing)
+    for (std::size_t e = chunk_start(k); e < end; ++e) process_wall(e, local, buf);
+    wall_stats[k] = local;
   }
   for (std::size_t k = 0; k < nchunk; ++k) {
     add_stats(st, wall_stats[k]);
