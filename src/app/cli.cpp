@@ -13,6 +13,7 @@
 #include <fmt/ranges.h>
 
 #include "app/analyse.hpp"
+#include "app/busy_machine.hpp"
 #include "app/progress.hpp"
 #include "app/signals.hpp"
 #include "app/validate.hpp"
@@ -232,6 +233,10 @@ int run_cli(int argc, char** argv) {
     prepare_out_dir(out_dir, force, resuming, sim);
     print_report(sim.spec(), sim.report());
     fmt::print("threads            {}\noutput             {}\n", omp_get_max_threads(), out_dir);
+    if (omp_get_max_threads() > 1)
+      if (const auto busy = busy_cores(200))
+        if (const auto w = busy_machine_warning(*busy, omp_get_num_procs(), omp_get_max_threads()))
+          fmt::print(stderr, "{}\n", *w);
     if (!restart_path.empty())
       fmt::print("restart            from {} at t = {:.6g} s (step {}){}\n", restart_path,
                  sim.time(), sim.step_count(),
