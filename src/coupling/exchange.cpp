@@ -21,28 +21,6 @@ bool solved_face(unsigned char r) {
   return r == gas::GasSolver::solved || r == gas::GasSolver::pressure_face;
 }
 
-/// Gas velocity and pressure gradient at a particle from its 3 face stencils: the arithmetic of
-/// velocity_and_pressure_gradient_at (interpolation.cpp) on stencils built before.
-void velocity_and_pressure_gradient(const gas::GasSolver& gs, const Stencil* st, Vec3& u,
-                                    Vec3& grad_p) {
-  const gas::GasGrid& g = gs.grid();
-  const std::vector<double>& p = gs.pressure();
-  for (int d = 0; d < 3; ++d) {
-    const Stencil& s = st[d];
-    const std::vector<double>& ud = gs.velocity(d);
-    const auto sd = static_cast<std::size_t>(g.stride[static_cast<std::size_t>(d)]);
-    double uv = 0.0, gv = 0.0;
-    for (int m = 0; m < s.n; ++m) {
-      const auto q = static_cast<std::size_t>(s.q[static_cast<std::size_t>(m)]);
-      const double w = s.w[static_cast<std::size_t>(m)];
-      uv += w * ud[q];
-      gv += w * (p[q + sd] - p[q]);
-    }
-    u[d] = uv;
-    grad_p[d] = gv / g.h[static_cast<std::size_t>(d)];
-  }
-}
-
 /// u_c: mean of the two faces of cell q (grid index) along d (the face at q is the HIGH one).
 double cell_gas_velocity(const gas::GasSolver& gs, long q, int d) {
   const std::vector<double>& u = gs.velocity(d);
@@ -174,7 +152,7 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
         if (stencils) { // [Hoomans96 eq. 40-41], the stencils kept for the rest of the step
           Stencil* st = &out.face_stencils[3 * i];
           face_stencils(gs.grid(), x, st);
-          velocity_and_pressure_gradient(gs, st, u, gp);
+          velocity_and_pressure_gradient_on(gs, st, u, gp);
         } else {
           map.velocity_and_pressure_gradient(x, in.d, u, gp);
         }
@@ -318,7 +296,7 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
     for (std::size_t i = 0; i < n; ++i) {
       Vec3 u, gp;
       if (cached)
-        velocity_and_pressure_gradient(gs, &f.face_stencils[3 * i], u, gp);
+        velocity_and_pressure_gradient_on(gs, &f.face_stencils[3 * i], u, gp);
       else
         map.velocity_and_pressure_gradient(p.position(i), 2.0 * p.radius[i], u, gp);
       Vec3 v = p.velocity(i);

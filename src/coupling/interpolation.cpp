@@ -168,10 +168,15 @@ Vec3 pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x) {
 
 void velocity_and_pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x, Vec3& u,
                                        Vec3& grad_p) {
+  Stencil st[3];
+  face_stencils(gs.grid(), x, st);
+  velocity_and_pressure_gradient_on(gs, st, u, grad_p);
+}
+
+void velocity_and_pressure_gradient_on(const gas::GasSolver& gs, const Stencil* st, Vec3& u,
+                                       Vec3& grad_p) {
   const gas::GasGrid& g = gs.grid();
   const std::vector<double>& p = gs.pressure();
-  Stencil st[3];
-  face_stencils(g, x, st);
   for (int d = 0; d < 3; ++d) {
     const Stencil& s = st[d];
     const std::vector<double>& ud = gs.velocity(d);

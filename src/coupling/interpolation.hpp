@@ -56,6 +56,10 @@ Vec3 pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x);
 /// the same values as gas_velocity_at and pressure_gradient_at at half the cost.
 void velocity_and_pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x, Vec3& u,
                                        Vec3& grad_p);
+/// The same on the 3 face stencils of x built before (face_stencils): stencils[d] for
+/// component d.
+void velocity_and_pressure_gradient_on(const gas::GasSolver& gs, const Stencil* stencils, Vec3& u,
+                                       Vec3& grad_p);
 /// Which axes of the solver's grid are periodic.
 std::array<bool, 3> periodic_axes(const gas::GasSolver& gs);
 /// Porosity at x (cell-centre stencil; periodic axes from the solver's boundary map).
