@@ -1,4 +1,5 @@
 #include "hardsphere/hard_sphere_engine.hpp"
+#include "neighbour/cell_walk.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -89,42 +90,19 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
     std::vector<std::uint32_t>& rows = thread_rows_[t];
     rows.clear();
     for (std::size_t i = i0; i < i1; ++i) {
-      const std::uint32_t c = particle_cell_[i];
-      const int cx = static_cast<int>(c % ncell_[0]);
-      const int cy = static_cast<int>((c / ncell_[0]) % ncell_[1]);
-      const int cz = static_cast<int>(c / (static_cast<std::uint32_t>(ncell_[0]) * ncell_[1]));
       const double xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.radius[i];
-      std::uint32_t seen[27];
-      int nseen = 0;
       const std::size_t before = rows.size();
-      for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            int q[3] = {cx + dx, cy + dy, cz + dz};
-            bool ok = true;
-            for (int a = 0; a < 3 && ok; ++a) {
-              if (q[a] < 0 || q[a] >= ncell_[a]) {
-                if (box_.periodic[a])
-                  q[a] = (q[a] + ncell_[a]) % ncell_[a];
-                else
-                  ok = false;
-              }
-            }
-            if (!ok) continue;
-            const auto cell =
-                static_cast<std::uint32_t>((q[2] * ncell_[1] + q[1]) * ncell_[0] + q[0]);
-            if (std::find(seen, seen + nseen, cell) != seen + nseen) continue;
-            seen[nseen++] = cell;
-            for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-              const std::uint32_t j = cell_particles_[k];
-              if (j == i) continue;
-              const double ddx = min_image(p.x[j] - xi, 0);
-              const double ddy = min_image(p.y[j] - yi, 1);
-              const double ddz = min_image(p.z[j] - zi, 2);
-              const double cut = ri + p.radius[j] + skin_;
-              if (ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) rows.push_back(j);
-            }
-          }
+      for_each_cell_around(particle_cell_[i], ncell_, box_.periodic, [&](std::uint32_t cell) {
+        for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+          const std::uint32_t j = cell_particles_[k];
+          if (j == i) continue;
+          const double ddx = min_image(p.x[j] - xi, 0);
+          const double ddy = min_image(p.y[j] - yi, 1);
+          const double ddz = min_image(p.z[j] - zi, 2);
+          const double cut = ri + p.radius[j] + skin_;
+          if (ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) rows.push_back(j);
+        }
+      });
       // Rows in ascending partner order: the partners above i (each pair once) form the tail.
       std::sort(rows.begin() + static_cast<std::ptrdiff_t>(before), rows.end());
       full_offset_[i + 1] = static_cast<std::uint32_t>(rows.size() - before);

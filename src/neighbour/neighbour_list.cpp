@@ -1,4 +1,5 @@
 #include "neighbour/neighbour_list.hpp"
+#include "neighbour/cell_walk.hpp"
 #include "neighbour/spatial_order.hpp"
 
 #include <stdexcept>
@@ -179,40 +180,17 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
 
   // Neighbour cells of each cell, deduplicated (periodic axes with fewer than 3 cells).
   auto for_each_partner = [&](std::size_t i, auto&& visit) {
-    const std::uint32_t c = particle_cell_[i];
-    const int cx = static_cast<int>(c % ncell_[0]);
-    const int cy = static_cast<int>((c / ncell_[0]) % ncell_[1]);
-    const int cz = static_cast<int>(c / (static_cast<std::uint32_t>(ncell_[0]) * ncell_[1]));
-    std::uint32_t seen[27];
-    int nseen = 0;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          int q[3] = {cx + dx, cy + dy, cz + dz};
-          bool ok = true;
-          for (int a = 0; a < 3 && ok; ++a) {
-            if (q[a] < 0 || q[a] >= ncell_[a]) {
-              if (box_.periodic[a])
-                q[a] = (q[a] + ncell_[a]) % ncell_[a];
-              else
-                ok = false;
-            }
-          }
-          if (!ok) continue;
-          const auto cell =
-              static_cast<std::uint32_t>((q[2] * ncell_[1] + q[1]) * ncell_[0] + q[0]);
-          if (std::find(seen, seen + nseen, cell) != seen + nseen) continue;
-          seen[nseen++] = cell;
-          for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-            const std::uint32_t j = cell_particles_[k];
-            if (j == i || !owns(static_cast<std::uint32_t>(i), j)) continue;
-            const double dxp = min_image(p.x[j] - p.x[i], 0);
-            const double dyp = min_image(p.y[j] - p.y[i], 1);
-            const double dzp = min_image(p.z[j] - p.z[i], 2);
-            const double cut = p.radius[i] + p.radius[j] + skin_;
-            if (dxp * dxp + dyp * dyp + dzp * dzp < cut * cut) visit(j);
-          }
-        }
+    for_each_cell_around(particle_cell_[i], ncell_, box_.periodic, [&](std::uint32_t cell) {
+      for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+        const std::uint32_t j = cell_particles_[k];
+        if (j == i || !owns(static_cast<std::uint32_t>(i), j)) continue;
+        const double dxp = min_image(p.x[j] - p.x[i], 0);
+        const double dyp = min_image(p.y[j] - p.y[i], 1);
+        const double dzp = min_image(p.z[j] - p.z[i], 2);
+        const double cut = p.radius[i] + p.radius[j] + skin_;
+        if (dxp * dxp + dyp * dyp + dzp * dzp < cut * cut) visit(j);
+      }
+    });
   };
 
   offset.assign(n + 1, 0);
