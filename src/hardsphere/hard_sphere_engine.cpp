@@ -23,6 +23,26 @@ namespace {
 /// threads at load 12 with the loops parallel above 512 particles).
 constexpr std::size_t kParallelMin = 4096;
 
+/// Time until spheres of separation r (from the partner to this one) and relative velocity v
+/// (this one's minus the partner's), whose radii sum to sigma, touch, moving in straight lines:
+/// [Deen07 eq. 45], written as c / (-b + sqrt(b^2 - v^2 c)) to avoid cancellation. Infinity if
+/// they move apart, miss, or cannot meet within `horizon` (the root is at least c / (2 |b|),
+/// since sqrt(disc) <= |b|: such pairs are passed over without the square root and the division;
+/// the margin 1e-9 covers the round-off of the root, so the choice is the same as with it).
+/// Touching spheres (c <= 0, round-off) collide now if approaching along the normal, judged with
+/// the same arithmetic as the collision operator so that both agree.
+double time_to_contact(const Vec3& r, const Vec3& v, double sigma, double horizon) {
+  constexpr double never = std::numeric_limits<double>::infinity();
+  const double b = dot(r, v);
+  if (b >= 0.0) return never; // moving apart
+  const double c = norm2(r) - sigma * sigma;
+  if (c <= 0.0) return dot(v, r / norm(r)) >= 0.0 ? never : 0.0;
+  if (c > -2.0 * b * horizon * (1.0 + 1e-9)) return never;
+  const double disc = b * b - norm2(v) * c;
+  if (disc < 0.0) return never; // miss
+  return c / (-b + std::sqrt(disc));
+}
+
 hardsphere::CollisionLaw law_from(const MixedCoefficients& m) {
   return {m.restitution, m.friction, m.tangential_restitution};
 }
@@ -153,22 +173,8 @@ void HardSphereEngine::first_events(double now) {
         const Vec3 r{min_image(ki.x - kj.x, 0), min_image(ki.y - kj.y, 1),
                      min_image(ki.z - kj.z, 2)};
         const Vec3 v{ki.vx - kj.vx, ki.vy - kj.vy, ki.vz - kj.vz};
-        pair_time_[e] = none;
-        const double b = dot(r, v);
-        if (b >= 0.0) continue;
-        const double sigma = ki.r + kj.r;
-        const double c = norm2(r) - sigma * sigma;
-        double dt;
-        if (c <= 0.0) {
-          if (dot(v, r / norm(r)) >= 0.0) continue;
-          dt = 0.0;
-        } else {
-          if (c > -2.0 * b * (t_end_ - now) * (1.0 + 1e-9)) continue;
-          const double disc = b * b - norm2(v) * c;
-          if (disc < 0.0) continue;
-          dt = c / (-b + std::sqrt(disc));
-        }
-        pair_time_[e] = now + dt;
+        const double dt = time_to_contact(r, v, ki.r + kj.r, t_end_ - now);
+        pair_time_[e] = dt < none ? now + dt : none;
       }
     }
 #pragma omp for schedule(static)
@@ -266,9 +272,8 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
   const Vec3 vi = Vec3{ki.vx, ki.vy, ki.vz} + g_ * ai;
   double best = t_end_;
   std::uint32_t partner = kNone;
-  // Pairs: both fall with the same g, so their relative motion is a straight line and the
-  // collision time is [Deen07 eq. 45], written as c / (-b + sqrt(b^2 - v^2 c)) to avoid
-  // cancellation.
+  // Pairs: both fall with the same g, so their relative motion is a straight line
+  // (time_to_contact).
   for (std::uint32_t k = full_offset_[i]; k < full_offset_[i + 1]; ++k) {
     const std::uint32_t j = full_partner_[k];
     const Kin& kj = kin_[j];
@@ -277,25 +282,7 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
                  min_image(xi.y - (kj.y + (kj.vy + 0.5 * g_.y * aj) * aj), 1),
                  min_image(xi.z - (kj.z + (kj.vz + 0.5 * g_.z * aj) * aj), 2)};
     const Vec3 v = vi - (Vec3{kj.vx, kj.vy, kj.vz} + g_ * aj);
-    const double b = dot(r, v);
-    if (b >= 0.0) continue; // moving apart
-    const double sigma = ki.r + kj.r;
-    const double c = norm2(r) - sigma * sigma;
-    double dt;
-    if (c <= 0.0) {
-      // Touching (round-off): collide now if approaching along the normal, judged with the
-      // same arithmetic as the collision operator so that both agree.
-      if (dot(v, r / norm(r)) >= 0.0) continue;
-      dt = 0.0;
-    } else {
-      // The root is at least c / (2 |b|) (sqrt(disc) <= |b|): a pair that cannot meet before
-      // the best event so far is passed over without the square root and the division. The
-      // margin 1e-9 covers the round-off of the root, so the choice is the same as with it.
-      if (c > -2.0 * b * (best - now) * (1.0 + 1e-9)) continue;
-      const double disc = b * b - norm2(v) * c;
-      if (disc < 0.0) continue; // miss
-      dt = c / (-b + std::sqrt(disc));
-    }
+    const double dt = time_to_contact(r, v, ki.r + kj.r, best - now);
     if (now + dt < best) best = now + dt, partner = j;
   }
   wall_event(ki, xi, vi, now, best, partner);
