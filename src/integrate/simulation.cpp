@@ -235,13 +235,10 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
   nl_ = std::make_unique<NeighbourList>(box_from(spec_), skin, contact_history_width(*table_));
   // A new run starts sorted in space (inserted at random or read from a file in any order); a
   // restarted one continues in the order of its checkpoint.
-  if (!initial && spec_.neighbour.sort_interval > 0) {
-    double rmax = 0.0;
-    for (const double r : p_.radius) rmax = std::max(rmax, r);
-    p_.permute(spatial_order(p_, nl_->box(), 2.0 * rmax + skin));
-    ++sorts_;
-  }
-  nl_->build(p_);
+  if (!initial && spec_.neighbour.sort_interval > 0)
+    sort_and_rebuild(); // the first build, so no history to carry over
+  else
+    nl_->build(p_);
   compute_forces();
   if (spec_.gas) gas_ = std::make_unique<GasCoupling>(spec_, p_);
 }
