@@ -84,7 +84,8 @@ void NeighbourList::renumber_old(const std::vector<std::uint32_t>& new_to_old) {
     offset_new[k + 1] = o + (end - begin);
     for (std::uint32_t e = begin; e < end; ++e) {
       partner_new[o + (e - begin)] = old_to_new[old_partner_[e]];
-      std::copy_n(&old_history_[e * h], h, &history_new[(o + (e - begin)) * h]);
+      if (h > 0) // (no history: the arrays are empty, and [0] of an empty vector is undefined)
+        std::copy_n(old_history_.data() + e * h, h, history_new.data() + (o + (e - begin)) * h);
     }
   }
   old_offset_.swap(offset_new);
@@ -105,7 +106,8 @@ void NeighbourList::renumber_old(const std::vector<std::uint32_t>& new_to_old) {
   for (std::size_t e = 0; e < nw; ++e) {
     wall_particle_new[e] = old_to_new[old_wall_particle_[order[e]]];
     wall_face_new[e] = old_wall_face_[order[e]];
-    std::copy_n(&old_wall_history_[order[e] * h], h, &wall_history_new[e * h]);
+    if (h > 0)
+      std::copy_n(old_wall_history_.data() + order[e] * h, h, wall_history_new.data() + e * h);
   }
   old_wall_particle_.swap(wall_particle_new);
   old_wall_face_.swap(wall_face_new);
