@@ -377,16 +377,17 @@ void H5mdWriter::write_frame(long step, double time, const ParticleStore& p,
                                   std::to_string(n));
   }
 
+  if (order && order->size() != n)
+    throw std::invalid_argument("H5mdWriter('" + m.path + "'): the frame order has " +
+                                std::to_string(order->size()) + " entries for " +
+                                std::to_string(n) + " particles");
+
   const std::int64_t step64 = step;
   append_frame(m.step.get(), 1, nullptr, m.frames, H5T_NATIVE_INT64, m.mem_one.get(), &step64,
                m.path, "/particles/all/position/step");
   append_frame(m.time.get(), 1, nullptr, m.frames, H5T_NATIVE_DOUBLE, m.mem_one.get(), &time,
                m.path, "/particles/all/position/time");
 
-  if (order && order->size() != n)
-    throw std::invalid_argument("H5mdWriter('" + m.path + "'): the frame order has " +
-                                std::to_string(order->size()) + " entries for " +
-                                std::to_string(n) + " particles");
   const auto at = [order](std::size_t k) { return order ? (*order)[k] : k; };
   const auto interleave = [&](const std::vector<double>& a, const std::vector<double>& b,
                               const std::vector<double>& c) {

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "output/h5md_reader.hpp"
 #include "output/h5md_writer.hpp"
 #include "output/series_writer.hpp"
 
@@ -396,6 +397,35 @@ TEST(H5mdWriter, WrongParticleCountThrows) {
   H5mdWriter w(dir.file("p.h5"), kN, 2, "test");
   EXPECT_THROW(w.write_frame(0, 0.0, make_frame(kN + 1, 0)), std::invalid_argument);
   EXPECT_THROW(H5mdWriter(dir.file("q.h5"), 3, 4, "test"), std::invalid_argument);
+}
+
+TEST(H5mdWriter, FrameOrderWritesTheGivenRowsAndIsChecked) {
+  // write_frame(..., order): row k is particle order[k] (the simulation passes its store's
+  // indices in ascending id after a spatial sort); a wrong-sized order writes nothing.
+  TempDir dir;
+  const std::string path = dir.file("p.h5");
+  const ParticleStore p = make_frame(kN, 0, true);
+  std::vector<std::uint32_t> order(kN);
+  for (std::size_t k = 0; k < kN; ++k) order[k] = static_cast<std::uint32_t>(kN - 1 - k);
+  {
+    H5mdWriter w(path, kN, 3, "test");
+    const std::vector<std::uint32_t> short_order(kN - 1);
+    EXPECT_THROW(w.write_frame(0, 0.0, p, &short_order), std::invalid_argument);
+    w.write_frame(0, 0.0, p, &order);
+    EXPECT_EQ(w.frames(), 1u);
+  }
+  const fluidem::H5mdReader r(path);
+  ASSERT_EQ(r.frames(), 1u);
+  ParticleStore f;
+  r.read_frame(0, f);
+  for (std::size_t k = 0; k < kN; ++k) {
+    const std::size_t i = order[k];
+    EXPECT_EQ(f.id[k], p.id[i]);
+    EXPECT_EQ(f.x[k], p.x[i]);
+    EXPECT_EQ(f.wz[k], p.wz[i]);
+    EXPECT_EQ(f.radius[k], p.radius[i]);
+    EXPECT_EQ(f.species[k], p.species[i]);
+  }
 }
 
 TEST(H5mdWriter, HdfErrorThrowsNamingFileAndOperation) {
