@@ -359,9 +359,8 @@ void Simulation::step() {
 }
 
 void Simulation::sort_and_rebuild() {
-  double rmax = 0.0;
-  for (const double r : p_.radius) rmax = std::max(rmax, r);
-  const std::vector<std::uint32_t> order = spatial_order(p_, nl_->box(), 2.0 * rmax + nl_->skin());
+  // The list's own cells, so that the slabs of the sort are the list's.
+  const std::vector<std::uint32_t> order = spatial_order(p_, nl_->box(), nl_->cell_size(p_));
   p_.permute(order);
   if (gas_) gas_->permute(order);
   nl_->build(p_, &order);

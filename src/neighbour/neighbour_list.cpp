@@ -67,6 +67,12 @@ void NeighbourList::build_cells(const ParticleStore& p, double cell_size) {
     cell_particles_[count_[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
 }
 
+double NeighbourList::cell_size(const ParticleStore& p) const {
+  double rmax = 0.0;
+  for (const double r : p.radius) rmax = std::max(rmax, r);
+  return 2.0 * rmax + skin_;
+}
+
 void NeighbourList::renumber_old(const std::vector<std::uint32_t>& new_to_old) {
   const std::size_t n = new_to_old.size();
   const auto h = static_cast<std::size_t>(hw_);
@@ -116,9 +122,7 @@ void NeighbourList::renumber_old(const std::vector<std::uint32_t>& new_to_old) {
 
 void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_t>* new_to_old) {
   const std::size_t n = p.size();
-  double rmax = 0.0;
-  for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, p.radius[i]);
-  build_cells(p, 2.0 * rmax + skin_);
+  build_cells(p, cell_size(p));
 
   std::swap(old_offset_, offset);
   std::swap(old_partner_, partner);

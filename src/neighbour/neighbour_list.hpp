@@ -57,6 +57,8 @@ public:
   /// Change the skin for the next build (the hard-sphere engine sizes it per flow step).
   void set_skin(double skin) { skin_ = skin; }
   long builds() const { return builds_; }
+  /// Side of the cells the list bins particles in: the largest diameter plus the skin.
+  double cell_size(const ParticleStore& p) const;
   std::size_t bytes() const;
 
   /// Minimum-image separation vector component along axis a.
