@@ -112,6 +112,73 @@ template <NormalModel Normal, bool Tangential, RollingModel Rolling>
   return out;
 }
 
+template <bool Tangential, RollingModel Rolling>
+constexpr int kHistoryWidth = (Tangential ? 3 : 0) +
+                              (Rolling == RollingModel::SpringDashpot ? 3 : 0);
+
+/// Touching pairs of one slab, by field (structure of arrays): the inputs of the contact kernel,
+/// its outputs, and the contacts' history, for `n` contacts (kSize at most: ~25 kB, in L1).
+template <int HistoryWidth>
+struct PairBatch {
+  static constexpr int kSize = 64;
+  static constexpr int kHistory = HistoryWidth;
+  using Column = double[kSize];
+  int n = 0;
+  std::uint32_t i[kSize], j[kSize], e[kSize]; ///< particles and list entry
+  int pair[kSize];                            ///< index of the pair's parameters
+  // inputs: separation j - i, radii, masses, v_i - v_j, angular velocities, 1/I_i + 1/I_j
+  Column d[3], ri, rj, mi, mj, dv[3], wi[3], wj[3], inv_inertia_sum;
+  Column hist[HistoryWidth > 0 ? HistoryWidth : 1]; ///< in: before the step; out: after it
+  // outputs (ContactOutput's fields) and the unit normal and overlap
+  Column force[3], torque_unit[3], torque_roll[3], nc_force[3], nc_torque_unit[3],
+      nc_torque_roll[3], normal[3], elastic, spring_loss, overlap;
+  static Vec3 get(const Column (&c)[3], int k) { return {c[0][k], c[1][k], c[2][k]}; }
+};
+
+/// Pass 2 of the pair loop: evaluate the batch's contacts, several at once (see compute()).
+template <NormalModel Normal, bool Tangential, RollingModel Rolling, int HW>
+[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] void
+evaluate_batch(PairBatch<HW>& b, const PairParams* params, double dt) {
+  const int n = b.n;
+#pragma GCC ivdep
+  for (int k = 0; k < n; ++k) {
+    const Vec3 dvec{b.d[0][k], b.d[1][k], b.d[2][k]};
+    const double ri = b.ri[k], rj = b.rj[k], mi = b.mi[k], mj = b.mj[k];
+    const double rsum = ri + rj;
+    const double d = std::sqrt(norm2(dvec));
+    ContactInput c;
+    const double inv_d = 1.0 / d;
+    c.n = Vec3{dvec.x * inv_d, dvec.y * inv_d, dvec.z * inv_d};
+    c.overlap = rsum - d;
+    const Vec3 dv{b.dv[0][k], b.dv[1][k], b.dv[2][k]};
+    const Vec3 wi{b.wi[0][k], b.wi[1][k], b.wi[2][k]}, wj{b.wj[0][k], b.wj[1][k], b.wj[2][k]};
+    c.v_rel = dv + cross(wi * ri + wj * rj, c.n);
+    c.w_rel = wi - wj;
+    const double inv = 1.0 / (rsum * (mi + mj)); // r* = ri rj / rsum, m* = mi mj / (mi + mj)
+    c.r_eff = ri * rj * (mi + mj) * inv;
+    c.m_eff = mi * mj * rsum * inv;
+    c.inv_inertia_sum = b.inv_inertia_sum[k];
+    // Separation one step earlier: positions moved by v dt with the current velocities.
+    c.d_prev = dvec + dv * dt;
+    double hist[HW > 0 ? HW : 1];
+    for (int m = 0; m < HW; ++m) hist[m] = b.hist[m][k];
+    const auto out = evaluate<Normal, Tangential, Rolling>(c, params[b.pair[k]], hist, dt);
+    for (int m = 0; m < HW; ++m) b.hist[m][k] = hist[m];
+    for (int a = 0; a < 3; ++a) {
+      b.force[a][k] = out.force[a];
+      b.torque_unit[a][k] = out.torque_unit[a];
+      b.torque_roll[a][k] = out.torque_roll[a];
+      b.nc_force[a][k] = out.nc_force[a];
+      b.nc_torque_unit[a][k] = out.nc_torque_unit[a];
+      b.nc_torque_roll[a][k] = out.nc_torque_roll[a];
+      b.normal[a][k] = c.n[a];
+    }
+    b.elastic[k] = out.elastic;
+    b.spring_loss[k] = out.spring_loss;
+    b.overlap[k] = c.overlap;
+  }
+}
+
 /// Add a slab's or wall chunk's statistics to the total (the deepest overlap: the first one
 /// found in the order of the calls).
 void add_stats(ContactStats& total, const ContactStats& part) {
@@ -160,20 +227,75 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   // slab write only to particles of that slab and the next, so all even slabs run in parallel,
   // then all odd slabs; each slab runs its rows in a fixed order and keeps its own statistics,
   // summed in slab order: the result does not depend on the number of threads.
-  // The pair loop reads the particles through the packed view (one base pointer, the data of
-  // particle j in 96 contiguous bytes) and adds into the packed accumulator; the row's own
-  // particle i accumulates in registers and is written once at the end of the row (the partners
-  // j != i per pair).
+  // A slab's touching pairs are evaluated in batches (PairBatch): the list walk gathers each
+  // touching pair's inputs from the packed view, one `omp simd` loop evaluates the batch's
+  // contacts side by side (a contact is a long chain of dependent square roots and divisions;
+  // one at a time, the core waits on it), and a last pass adds the forces to both particles in
+  // the list's order. Every contact's result is the same in any lane: no FP contraction, no
+  // approximate roots (ISO C++ build, no -ffast-math).
   const double* view = nc.view.data();
   double* acc_f = nc.acc.data();
-  auto process_row = [&, view, acc_f](std::size_t i, ContactStats& acc,
+  const PairParams* params = &table.pair(0, 0);
+  const int n_species = table.species_count();
+  using Batch = PairBatch<kHistoryWidth<Tangential, Rolling>>;
+  // Pass 3: forces into the accumulator, statistics, history back into the list, samples.
+  auto apply_batch = [&, view, acc_f](Batch& b, ContactStats& acc,
                                       std::vector<ContactSample>* buf) {
+    evaluate_batch<Normal, Tangential, Rolling>(b, params, dt);
+    for (int k = 0; k < b.n; ++k) {
+      const std::uint32_t i = b.i[k], j = b.j[k];
+      const double ri = b.ri[k], rj = b.rj[k];
+      const Vec3 f = b.get(b.force, k), ncf = b.get(b.nc_force, k);
+      const Vec3 tu = b.get(b.torque_unit, k), nctu = b.get(b.nc_torque_unit, k);
+      const Vec3 tr = b.get(b.torque_roll, k), nctr = b.get(b.nc_torque_roll, k);
+      double* aj = acc_f + ContactScratch::kAcc * j;
+      const Vec3 tj = tu * rj - tr;
+      const Vec3 ntj = nctu * rj - nctr;
+      aj[0] -= f.x, aj[1] -= f.y, aj[2] -= f.z;
+      aj[3] += tj.x, aj[4] += tj.y, aj[5] += tj.z;
+      aj[6] -= ncf.x, aj[7] -= ncf.y, aj[8] -= ncf.z;
+      aj[9] += ntj.x, aj[10] += ntj.y, aj[11] += ntj.z;
+      double* ai = acc_f + ContactScratch::kAcc * i;
+      const Vec3 ti = tu * ri + tr;
+      const Vec3 nti = nctu * ri + nctr;
+      ai[0] += f.x, ai[1] += f.y, ai[2] += f.z;
+      ai[3] += ti.x, ai[4] += ti.y, ai[5] += ti.z;
+      ai[6] += ncf.x, ai[7] += ncf.y, ai[8] += ncf.z;
+      ai[9] += nti.x, ai[10] += nti.y, ai[11] += nti.z;
+      if constexpr (Batch::kHistory > 0) {
+        double* hist = &nl.history[static_cast<std::size_t>(b.e[k]) * Batch::kHistory];
+        for (int m = 0; m < Batch::kHistory; ++m) hist[m] = b.hist[m][k];
+      }
+      ++acc.n_contacts;
+      acc.elastic_energy += b.elastic[k];
+      acc.spring_losses += b.spring_loss[k];
+      const double dmin = 2.0 * std::min(ri, rj);
+      if (b.overlap[k] > acc.max_overlap_ratio * dmin) track_overlap(acc, b.overlap[k] / dmin, i);
+      if (buf) {
+        const double* pi = view + ContactScratch::kView * i;
+        const Vec3 nk = b.get(b.normal, k);
+        ContactSample& cs = buf->emplace_back();
+        cs.id_i = p.id[i];
+        cs.id_j = p.id[j];
+        cs.i = static_cast<std::int32_t>(i);
+        cs.j = static_cast<std::int32_t>(j);
+        cs.overlap = b.overlap[k];
+        cs.normal = nk;
+        cs.force = f;
+        cs.torque_roll = tr;
+        cs.contact_point = Vec3{pi[0], pi[1], pi[2]} + nk * (ri - 0.5 * b.overlap[k]);
+      }
+    }
+    b.n = 0;
+  };
+  // Pass 1: walk a row of the list; every entry is written into the batch's next slot, which is
+  // kept only when the pair touches (no branch on contact); a pair that stopped touching
+  // releases its history.
+  auto gather_row = [&, view](std::size_t i, Batch& b, ContactStats& acc,
+                              std::vector<ContactSample>* buf) {
     const double* pi = view + ContactScratch::kView * i;
     const double xi = pi[0], yi = pi[1], zi = pi[2], ri = pi[3];
-    const Vec3 vi{pi[4], pi[5], pi[6]}, wi{pi[8], pi[9], pi[10]};
-    const double mi = pi[7], inv_ii = pi[11];
     const int si = p.species[i];
-    Vec3 f_i, t_i, ncf_i, nct_i;
     const std::uint32_t row_end = nl.offset[i + 1];
     for (std::uint32_t e = nl.offset[i]; e < row_end; ++e) {
       const std::uint32_t j = nl.partner[e];
@@ -183,65 +305,26 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       const double dz = nl.min_image(pj[2] - zi, 2);
       const double rj = pj[3];
       const double rsum = ri + rj;
-      const double d2 = dx * dx + dy * dy + dz * dz;
-      double* hist = hw ? &nl.history[static_cast<std::size_t>(e) * hw] : nullptr;
-      if (d2 >= rsum * rsum) {
-        if (hw) // contact lost: history reset
-          release(acc, hist, table.pair(si, p.species[j]), ri * rj / rsum);
-        continue;
+      const bool touching = dx * dx + dy * dy + dz * dz < rsum * rsum;
+      const int k = b.n;
+      b.i[k] = static_cast<std::uint32_t>(i), b.j[k] = j, b.e[k] = e;
+      b.pair[k] = si * n_species + p.species[j];
+      b.d[0][k] = dx, b.d[1][k] = dy, b.d[2][k] = dz;
+      b.ri[k] = ri, b.rj[k] = rj, b.mi[k] = pi[7], b.mj[k] = pj[7];
+      for (int a = 0; a < 3; ++a) {
+        b.dv[a][k] = pi[4 + a] - pj[4 + a];
+        b.wi[a][k] = pi[8 + a];
+        b.wj[a][k] = pj[8 + a];
       }
-      const double d = std::sqrt(d2);
-      ContactInput c;
-      const double inv_d = 1.0 / d;
-      c.n = Vec3{dx * inv_d, dy * inv_d, dz * inv_d};
-      c.overlap = rsum - d;
-      const Vec3 vj{pj[4], pj[5], pj[6]};
-      const Vec3 wj{pj[8], pj[9], pj[10]};
-      c.v_rel = vi - vj + cross(wi * ri + wj * rj, c.n);
-      c.w_rel = wi - wj;
-      const double mj = pj[7];
-      const double inv = 1.0 / (rsum * (mi + mj)); // r* = ri rj / rsum, m* = mi mj / (mi + mj)
-      c.r_eff = ri * rj * (mi + mj) * inv;
-      c.m_eff = mi * mj * rsum * inv;
-      c.inv_inertia_sum = inv_ii + pj[11];
-      // Separation one step earlier: positions moved by v dt with the current velocities.
-      c.d_prev = Vec3{dx, dy, dz} - (vj - vi) * dt;
-      const auto out =
-          evaluate<Normal, Tangential, Rolling>(c, table.pair(si, p.species[j]), hist, dt);
-      double* aj = acc_f + ContactScratch::kAcc * j;
-      const Vec3 tj = out.torque_unit * rj - out.torque_roll;
-      const Vec3 ntj = out.nc_torque_unit * rj - out.nc_torque_roll;
-      aj[0] -= out.force.x, aj[1] -= out.force.y, aj[2] -= out.force.z;
-      aj[3] += tj.x, aj[4] += tj.y, aj[5] += tj.z;
-      aj[6] -= out.nc_force.x, aj[7] -= out.nc_force.y, aj[8] -= out.nc_force.z;
-      aj[9] += ntj.x, aj[10] += ntj.y, aj[11] += ntj.z;
-      f_i += out.force;
-      t_i += out.torque_unit * ri + out.torque_roll;
-      ncf_i += out.nc_force;
-      nct_i += out.nc_torque_unit * ri + out.nc_torque_roll;
-      ++acc.n_contacts;
-      acc.elastic_energy += out.elastic;
-      acc.spring_losses += out.spring_loss;
-      const double dmin = 2.0 * std::min(ri, rj);
-      if (c.overlap > acc.max_overlap_ratio * dmin) track_overlap(acc, c.overlap / dmin, i);
-      if (buf) {
-        ContactSample& cs = buf->emplace_back();
-        cs.id_i = p.id[i];
-        cs.id_j = p.id[j];
-        cs.i = static_cast<std::int32_t>(i);
-        cs.j = static_cast<std::int32_t>(j);
-        cs.overlap = c.overlap;
-        cs.normal = c.n;
-        cs.force = out.force;
-        cs.torque_roll = out.torque_roll;
-        cs.contact_point = Vec3{xi, yi, zi} + c.n * (ri - 0.5 * c.overlap);
+      b.inv_inertia_sum[k] = pi[11] + pj[11];
+      if constexpr (Batch::kHistory > 0) {
+        double* hist = &nl.history[static_cast<std::size_t>(e) * Batch::kHistory];
+        for (int m = 0; m < Batch::kHistory; ++m) b.hist[m][k] = hist[m];
+        if (!touching) release(acc, hist, params[b.pair[k]], ri * rj / rsum);
       }
+      b.n += touching ? 1 : 0;
+      if (b.n == Batch::kSize) apply_batch(b, acc, buf);
     }
-    double* ai = acc_f + ContactScratch::kAcc * i;
-    ai[0] += f_i.x, ai[1] += f_i.y, ai[2] += f_i.z;
-    ai[3] += t_i.x, ai[4] += t_i.y, ai[5] += t_i.z;
-    ai[6] += ncf_i.x, ai[7] += ncf_i.y, ai[8] += ncf_i.z;
-    ai[9] += nct_i.x, ai[10] += nct_i.y, ai[11] += nct_i.z;
   };
   const int nslab = nl.slab_count();
   auto& slab_stats = nc.slab_stats; // kept between steps: no allocation per step
@@ -256,8 +339,10 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       // cache lines, and updating them per contact from two threads made the lines bounce
       // between the cores (false sharing).
       ContactStats local;
+      Batch batch;
       for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
-        process_row(nl.slab_particles[k], local, buf);
+        gather_row(nl.slab_particles[k], batch, local, buf);
+      apply_batch(batch, local, buf);
       slab_stats[sl] = local;
     }
   }
