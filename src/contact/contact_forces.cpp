@@ -116,53 +116,70 @@ template <bool Tangential, RollingModel Rolling>
 constexpr int kHistoryWidth = (Tangential ? 3 : 0) +
                               (Rolling == RollingModel::SpringDashpot ? 3 : 0);
 
-/// Touching pairs of one slab, by field (structure of arrays): the inputs of the contact kernel,
-/// its outputs, and the contacts' history, for `n` contacts (kSize at most: ~25 kB, in L1).
+/// Touching contacts (pairs of one slab, or wall contacts of one chunk), by field (structure of
+/// arrays): the inputs of the contact kernel, its outputs, and the contacts' history, for `n`
+/// contacts (kSize at most: ~30 kB, in L1).
 template <int HistoryWidth>
-struct PairBatch {
+struct ContactBatch {
   static constexpr int kSize = 64;
   static constexpr int kHistory = HistoryWidth;
   using Column = double[kSize];
   int n = 0;
-  std::uint32_t i[kSize], j[kSize], e[kSize]; ///< particles and list entry
-  int pair[kSize];                            ///< index of the pair's parameters
-  // inputs: separation j - i, radii, masses, v_i - v_j, angular velocities, 1/I_i + 1/I_j
-  Column d[3], ri, rj, mi, mj, dv[3], wi[3], wj[3], inv_inertia_sum;
+  std::uint32_t i[kSize], j[kSize], e[kSize]; ///< particles (j: pairs only) and list entry
+  int params[kSize];                          ///< index of the contact's parameters
+  // inputs: pairs: the separation j - i; walls: the normal, the overlap and the gap
+  Column d[3], wall_gap;
+  // inputs: radii, masses, v_i - v_j, angular velocities, 1/I_i + 1/I_j (walls: v_i, w_i, 1/I_i)
+  Column ri, rj, mi, mj, dv[3], wi[3], wj[3], inv_inertia_sum;
   Column hist[HistoryWidth > 0 ? HistoryWidth : 1]; ///< in: before the step; out: after it
-  // outputs (ContactOutput's fields) and the unit normal and overlap
+  // outputs (ContactOutput's fields) and the unit normal and overlap (inputs for walls)
   Column force[3], torque_unit[3], torque_roll[3], nc_force[3], nc_torque_unit[3],
       nc_torque_roll[3], normal[3], elastic, spring_loss, overlap;
   static Vec3 get(const Column (&c)[3], int k) { return {c[0][k], c[1][k], c[2][k]}; }
 };
 
-/// Pass 2 of the pair loop: evaluate the batch's contacts, several at once (see compute()).
-template <NormalModel Normal, bool Tangential, RollingModel Rolling, int HW>
+/// Pass 2 of the contact loop: evaluate the batch's contacts, several at once (see compute()).
+/// Pairs [Deen07 eq. 12]: relative contact-point velocity from both particles; walls: a partner
+/// of infinite mass and radius at rest, whose normal never turns.
+template <NormalModel Normal, bool Tangential, RollingModel Rolling, bool Wall, int HW>
 [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] void
-evaluate_batch(PairBatch<HW>& b, const PairParams* params, double dt) {
+evaluate_batch(ContactBatch<HW>& b, const PairParams* params, double dt) {
   const int n = b.n;
 #pragma GCC ivdep
   for (int k = 0; k < n; ++k) {
-    const Vec3 dvec{b.d[0][k], b.d[1][k], b.d[2][k]};
-    const double ri = b.ri[k], rj = b.rj[k], mi = b.mi[k], mj = b.mj[k];
-    const double rsum = ri + rj;
-    const double d = std::sqrt(norm2(dvec));
-    ContactInput c;
-    const double inv_d = 1.0 / d;
-    c.n = Vec3{dvec.x * inv_d, dvec.y * inv_d, dvec.z * inv_d};
-    c.overlap = rsum - d;
+    const double ri = b.ri[k], mi = b.mi[k];
     const Vec3 dv{b.dv[0][k], b.dv[1][k], b.dv[2][k]};
-    const Vec3 wi{b.wi[0][k], b.wi[1][k], b.wi[2][k]}, wj{b.wj[0][k], b.wj[1][k], b.wj[2][k]};
-    c.v_rel = dv + cross(wi * ri + wj * rj, c.n);
-    c.w_rel = wi - wj;
-    const double inv = 1.0 / (rsum * (mi + mj)); // r* = ri rj / rsum, m* = mi mj / (mi + mj)
-    c.r_eff = ri * rj * (mi + mj) * inv;
-    c.m_eff = mi * mj * rsum * inv;
+    const Vec3 wi{b.wi[0][k], b.wi[1][k], b.wi[2][k]};
+    ContactInput c;
     c.inv_inertia_sum = b.inv_inertia_sum[k];
-    // Separation one step earlier: positions moved by v dt with the current velocities.
-    c.d_prev = dvec + dv * dt;
+    if constexpr (Wall) {
+      c.n = b.get(b.normal, k);
+      c.fixed_normal = true;
+      c.overlap = b.overlap[k];
+      c.v_rel = dv + cross(wi * ri, c.n);
+      c.w_rel = wi;
+      c.r_eff = ri;
+      c.m_eff = mi;
+    } else {
+      const Vec3 dvec{b.d[0][k], b.d[1][k], b.d[2][k]};
+      const double rj = b.rj[k], mj = b.mj[k];
+      const double rsum = ri + rj;
+      const double d = std::sqrt(norm2(dvec));
+      const double inv_d = 1.0 / d;
+      c.n = Vec3{dvec.x * inv_d, dvec.y * inv_d, dvec.z * inv_d};
+      c.overlap = rsum - d;
+      const Vec3 wj{b.wj[0][k], b.wj[1][k], b.wj[2][k]};
+      c.v_rel = dv + cross(wi * ri + wj * rj, c.n);
+      c.w_rel = wi - wj;
+      const double inv = 1.0 / (rsum * (mi + mj)); // r* = ri rj / rsum, m* = mi mj / (mi + mj)
+      c.r_eff = ri * rj * (mi + mj) * inv;
+      c.m_eff = mi * mj * rsum * inv;
+      // Separation one step earlier: positions moved by v dt with the current velocities.
+      c.d_prev = dvec + dv * dt;
+    }
     double hist[HW > 0 ? HW : 1];
     for (int m = 0; m < HW; ++m) hist[m] = b.hist[m][k];
-    const auto out = evaluate<Normal, Tangential, Rolling>(c, params[b.pair[k]], hist, dt);
+    const auto out = evaluate<Normal, Tangential, Rolling>(c, params[b.params[k]], hist, dt);
     for (int m = 0; m < HW; ++m) b.hist[m][k] = hist[m];
     for (int a = 0; a < 3; ++a) {
       b.force[a][k] = out.force[a];
@@ -171,11 +188,11 @@ evaluate_batch(PairBatch<HW>& b, const PairParams* params, double dt) {
       b.nc_force[a][k] = out.nc_force[a];
       b.nc_torque_unit[a][k] = out.nc_torque_unit[a];
       b.nc_torque_roll[a][k] = out.nc_torque_roll[a];
-      b.normal[a][k] = c.n[a];
+      if constexpr (!Wall) b.normal[a][k] = c.n[a];
     }
     b.elastic[k] = out.elastic;
     b.spring_loss[k] = out.spring_loss;
-    b.overlap[k] = c.overlap;
+    if constexpr (!Wall) b.overlap[k] = c.overlap;
   }
 }
 
@@ -227,34 +244,61 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   // slab write only to particles of that slab and the next, so all even slabs run in parallel,
   // then all odd slabs; each slab runs its rows in a fixed order and keeps its own statistics,
   // summed in slab order: the result does not depend on the number of threads.
-  // A slab's touching pairs are evaluated in batches (PairBatch): the list walk gathers each
-  // touching pair's inputs from the packed view, one `omp simd` loop evaluates the batch's
-  // contacts side by side (a contact is a long chain of dependent square roots and divisions;
-  // one at a time, the core waits on it), and a last pass adds the forces to both particles in
-  // the list's order. Every contact's result is the same in any lane: no FP contraction, no
-  // approximate roots (ISO C++ build, no -ffast-math).
+  // Contacts are evaluated in batches (ContactBatch): the list walk keeps the touching entries,
+  // their inputs are gathered by field from the packed view, one vectorised loop evaluates the
+  // batch's contacts side by side (a contact is a long chain of dependent square roots and
+  // divisions; one at a time, the core waits on it), and a last pass adds the forces to the
+  // particles in the list's order. A contact's result is the same in any lane and any batch: no
+  // FP contraction, no approximate roots (ISO C++ build, no -ffast-math).
   const double* view = nc.view.data();
   double* acc_f = nc.acc.data();
-  const PairParams* params = &table.pair(0, 0);
+  const PairParams* pair_params = &table.pair(0, 0);
+  const PairParams* wall_params = &table.wall(0, 0);
   const int n_species = table.species_count();
-  using Batch = PairBatch<kHistoryWidth<Tangential, Rolling>>;
-  // Pass 3: forces into the accumulator, statistics, history back into the list, samples.
-  auto apply_batch = [&, view, acc_f](Batch& b, ContactStats& acc,
-                                      std::vector<ContactSample>* buf) {
-    evaluate_batch<Normal, Tangential, Rolling>(b, params, dt);
+  using Batch = ContactBatch<kHistoryWidth<Tangential, Rolling>>;
+  // Passes 2 and 3 for a full batch: gather the inputs, evaluate, then add the forces to the
+  // accumulator, the statistics, the history back into the list, the samples.
+  auto flush = [&, view, acc_f](Batch& b, bool wall, ContactStats& acc,
+                                std::vector<ContactSample>* buf) {
+    double* history = wall ? nl.wall_history.data() : nl.history.data();
     for (int k = 0; k < b.n; ++k) {
-      const std::uint32_t i = b.i[k], j = b.j[k];
-      const double ri = b.ri[k], rj = b.rj[k];
+      const double* pi = view + ContactScratch::kView * b.i[k];
+      b.ri[k] = pi[3], b.mi[k] = pi[7];
+      for (int a = 0; a < 3; ++a) b.wi[a][k] = pi[8 + a];
+      if (wall) {
+        for (int a = 0; a < 3; ++a) b.dv[a][k] = pi[4 + a];
+        b.inv_inertia_sum[k] = pi[11];
+      } else {
+        const double* pj = view + ContactScratch::kView * b.j[k];
+        b.rj[k] = pj[3], b.mj[k] = pj[7];
+        for (int a = 0; a < 3; ++a) {
+          b.dv[a][k] = pi[4 + a] - pj[4 + a];
+          b.wj[a][k] = pj[8 + a];
+        }
+        b.inv_inertia_sum[k] = pi[11] + pj[11];
+      }
+      const double* hist = history + static_cast<std::size_t>(b.e[k]) * Batch::kHistory;
+      for (int m = 0; m < Batch::kHistory; ++m) b.hist[m][k] = hist[m];
+    }
+    if (wall)
+      evaluate_batch<Normal, Tangential, Rolling, true>(b, wall_params, dt);
+    else
+      evaluate_batch<Normal, Tangential, Rolling, false>(b, pair_params, dt);
+    for (int k = 0; k < b.n; ++k) {
+      const std::uint32_t i = b.i[k];
+      const double ri = b.ri[k];
       const Vec3 f = b.get(b.force, k), ncf = b.get(b.nc_force, k);
       const Vec3 tu = b.get(b.torque_unit, k), nctu = b.get(b.nc_torque_unit, k);
       const Vec3 tr = b.get(b.torque_roll, k), nctr = b.get(b.nc_torque_roll, k);
-      double* aj = acc_f + ContactScratch::kAcc * j;
-      const Vec3 tj = tu * rj - tr;
-      const Vec3 ntj = nctu * rj - nctr;
-      aj[0] -= f.x, aj[1] -= f.y, aj[2] -= f.z;
-      aj[3] += tj.x, aj[4] += tj.y, aj[5] += tj.z;
-      aj[6] -= ncf.x, aj[7] -= ncf.y, aj[8] -= ncf.z;
-      aj[9] += ntj.x, aj[10] += ntj.y, aj[11] += ntj.z;
+      if (!wall) {
+        double* aj = acc_f + ContactScratch::kAcc * b.j[k];
+        const Vec3 tj = tu * b.rj[k] - tr;
+        const Vec3 ntj = nctu * b.rj[k] - nctr;
+        aj[0] -= f.x, aj[1] -= f.y, aj[2] -= f.z;
+        aj[3] += tj.x, aj[4] += tj.y, aj[5] += tj.z;
+        aj[6] -= ncf.x, aj[7] -= ncf.y, aj[8] -= ncf.z;
+        aj[9] += ntj.x, aj[10] += ntj.y, aj[11] += ntj.z;
+      }
       double* ai = acc_f + ContactScratch::kAcc * i;
       const Vec3 ti = tu * ri + tr;
       const Vec3 nti = nctu * ri + nctr;
@@ -262,33 +306,33 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       ai[3] += ti.x, ai[4] += ti.y, ai[5] += ti.z;
       ai[6] += ncf.x, ai[7] += ncf.y, ai[8] += ncf.z;
       ai[9] += nti.x, ai[10] += nti.y, ai[11] += nti.z;
-      if constexpr (Batch::kHistory > 0) {
-        double* hist = &nl.history[static_cast<std::size_t>(b.e[k]) * Batch::kHistory];
-        for (int m = 0; m < Batch::kHistory; ++m) hist[m] = b.hist[m][k];
-      }
+      double* hist = history + static_cast<std::size_t>(b.e[k]) * Batch::kHistory;
+      for (int m = 0; m < Batch::kHistory; ++m) hist[m] = b.hist[m][k];
       ++acc.n_contacts;
       acc.elastic_energy += b.elastic[k];
       acc.spring_losses += b.spring_loss[k];
-      const double dmin = 2.0 * std::min(ri, rj);
+      const double dmin = wall ? 2.0 * ri : 2.0 * std::min(ri, b.rj[k]);
       if (b.overlap[k] > acc.max_overlap_ratio * dmin) track_overlap(acc, b.overlap[k] / dmin, i);
       if (buf) {
-        const double* pi = view + ContactScratch::kView * i;
         const Vec3 nk = b.get(b.normal, k);
+        const Vec3 xi{view[ContactScratch::kView * i], view[ContactScratch::kView * i + 1],
+                      view[ContactScratch::kView * i + 2]};
         ContactSample& cs = buf->emplace_back();
         cs.id_i = p.id[i];
-        cs.id_j = p.id[j];
+        cs.id_j = wall ? -1 - nl.wall_face[b.e[k]] : p.id[b.j[k]];
         cs.i = static_cast<std::int32_t>(i);
-        cs.j = static_cast<std::int32_t>(j);
+        cs.j = wall ? -1 : static_cast<std::int32_t>(b.j[k]);
         cs.overlap = b.overlap[k];
         cs.normal = nk;
         cs.force = f;
         cs.torque_roll = tr;
-        cs.contact_point = Vec3{pi[0], pi[1], pi[2]} + nk * (ri - 0.5 * b.overlap[k]);
+        // pairs: midway through the overlap; walls: on the wall plane
+        cs.contact_point = wall ? xi + nk * b.wall_gap[k] : xi + nk * (ri - 0.5 * b.overlap[k]);
       }
     }
     b.n = 0;
   };
-  // Pass 1: walk a row of the list; every entry is written into the batch's next slot, which is
+  // Pass 1 for a row of the list: every entry is written into the batch's next slot, which is
   // kept only when the pair touches (no branch on contact); a pair that stopped touching
   // releases its history.
   auto gather_row = [&, view](std::size_t i, Batch& b, ContactStats& acc,
@@ -308,22 +352,13 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       const bool touching = dx * dx + dy * dy + dz * dz < rsum * rsum;
       const int k = b.n;
       b.i[k] = static_cast<std::uint32_t>(i), b.j[k] = j, b.e[k] = e;
-      b.pair[k] = si * n_species + p.species[j];
+      b.params[k] = si * n_species + p.species[j];
       b.d[0][k] = dx, b.d[1][k] = dy, b.d[2][k] = dz;
-      b.ri[k] = ri, b.rj[k] = rj, b.mi[k] = pi[7], b.mj[k] = pj[7];
-      for (int a = 0; a < 3; ++a) {
-        b.dv[a][k] = pi[4 + a] - pj[4 + a];
-        b.wi[a][k] = pi[8 + a];
-        b.wj[a][k] = pj[8 + a];
-      }
-      b.inv_inertia_sum[k] = pi[11] + pj[11];
-      if constexpr (Batch::kHistory > 0) {
-        double* hist = &nl.history[static_cast<std::size_t>(e) * Batch::kHistory];
-        for (int m = 0; m < Batch::kHistory; ++m) b.hist[m][k] = hist[m];
-        if (!touching) release(acc, hist, params[b.pair[k]], ri * rj / rsum);
-      }
+      if (Batch::kHistory > 0 && !touching)
+        release(acc, &nl.history[static_cast<std::size_t>(e) * Batch::kHistory],
+                pair_params[b.params[k]], ri * rj / rsum);
       b.n += touching ? 1 : 0;
-      if (b.n == Batch::kSize) apply_batch(b, acc, buf);
+      if (b.n == Batch::kSize) flush(b, false, acc, buf);
     }
   };
   const int nslab = nl.slab_count();
@@ -342,7 +377,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       Batch batch;
       for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
         gather_row(nl.slab_particles[k], batch, local, buf);
-      apply_batch(batch, local, buf);
+      flush(batch, false, local, buf);
       slab_stats[sl] = local;
     }
   }
@@ -359,55 +394,27 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   // samples, joined in chunk order: the result does not depend on the number of threads.
   const auto& box = nl.box();
   const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
-  auto process_wall = [&](std::size_t e, ContactStats& acc, std::vector<ContactSample>* buf) {
+  // Pass 1 for a wall entry, as for a pair.
+  auto gather_wall = [&](std::size_t e, Batch& b, ContactStats& acc,
+                         std::vector<ContactSample>* buf) {
     const std::uint32_t i = nl.wall_particle[e];
     const int f = nl.wall_face[e];
     const int a = f / 2;
     const bool lo_face = (f % 2 == 0);
-    const double* pi = view + ContactScratch::kView * i;
-    const double ri = pi[3];
+    const double ri = view[ContactScratch::kView * i + 3];
     const double gap = lo_face ? (*pos[a])[i] - box.lo[a] : box.hi[a] - (*pos[a])[i];
-    double* hist = hw ? &nl.wall_history[e * hw] : nullptr;
-    if (gap >= ri) {
-      if (hw) release(acc, hist, table.wall(p.species[i], f), ri);
-      return;
-    }
-    ContactInput c;
-    c.n = Vec3{};
-    c.n[a] = lo_face ? -1.0 : 1.0; // from the particle towards the wall
-    c.fixed_normal = true;
-    c.overlap = ri - gap;
-    const Vec3 wi{pi[8], pi[9], pi[10]};
-    c.v_rel = Vec3{pi[4], pi[5], pi[6]} + cross(wi * ri, c.n);
-    c.w_rel = wi;
-    c.r_eff = ri;
-    c.m_eff = pi[7];
-    c.inv_inertia_sum = pi[11];
-    const auto out =
-        evaluate<Normal, Tangential, Rolling>(c, table.wall(p.species[i], f), hist, dt);
-    double* ai = acc_f + ContactScratch::kAcc * i;
-    const Vec3 ti = out.torque_unit * ri + out.torque_roll;
-    const Vec3 nti = out.nc_torque_unit * ri + out.nc_torque_roll;
-    ai[0] += out.force.x, ai[1] += out.force.y, ai[2] += out.force.z;
-    ai[3] += ti.x, ai[4] += ti.y, ai[5] += ti.z;
-    ai[6] += out.nc_force.x, ai[7] += out.nc_force.y, ai[8] += out.nc_force.z;
-    ai[9] += nti.x, ai[10] += nti.y, ai[11] += nti.z;
-    ++acc.n_contacts;
-    acc.elastic_energy += out.elastic;
-    acc.spring_losses += out.spring_loss;
-    if (c.overlap > acc.max_overlap_ratio * 2.0 * ri) track_overlap(acc, c.overlap / (2.0 * ri), i);
-    if (buf) {
-      ContactSample& cs = buf->emplace_back();
-      cs.id_i = p.id[i];
-      cs.id_j = -1 - f;
-      cs.i = static_cast<std::int32_t>(i);
-      cs.j = -1;
-      cs.overlap = c.overlap;
-      cs.normal = c.n;
-      cs.force = out.force;
-      cs.torque_roll = out.torque_roll;
-      cs.contact_point = p.position(i) + c.n * gap; // on the wall plane
-    }
+    const bool touching = gap < ri;
+    const int k = b.n;
+    b.i[k] = i, b.e[k] = static_cast<std::uint32_t>(e);
+    b.params[k] = p.species[i] * 6 + f;
+    for (int c = 0; c < 3; ++c) b.normal[c][k] = 0.0;
+    b.normal[a][k] = lo_face ? -1.0 : 1.0; // from the particle towards the wall
+    b.overlap[k] = ri - gap;
+    b.wall_gap[k] = gap;
+    if (Batch::kHistory > 0 && !touching)
+      release(acc, &nl.wall_history[e * Batch::kHistory], wall_params[b.params[k]], ri);
+    b.n += touching ? 1 : 0;
+    if (b.n == Batch::kSize) flush(b, true, acc, buf);
   };
   constexpr std::size_t kWallChunk = 2048;
   const std::size_t nwall = nl.wall_particle.size();
@@ -425,7 +432,9 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     std::vector<ContactSample>* buf = recording ? &chunk_samples[k] : nullptr;
     const std::size_t end = chunk_start(k + 1);
     ContactStats local; // on the stack, as the slabs' (no false sharing)
-    for (std::size_t e = chunk_start(k); e < end; ++e) process_wall(e, local, buf);
+    Batch batch;
+    for (std::size_t e = chunk_start(k); e < end; ++e) gather_wall(e, batch, local, buf);
+    flush(batch, true, local, buf);
     wall_stats[k] = local;
   }
   for (std::size_t k = 0; k < nchunk; ++k) {
