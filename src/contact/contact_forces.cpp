@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "contact/kernels/history_rotation.hpp"
 #include "contact/kernels/normal_force.hpp"
@@ -213,13 +215,22 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
                      ContactScratch& nc, ContactRecord* rec) {
   ContactStats st;
   const bool recording = rec != nullptr && rec->enabled;
-  const int hw = nl.history_width();
+  constexpr int hw = kHistoryWidth<Tangential, Rolling>;
+  if (nl.history_width() != hw)
+    throw std::logic_error("contact loop: the neighbour list keeps " +
+                           std::to_string(nl.history_width()) +
+                           " history values per contact, the "
+                           "contact model needs " +
+                           std::to_string(hw));
+  // Whether a contact's history holds anything (a pair that stops touching releases it).
+  auto loaded = [](const double* hist) {
+    bool any = false;
+    for (int k = 0; k < hw; ++k) any |= hist[k] != 0.0;
+    return any;
+  };
   // A contact that ends takes its spring energy with it: count it as dissipated. (Hertz springs
   // have k_t -> 0 as the overlap closes, so only the linear springs hold energy at separation.)
   auto release = [&](ContactStats& acc, double* hist, const PairParams& pp, double r_eff) {
-    bool loaded = false;
-    for (int k = 0; k < hw; ++k) loaded |= hist[k] != 0.0;
-    if (!loaded) return;
     if constexpr (Normal == NormalModel::Linear) {
       if constexpr (Tangential) {
         acc.spring_losses +=
@@ -354,9 +365,11 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       b.i[k] = static_cast<std::uint32_t>(i), b.j[k] = j, b.e[k] = e;
       b.params[k] = si * n_species + p.species[j];
       b.d[0][k] = dx, b.d[1][k] = dy, b.d[2][k] = dz;
-      if (Batch::kHistory > 0 && !touching)
-        release(acc, &nl.history[static_cast<std::size_t>(e) * Batch::kHistory],
-                pair_params[b.params[k]], ri * rj / rsum);
+      if constexpr (hw > 0) {
+        // Branch only on a contact that just ended (rare), not on touching (unpredictable).
+        double* hist = &nl.history[static_cast<std::size_t>(e) * hw];
+        if (!touching & loaded(hist)) release(acc, hist, pair_params[b.params[k]], ri * rj / rsum);
+      }
       b.n += touching ? 1 : 0;
       if (b.n == Batch::kSize) flush(b, false, acc, buf);
     }
@@ -411,8 +424,10 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     b.normal[a][k] = lo_face ? -1.0 : 1.0; // from the particle towards the wall
     b.overlap[k] = ri - gap;
     b.wall_gap[k] = gap;
-    if (Batch::kHistory > 0 && !touching)
-      release(acc, &nl.wall_history[e * Batch::kHistory], wall_params[b.params[k]], ri);
+    if constexpr (hw > 0) {
+      double* hist = &nl.wall_history[e * hw];
+      if (!touching & loaded(hist)) release(acc, hist, wall_params[b.params[k]], ri);
+    }
     b.n += touching ? 1 : 0;
     if (b.n == Batch::kSize) flush(b, true, acc, buf);
   };
