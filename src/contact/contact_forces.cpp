@@ -346,28 +346,39 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   // Pass 1 for a row of the list: every entry is written into the batch's next slot, which is
   // kept only when the pair touches (no branch on contact); a pair that stopped touching
   // releases its history.
-  auto gather_row = [&, view](std::size_t i, Batch& b, ContactStats& acc,
-                              std::vector<ContactSample>* buf) {
+  // The walk's arrays as local pointers: the batch's stores could otherwise alias them (the
+  // box's periodic flags are chars) and the compiler would reload them for every entry.
+  const std::uint32_t* partner = nl.partner.data();
+  const std::uint32_t* row_offset = nl.offset.data();
+  const int* species = p.species.data();
+  double* pair_history = nl.history.data();
+  const bool any_periodic = nl.box().periodic[0] || nl.box().periodic[1] || nl.box().periodic[2];
+  auto gather_row = [&, view, partner, row_offset, species, pair_history,
+                     any_periodic](std::size_t i, Batch& b, ContactStats& acc,
+                                   std::vector<ContactSample>* buf) {
     const double* pi = view + ContactScratch::kView * i;
     const double xi = pi[0], yi = pi[1], zi = pi[2], ri = pi[3];
-    const int si = p.species[i];
-    const std::uint32_t row_end = nl.offset[i + 1];
-    for (std::uint32_t e = nl.offset[i]; e < row_end; ++e) {
-      const std::uint32_t j = nl.partner[e];
+    const int si_row = species[i] * n_species;
+    const std::uint32_t row_end = row_offset[i + 1];
+    for (std::uint32_t e = row_offset[i]; e < row_end; ++e) {
+      const std::uint32_t j = partner[e];
       const double* pj = view + ContactScratch::kView * j;
-      const double dx = nl.min_image(pj[0] - xi, 0);
-      const double dy = nl.min_image(pj[1] - yi, 1);
-      const double dz = nl.min_image(pj[2] - zi, 2);
+      double dx = pj[0] - xi, dy = pj[1] - yi, dz = pj[2] - zi;
+      if (any_periodic) {
+        dx = nl.min_image(dx, 0);
+        dy = nl.min_image(dy, 1);
+        dz = nl.min_image(dz, 2);
+      }
       const double rj = pj[3];
       const double rsum = ri + rj;
       const bool touching = dx * dx + dy * dy + dz * dz < rsum * rsum;
       const int k = b.n;
       b.i[k] = static_cast<std::uint32_t>(i), b.j[k] = j, b.e[k] = e;
-      b.params[k] = si * n_species + p.species[j];
+      b.params[k] = si_row + species[j];
       b.d[0][k] = dx, b.d[1][k] = dy, b.d[2][k] = dz;
       if constexpr (hw > 0) {
         // Branch only on a contact that just ended (rare), not on touching (unpredictable).
-        double* hist = &nl.history[static_cast<std::size_t>(e) * hw];
+        double* hist = pair_history + static_cast<std::size_t>(e) * hw;
         if (!touching & loaded(hist)) release(acc, hist, pair_params[b.params[k]], ri * rj / rsum);
       }
       b.n += touching ? 1 : 0;
