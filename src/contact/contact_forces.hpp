@@ -30,10 +30,11 @@ struct ContactScratch {
   static constexpr std::size_t kAcc = 12;  ///< f | t | f_nc | t_nc
   std::vector<double> view, acc;
   std::vector<ContactStats> slab_stats, wall_stats; ///< per slab / wall chunk, summed in order
+  std::vector<double> chunk_sums;                   ///< dissipated(): per chunk of particles
   /// Pack the view from p and zero the sums.
   void reset(const ParticleStore& p);
   /// -sum (F_nc.v + T_nc.w) dt: energy dissipated over a step of length dt, J.
-  double dissipated(const ParticleStore& p, double dt) const;
+  double dissipated(const ParticleStore& p, double dt);
   std::size_t bytes() const;
 };
 
