@@ -478,12 +478,13 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     if (recording)
       rec->samples.insert(rec->samples.end(), chunk_samples[k].begin(), chunk_samples[k].end());
   }
-  // The contact forces and torques join the other forces of the step (the caller zeroed them).
+  // The contact forces and torques are the step's particle forces (the gas forces and gravity
+  // join them in the kick): stored, not added, so nothing has to zero them first.
 #pragma omp parallel for schedule(static) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i) {
     const double* ai = acc_f + ContactScratch::kAcc * i;
-    p.fx[i] += ai[0], p.fy[i] += ai[1], p.fz[i] += ai[2];
-    p.tx[i] += ai[3], p.ty[i] += ai[4], p.tz[i] += ai[5];
+    p.fx[i] = ai[0], p.fy[i] = ai[1], p.fz[i] = ai[2];
+    p.tx[i] = ai[3], p.ty[i] = ai[4], p.tz[i] = ai[5];
   }
   return st;
 }

@@ -41,7 +41,7 @@ struct ContactScratch {
 /// History doubles per contact needed by the chosen sub-models.
 int contact_history_width(const ContactTable& table);
 
-/// Add contact forces and torques to p.f*, p.t* (which the caller zeroes). Velocities are the
+/// Set p.f*, p.t* to the contact forces and torques (overwritten). Velocities are the
 /// ones at which the forces are evaluated (half-step velocities in velocity Verlet); `dt` is the
 /// step over which the tangential displacement and the dissipation are integrated.
 /// When `record` is given and enabled, its samples are replaced by this call's touching contacts:

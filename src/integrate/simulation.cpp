@@ -246,7 +246,6 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
 Simulation::~Simulation() = default;
 
 void Simulation::compute_forces() {
-  p_.zero_forces();
   const auto t0 = Clock::now();
   // The contacts are recorded when an analysis uses them: the collision statistics every step,
   // the continuum averages on their sampled steps (Simulation::step sets record_.enabled).

@@ -58,15 +58,6 @@ void assign_layers(ParticleStore& p, int axis, int n_layers) {
   }
 }
 
-void ParticleStore::zero_forces() {
-  const std::size_t n = size();
-#pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) {
-    fx[i] = fy[i] = fz[i] = 0.0;
-    tx[i] = ty[i] = tz[i] = 0.0;
-  }
-}
-
 void ParticleStore::permute(const std::vector<std::uint32_t>& new_to_old) {
   for_each_array(*this, [&](auto& a) {
     auto copy = a;

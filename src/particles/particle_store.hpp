@@ -44,7 +44,6 @@ public:
   Vec3 force(std::size_t i) const { return {fx[i], fy[i], fz[i]}; }
   Vec3 torque(std::size_t i) const { return {tx[i], ty[i], tz[i]}; }
 
-  void zero_forces();
   /// Reorder every array by new_to_old (new index k takes old particle new_to_old[k]).
   void permute(const std::vector<std::uint32_t>& new_to_old);
   /// Bytes held by the arrays (capacity), for memory reports.

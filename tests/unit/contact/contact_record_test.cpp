@@ -102,8 +102,8 @@ Result run(std::size_t layers, bool record, int threads = 0) {
   if (threads > 0) omp_set_num_threads(threads);
   // Two calls: the second has tangential and rolling history, and must replace the record.
   for (int call = 0; call < 2; ++call) {
-    for (auto* v : {&r.p.fx, &r.p.fy, &r.p.fz, &r.p.tx, &r.p.ty, &r.p.tz})
-      std::fill(v->begin(), v->end(), 0.0);
+    for (auto* v : {&r.p.fx, &r.p.fy, &r.p.fz, &r.p.tx, &r.p.ty, &r.p.tz}) // overwritten
+      std::fill(v->begin(), v->end(), 1.0);
     r.stats = compute_contact_forces(r.p, nl, table, 1e-5, nc, &r.rec);
   }
   omp_set_num_threads(saved);
