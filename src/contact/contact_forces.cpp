@@ -140,12 +140,20 @@ struct ContactBatch {
   static Vec3 get(const Column (&c)[3], int k) { return {c[0][k], c[1][k], c[2][k]}; }
 };
 
+// The batch kernel is compiled three times, for AVX-512, AVX2 and the x86-64 baseline, and the
+// loader picks the one the processor runs (GCC function multiversioning; clang 14 does not
+// multiversion templates, other architectures have their own baseline).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define FLUIDEM_SIMD_CLONES [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
+#else
+#define FLUIDEM_SIMD_CLONES
+#endif
+
 /// Pass 2 of the contact loop: evaluate the batch's contacts, several at once (see compute()).
 /// Pairs [Deen07 eq. 12]: relative contact-point velocity from both particles; walls: a partner
 /// of infinite mass and radius at rest, whose normal never turns.
 template <NormalModel Normal, bool Tangential, RollingModel Rolling, bool Wall, int HW>
-[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] void
-evaluate_batch(ContactBatch<HW>& b, const PairParams* params, double dt) {
+FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* params, double dt) {
   const int n = b.n;
 #pragma GCC ivdep
   for (int k = 0; k < n; ++k) {
