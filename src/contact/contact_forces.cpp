@@ -408,19 +408,35 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   slab_stats.assign(nslab, ContactStats{});
   // Recording: one buffer per slab (a slab runs on one thread), concatenated in slab order.
   std::vector<std::vector<ContactSample>> slab_samples(recording ? nslab : 0);
-  for (int phase = 0; phase < 2; ++phase) {
-#pragma omp parallel for schedule(dynamic, 1) if (n > 4096)
-    for (int sl = phase; sl < nslab; sl += 2) {
-      std::vector<ContactSample>* buf = recording ? &slab_samples[sl] : nullptr;
-      // Summed on this thread's stack, stored once: the slabs' entries of slab_stats share
-      // cache lines, and updating them per contact from two threads made the lines bounce
-      // between the cores (false sharing).
-      ContactStats local;
-      Batch batch;
-      for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
-        gather_row(nl.slab_particles[k], batch, local, buf);
-      flush(batch, false, local, buf);
-      slab_stats[sl] = local;
+  // Below the threading threshold the slabs run on one thread whatever the thread count: then
+  // one batch runs through all of them (a slab of a small bed holds a few contacts, too few to
+  // fill the vector lanes), its statistics in the first slab's entry. The record keeps the
+  // per-slab batches (its samples are ordered by slab).
+  const bool threaded = n > 4096;
+  if (!threaded && !recording) {
+    ContactStats local;
+    Batch batch;
+    for (int phase = 0; phase < 2; ++phase)
+      for (int sl = phase; sl < nslab; sl += 2)
+        for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
+          gather_row(nl.slab_particles[k], batch, local, nullptr);
+    flush(batch, false, local, nullptr);
+    if (nslab > 0) slab_stats[0] = local;
+  } else {
+    for (int phase = 0; phase < 2; ++phase) {
+#pragma omp parallel for schedule(dynamic, 1) if (threaded)
+      for (int sl = phase; sl < nslab; sl += 2) {
+        std::vector<ContactSample>* buf = recording ? &slab_samples[sl] : nullptr;
+        // Summed on this thread's stack, stored once: the slabs' entries of slab_stats share
+        // cache lines, and updating them per contact from two threads made the lines bounce
+        // between the cores (false sharing).
+        ContactStats local;
+        Batch batch;
+        for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
+          gather_row(nl.slab_particles[k], batch, local, buf);
+        flush(batch, false, local, buf);
+        slab_stats[sl] = local;
+      }
     }
   }
   if (recording) {
