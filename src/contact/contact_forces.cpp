@@ -268,7 +268,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   // batch's contacts side by side (a contact is a long chain of dependent square roots and
   // divisions; one at a time, the core waits on it), and a last pass adds the forces to the
   // particles in the list's order. A contact's result is the same in any lane and any batch: no
-  // FP contraction, no approximate roots (ISO C++ build, no -ffast-math).
+  // FP contraction (-ffp-contract=off for this library), no approximate roots (no -ffast-math).
   const double* view = nc.view.data();
   double* acc_f = nc.acc.data();
   const PairParams* pair_params = &table.pair(0, 0);
@@ -282,8 +282,9 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     double* history = wall ? nl.wall_history.data() : nl.history.data();
     for (int k = 0; k < b.n; ++k) {
       // The accumulator lines the last pass will add into, fetched while the batch evaluates.
-      __builtin_prefetch(acc_f + ContactScratch::kAcc * (wall ? b.i[k] : b.j[k]), 1);
-      __builtin_prefetch(acc_f + ContactScratch::kAcc * (wall ? b.i[k] : b.j[k]) + 8, 1);
+      const double* target = acc_f + ContactScratch::kAcc * (wall ? b.i[k] : b.j[k]);
+      __builtin_prefetch(target, 1);
+      __builtin_prefetch(target + 8, 1);
       const double* pi = view + ContactScratch::kView * b.i[k];
       b.ri[k] = pi[3], b.mi[k] = pi[7];
       for (int a = 0; a < 3; ++a) b.wi[a][k] = pi[8 + a];
@@ -354,9 +355,6 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     }
     b.n = 0;
   };
-  // Pass 1 for a row of the list: every entry is written into the batch's next slot, which is
-  // kept only when the pair touches (no branch on contact); a pair that stopped touching
-  // releases its history.
   // The walk's arrays as local pointers: the batch's stores could otherwise alias them (the
   // box's periodic flags are chars) and the compiler would reload them for every entry.
   const std::uint32_t* partner = nl.partner.data();
@@ -366,6 +364,9 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   const bool any_periodic = nl.box().periodic[0] || nl.box().periodic[1] || nl.box().periodic[2];
   constexpr std::uint32_t kPrefetch = 16;
   const auto last = static_cast<std::uint32_t>(nl.partner.empty() ? 0 : nl.partner.size() - 1);
+  // Pass 1 for a row of the list: every entry is written into the batch's next slot, which is
+  // kept only when the pair touches (no branch on contact); a pair that stopped touching
+  // releases its history.
   auto gather_row = [&, view, partner, row_offset, species, pair_history, any_periodic,
                      last](std::size_t i, Batch& b, ContactStats& acc,
                            std::vector<ContactSample>* buf) {
