@@ -251,6 +251,13 @@ CellRange covered_cells(const gas::GasGrid& g, const Vec3& x, double R, int na,
 void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const CellRange& r,
                        bool two_d, const std::array<bool, 3>& wrap, double measure, long* cell,
                        double* part) {
+  // Node offsets from the centre per axis (m = c0 .. c1 + 1).
+  auto node = [&](int d, int m) { return g.lo[d] + (m - 1) * g.h[d] - x[d]; };
+  // Grid index of cell (i, j, k) of the range, folded onto the domain along periodic axes.
+  auto grid_index = [&](int i, int j, int k) {
+    return g.idx(wrap[0] ? wrap_index(i, g.n[0]) : i, wrap[1] ? wrap_index(j, g.n[1]) : j,
+                 wrap[2] ? wrap_index(k, g.n[2]) : k);
+  };
   // A sphere inside one cell whose faces cut it along one axis at most (a bed one particle deep
   // between its walls, or no cut at all): the ball minus its caps beyond those faces, which are
   // disjoint, V = 4/3 pi R^3 - sum pi h^2 (3R - h) / 3, h the cap height: the same volume as the
@@ -259,18 +266,14 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
     int cut_axes = 0;
     double v = 4.0 / 3.0 * pi * R * R * R;
     for (int d = 0; d < 3; ++d) {
-      const double h_lo = R - (x[d] - (g.lo[d] + (r.c0[d] - 1) * g.h[d]));
-      const double h_hi = R - (g.lo[d] + r.c0[d] * g.h[d] - x[d]);
+      const double h_lo = R + node(d, r.c0[d]), h_hi = R - node(d, r.c0[d] + 1);
       if (h_lo <= 0.0 && h_hi <= 0.0) continue;
       ++cut_axes;
       for (const double h : {h_lo, h_hi})
         if (h > 0.0) v -= pi * h * h * (3.0 * R - h) / 3.0;
     }
     if (cut_axes <= 1) {
-      const int wi = wrap[0] ? wrap_index(r.c0[0], g.n[0]) : r.c0[0];
-      const int wj = wrap[1] ? wrap_index(r.c0[1], g.n[1]) : r.c0[1];
-      const int wk = wrap[2] ? wrap_index(r.c0[2], g.n[2]) : r.c0[2];
-      cell[0] = g.idx(wi, wj, wk);
+      cell[0] = grid_index(r.c0[0], r.c0[1], r.c0[2]);
       part[0] = v / measure;
       return;
     }
@@ -278,8 +281,6 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
   constexpr int max_nodes = 4; // per axis for the node table; larger ranges: corners directly
   std::array<int, 3> nn{};
   for (int d = 0; d < 3; ++d) nn[d] = r.c1[d] - r.c0[d] + 2;
-  // Node offsets from the centre per axis (m = c0 .. c1 + 1).
-  auto node = [&](int d, int m) { return g.lo[d] + (m - 1) * g.h[d] - x[d]; };
   const bool table = two_d ? (nn[0] <= max_nodes && nn[2] <= max_nodes)
                            : (nn[0] <= max_nodes && nn[1] <= max_nodes && nn[2] <= max_nodes);
   std::array<double, max_nodes * max_nodes * max_nodes> oct{};
@@ -321,10 +322,7 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
             v += (n_lo % 2 ? -1.0 : 1.0) * o;
           }
         }
-        const int wi = wrap[0] ? wrap_index(ii, g.n[0]) : ii;
-        const int wj = wrap[1] ? wrap_index(j, g.n[1]) : j;
-        const int wk = wrap[2] ? wrap_index(k, g.n[2]) : k;
-        cell[e] = g.idx(wi, wj, wk);
+        cell[e] = grid_index(ii, j, k);
         part[e] = v / measure;
       }
 }
