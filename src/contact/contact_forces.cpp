@@ -1,6 +1,7 @@
 #include "contact/contact_forces.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -230,11 +231,13 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
                            " history values per contact, the "
                            "contact model needs " +
                            std::to_string(hw));
-  // Whether a contact's history holds anything (a pair that stops touching releases it).
+  // Whether a contact's history holds anything (a pair that stops touching releases it): the
+  // values' bits without their signs, ORed, so that the walk tests one integer (-0.0 counts as
+  // empty, as with != 0.0) instead of branching on each value.
   auto loaded = [](const double* hist) {
-    bool any = false;
-    for (int k = 0; k < hw; ++k) any |= hist[k] != 0.0;
-    return any;
+    std::uint64_t bits = 0;
+    for (int k = 0; k < hw; ++k) bits |= std::bit_cast<std::uint64_t>(hist[k]) << 1;
+    return bits;
   };
   // A contact that ends takes its spring energy with it: count it as dissipated. (Hertz springs
   // have k_t -> 0 as the overlap closes, so only the linear springs hold energy at separation.)
@@ -370,20 +373,28 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   auto gather_row = [&, view, partner, row_offset, species, pair_history, any_periodic,
                      last](std::size_t i, Batch& b, ContactStats& acc,
                            std::vector<ContactSample>* buf) {
-    const double* pi = view + ContactScratch::kView * i;
+    // Locals, not the closure's members: the batch's stores could alias those.
+    const double* const v = view;
+    const std::uint32_t* const part = partner;
+    const int* const spec = species;
+    double* const hist_base = pair_history;
+    const bool periodic = any_periodic;
+    const std::uint32_t end_of_list = last;
+    const double* pi = v + ContactScratch::kView * i;
     const double xi = pi[0], yi = pi[1], zi = pi[2], ri = pi[3];
-    const int si_row = species[i] * n_species;
+    const int si_row = spec[i] * n_species;
     const std::uint32_t row_end = row_offset[i + 1];
+    int k = b.n; // the batch's fill, in a register (stored back before a flush and at the end)
     for (std::uint32_t e = row_offset[i]; e < row_end; ++e) {
-      const std::uint32_t j = partner[e];
-      const double* pj = view + ContactScratch::kView * j;
+      const std::uint32_t j = part[e];
+      const double* pj = v + ContactScratch::kView * j;
       // The partner kPrefetch entries ahead: its position for this walk, the rest of its
       // 96 bytes (a second cache line) for the batch's gather.
-      const double* ahead = view + ContactScratch::kView * partner[std::min(e + kPrefetch, last)];
+      const double* ahead = v + ContactScratch::kView * part[std::min(e + kPrefetch, end_of_list)];
       __builtin_prefetch(ahead);
       __builtin_prefetch(ahead + 8);
       double dx = pj[0] - xi, dy = pj[1] - yi, dz = pj[2] - zi;
-      if (any_periodic) {
+      if (periodic) {
         dx = nl.min_image(dx, 0);
         dy = nl.min_image(dy, 1);
         dz = nl.min_image(dz, 2);
@@ -391,18 +402,24 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       const double rj = pj[3];
       const double rsum = ri + rj;
       const bool touching = dx * dx + dy * dy + dz * dz < rsum * rsum;
-      const int k = b.n;
       b.i[k] = static_cast<std::uint32_t>(i), b.j[k] = j, b.e[k] = e;
-      b.params[k] = si_row + species[j];
+      b.params[k] = si_row + spec[j];
       b.d[0][k] = dx, b.d[1][k] = dy, b.d[2][k] = dz;
       if constexpr (hw > 0) {
-        // Branch only on a contact that just ended (rare), not on touching (unpredictable).
-        double* hist = pair_history + static_cast<std::size_t>(e) * hw;
-        if (!touching & loaded(hist)) release(acc, hist, pair_params[b.params[k]], ri * rj / rsum);
+        // One branch, on a contact that just ended (rare), not on touching (unpredictable).
+        double* hist = hist_base + static_cast<std::size_t>(e) * hw;
+        const std::uint64_t ended = loaded(hist) & (std::uint64_t{touching} - 1);
+        if (ended != 0) [[unlikely]]
+          release(acc, hist, pair_params[b.params[k]], ri * rj / rsum);
       }
-      b.n += touching ? 1 : 0;
-      if (b.n == Batch::kSize) flush(b, false, acc, buf);
+      k += touching ? 1 : 0;
+      if (k == Batch::kSize) {
+        b.n = k;
+        flush(b, false, acc, buf);
+        k = 0;
+      }
     }
+    b.n = k;
   };
   const int nslab = nl.slab_count();
   auto& slab_stats = nc.slab_stats; // kept between steps: no allocation per step
@@ -472,7 +489,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     b.wall_gap[k] = gap;
     if constexpr (hw > 0) {
       double* hist = &nl.wall_history[e * hw];
-      if (!touching & loaded(hist)) release(acc, hist, wall_params[b.params[k]], ri);
+      if ((loaded(hist) != 0) & !touching) release(acc, hist, wall_params[b.params[k]], ri);
     }
     b.n += touching ? 1 : 0;
     if (b.n == Batch::kSize) flush(b, true, acc, buf);
