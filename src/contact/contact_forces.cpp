@@ -278,10 +278,15 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
   const PairParams* wall_params = &table.wall(0, 0);
   const int n_species = table.species_count();
   using Batch = ContactBatch<kHistoryWidth<Tangential, Rolling>>;
+  constexpr std::false_type kPairs;
+  constexpr std::true_type kWalls;
   // Passes 2 and 3 for a full batch: gather the inputs, evaluate, then add the forces to the
   // accumulator, the statistics, the history back into the list, the samples.
-  auto flush = [&, view, acc_f](Batch& b, bool wall, ContactStats& acc,
+  // `wall` is a std::bool_constant: each kind of contact gets its own copy, without a branch
+  // per contact on the kind.
+  auto flush = [&, view, acc_f](Batch& b, auto wall_kind, ContactStats& acc,
                                 std::vector<ContactSample>* buf) {
+    constexpr bool wall = decltype(wall_kind)::value;
     double* history = wall ? nl.wall_history.data() : nl.history.data();
     for (int k = 0; k < b.n; ++k) {
       // The accumulator lines the last pass will add into, fetched while the batch evaluates.
@@ -291,7 +296,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       const double* pi = view + ContactScratch::kView * b.i[k];
       b.ri[k] = pi[3], b.mi[k] = pi[7];
       for (int a = 0; a < 3; ++a) b.wi[a][k] = pi[8 + a];
-      if (wall) {
+      if constexpr (wall) {
         for (int a = 0; a < 3; ++a) b.dv[a][k] = pi[4 + a];
         b.inv_inertia_sum[k] = pi[11];
       } else {
@@ -306,17 +311,16 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       const double* hist = history + static_cast<std::size_t>(b.e[k]) * Batch::kHistory;
       for (int m = 0; m < Batch::kHistory; ++m) b.hist[m][k] = hist[m];
     }
-    if (wall)
-      evaluate_batch<Normal, Tangential, Rolling, true>(b, wall_params, dt);
-    else
-      evaluate_batch<Normal, Tangential, Rolling, false>(b, pair_params, dt);
+    evaluate_batch<Normal, Tangential, Rolling, wall>(b, wall ? wall_params : pair_params, dt);
+    // The sums in registers (the accumulator's stores could alias them), in the same order.
+    double elastic = acc.elastic_energy, spring_losses = acc.spring_losses;
     for (int k = 0; k < b.n; ++k) {
       const std::uint32_t i = b.i[k];
       const double ri = b.ri[k];
       const Vec3 f = b.get(b.force, k), ncf = b.get(b.nc_force, k);
       const Vec3 tu = b.get(b.torque_unit, k), nctu = b.get(b.nc_torque_unit, k);
       const Vec3 tr = b.get(b.torque_roll, k), nctr = b.get(b.nc_torque_roll, k);
-      if (!wall) {
+      if constexpr (!wall) {
         double* aj = acc_f + ContactScratch::kAcc * b.j[k];
         const Vec3 tj = tu * b.rj[k] - tr;
         const Vec3 ntj = nctu * b.rj[k] - nctr;
@@ -334,9 +338,8 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       ai[9] += nti.x, ai[10] += nti.y, ai[11] += nti.z;
       double* hist = history + static_cast<std::size_t>(b.e[k]) * Batch::kHistory;
       for (int m = 0; m < Batch::kHistory; ++m) hist[m] = b.hist[m][k];
-      ++acc.n_contacts;
-      acc.elastic_energy += b.elastic[k];
-      acc.spring_losses += b.spring_loss[k];
+      elastic += b.elastic[k];
+      spring_losses += b.spring_loss[k];
       const double dmin = wall ? 2.0 * ri : 2.0 * std::min(ri, b.rj[k]);
       if (b.overlap[k] > acc.max_overlap_ratio * dmin) track_overlap(acc, b.overlap[k] / dmin, i);
       if (buf) {
@@ -356,6 +359,9 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
         cs.contact_point = wall ? xi + nk * b.wall_gap[k] : xi + nk * (ri - 0.5 * b.overlap[k]);
       }
     }
+    acc.n_contacts += b.n;
+    acc.elastic_energy = elastic;
+    acc.spring_losses = spring_losses;
     b.n = 0;
   };
   // The walk's arrays as local pointers: the batch's stores could otherwise alias them (the
@@ -415,7 +421,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       k += touching ? 1 : 0;
       if (k == Batch::kSize) {
         b.n = k;
-        flush(b, false, acc, buf);
+        flush(b, kPairs, acc, buf);
         k = 0;
       }
     }
@@ -438,7 +444,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       for (int sl = phase; sl < nslab; sl += 2)
         for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
           gather_row(nl.slab_particles[k], batch, local, nullptr);
-    flush(batch, false, local, nullptr);
+    flush(batch, kPairs, local, nullptr);
     if (nslab > 0) slab_stats[0] = local;
   } else {
     for (int phase = 0; phase < 2; ++phase) {
@@ -452,7 +458,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
         Batch batch;
         for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
           gather_row(nl.slab_particles[k], batch, local, buf);
-        flush(batch, false, local, buf);
+        flush(batch, kPairs, local, buf);
         slab_stats[sl] = local;
       }
     }
@@ -492,7 +498,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
       if ((loaded(hist) != 0) & !touching) release(acc, hist, wall_params[b.params[k]], ri);
     }
     b.n += touching ? 1 : 0;
-    if (b.n == Batch::kSize) flush(b, true, acc, buf);
+    if (b.n == Batch::kSize) flush(b, kWalls, acc, buf);
   };
   constexpr std::size_t kWallChunk = 2048;
   const std::size_t nwall = nl.wall_particle.size();
@@ -512,7 +518,7 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     ContactStats local; // on the stack, as the slabs' (no false sharing)
     Batch batch;
     for (std::size_t e = chunk_start(k); e < end; ++e) gather_wall(e, batch, local, buf);
-    flush(batch, true, local, buf);
+    flush(batch, kWalls, local, buf);
     wall_stats[k] = local;
   }
   for (std::size_t k = 0; k < nchunk; ++k) {
