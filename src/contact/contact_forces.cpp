@@ -220,8 +220,8 @@ void add_stats(ContactStats& total, const ContactStats& part) {
 }
 
 template <NormalModel Normal, bool Tangential, RollingModel Rolling>
-ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& table, double dt,
-                     ContactScratch& nc, ContactRecord* rec) {
+ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTable& table,
+                     double dt, ContactScratch& nc, ContactRecord* rec) {
   ContactStats st;
   const bool recording = rec != nullptr && rec->enabled;
   constexpr int hw = kHistoryWidth<Tangential, Rolling>;
@@ -526,20 +526,14 @@ ContactStats compute(ParticleStore& p, NeighbourList& nl, const ContactTable& ta
     if (recording)
       rec->samples.insert(rec->samples.end(), chunk_samples[k].begin(), chunk_samples[k].end());
   }
-  // The contact forces and torques are the step's particle forces (the gas forces and gravity
-  // join them in the kick): stored, not added, so nothing has to zero them first.
-#pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) {
-    const double* ai = acc_f + ContactScratch::kAcc * i;
-    p.fx[i] = ai[0], p.fy[i] = ai[1], p.fz[i] = ai[2];
-    p.tx[i] = ai[3], p.ty[i] = ai[4], p.tz[i] = ai[5];
-  }
+  // The contact forces and torques stay in nc.acc: the integrator's kicks read them there (the
+  // gas forces and gravity join them in the kick).
   return st;
 }
 
 template <NormalModel Normal, bool Tangential>
-ContactStats dispatch_rolling(ParticleStore& p, NeighbourList& nl, const ContactTable& t, double dt,
-                              ContactScratch& nc, ContactRecord* rec) {
+ContactStats dispatch_rolling(const ParticleStore& p, NeighbourList& nl, const ContactTable& t,
+                              double dt, ContactScratch& nc, ContactRecord* rec) {
   switch (t.rolling()) {
   case RollingModel::None:
     return compute<Normal, Tangential, RollingModel::None>(p, nl, t, dt, nc, rec);
@@ -552,7 +546,7 @@ ContactStats dispatch_rolling(ParticleStore& p, NeighbourList& nl, const Contact
 }
 
 template <NormalModel Normal>
-ContactStats dispatch_tangential(ParticleStore& p, NeighbourList& nl, const ContactTable& t,
+ContactStats dispatch_tangential(const ParticleStore& p, NeighbourList& nl, const ContactTable& t,
                                  double dt, ContactScratch& nc, ContactRecord* rec) {
   return t.tangential() == TangentialModel::History
              ? dispatch_rolling<Normal, true>(p, nl, t, dt, nc, rec)
@@ -563,8 +557,7 @@ ContactStats dispatch_tangential(ParticleStore& p, NeighbourList& nl, const Cont
 
 void ContactScratch::reset(const ParticleStore& p) {
   const std::size_t n = p.size();
-  view.resize(kView * n);
-  acc.resize(kAcc * n);
+  resize(n);
   double* v = view.data();
   double* a = acc.data();
 #pragma omp parallel for schedule(static) if (n > 4096)
@@ -603,8 +596,9 @@ std::size_t ContactScratch::bytes() const {
   return (view.capacity() + acc.capacity()) * sizeof(double);
 }
 
-ContactStats compute_contact_forces(ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                                    double dt, ContactScratch& nc, ContactRecord* rec) {
+ContactStats compute_contact_forces(const ParticleStore& p, NeighbourList& nl,
+                                    const ContactTable& t, double dt, ContactScratch& nc,
+                                    ContactRecord* rec) {
   nc.reset(p);
   if (rec && rec->enabled) rec->samples.clear(); // also for a model that computes nothing
   switch (t.normal()) {

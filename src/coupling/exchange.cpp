@@ -323,12 +323,4 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   }
 }
 
-void add_forces(ParticleStore& p, const ParticleGasForces& f) {
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    p.fx[i] += f.drag_x[i] + f.pres_x[i];
-    p.fy[i] += f.drag_y[i] + f.pres_y[i];
-    p.fz[i] += f.drag_z[i] + f.pres_z[i];
-  }
-}
-
 } // namespace fluidem::coupling

@@ -131,7 +131,7 @@ void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingS
 
 /// Gas -> particles: reads gs velocity, pressure, porosity, density and p.x/y/z, vx/vy/vz,
 /// radius, mass; writes `out` (and out.scheme = c.scheme; the cell averages for schemes 1, 2).
-/// The store is not modified (see add_forces()).
+/// The store is not modified (the integrator adds the forces in its kicks).
 void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
                              const CouplingSettings& c, ParticleGasForces& out);
 
@@ -154,8 +154,5 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
 /// the new pressure (Model B: the buoyancy terms are kept, they are what the gas received).
 /// Scheme 2: drag_i = s_i C_c (u_c,new - v_c) with the stored C_c, v_c.
 void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p, ParticleGasForces& f);
-
-/// p.fx/fy/fz += drag + pressure force (Model B: buoyancy term).
-void add_forces(ParticleStore& p, const ParticleGasForces& f);
 
 } // namespace fluidem::coupling

@@ -123,6 +123,7 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
       if (std::abs(spec_.simulation.gravity[a]) > std::abs(spec_.simulation.gravity[up])) up = a;
     assign_layers(p_, up, spec_.output.layers);
   }
+  p_.shrink_to_fit(); // insertion appended particle by particle
   if (!(spec_.output.checkpoint_interval > 0.0))
     spec_.output.checkpoint_interval = 10.0 * spec_.output.frame_interval;
 
@@ -295,11 +296,16 @@ void Simulation::step() {
   // Half kick of particle i: v += ((F + F_gas)/m + g + a(x)) dt/2, w += T/I dt/2; a(x) is the
   // body force field at the particle's current position (velocity Verlet with a position-
   // dependent force: x^n in the first half kick, x^{n+1} in the second).
+  // The contact forces and torques of the last force evaluation are in nc_ (ContactScratch):
+  // the step's first kick reads the previous step's, the second this step's.
+  if (nc_.acc.size() != ContactScratch::kAcc * n)
+    throw std::logic_error("Simulation::step: the contact forces are not those of the particles");
   auto kick = [&](std::size_t i) {
     const double im = p_.inv_mass[i], ii = p_.inv_inertia[i];
-    const double fx = gfx ? p_.fx[i] + gfx[i] : p_.fx[i];
-    const double fy = gfy ? p_.fy[i] + gfy[i] : p_.fy[i];
-    const double fz = gfz ? p_.fz[i] + gfz[i] : p_.fz[i];
+    const double* fc = nc_.acc.data() + ContactScratch::kAcc * i; // force | torque | ...
+    const double fx = gfx ? fc[0] + gfx[i] : fc[0];
+    const double fy = gfy ? fc[1] + gfy[i] : fc[1];
+    const double fz = gfz ? fc[2] + gfz[i] : fc[2];
     std::array<double, 3> a{gx, gy, gz};
     if (body) {
       const auto b = body_acceleration(*body, p_.x[i], p_.y[i], p_.z[i]);
@@ -308,9 +314,9 @@ void Simulation::step() {
     p_.vx[i] += h * (fx * im + a[0]);
     p_.vy[i] += h * (fy * im + a[1]);
     p_.vz[i] += h * (fz * im + a[2]);
-    p_.wx[i] += h * p_.tx[i] * ii;
-    p_.wy[i] += h * p_.ty[i] * ii;
-    p_.wz[i] += h * p_.tz[i] * ii;
+    p_.wx[i] += h * fc[3] * ii;
+    p_.wy[i] += h * fc[4] * ii;
+    p_.wz[i] += h * fc[5] * ii;
   };
   auto t0 = Clock::now();
 #pragma omp parallel for schedule(static) if (n > 4096)

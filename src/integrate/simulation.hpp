@@ -123,6 +123,13 @@ public:
   /// Current energies and contact statistics.
   Energies energies() const { return particle_energies(p_, spec_.simulation.gravity); }
   const ContactStats& contact_stats() const { return stats_; }
+  /// Contact force (N) and torque (N m) on particle i from the last force evaluation (soft
+  /// spheres; the particle store keeps no forces).
+  Vec3 contact_force(std::size_t i) const { return nc_.force(i); }
+  Vec3 contact_torque(std::size_t i) const { return nc_.torque(i); }
+  /// The contact loop's per-particle sums: force, torque and their non-conservative parts
+  /// (ContactScratch::acc, kAcc doubles per particle; empty for hard spheres).
+  const std::vector<double>& contact_sums() const { return nc_.acc; }
   /// The hard-sphere engine, or nullptr for the soft-sphere DEM.
   const HardSphereEngine* hard_sphere() const { return hard_.get(); }
   double dissipated_energy() const { return e_dsp_; }

@@ -60,7 +60,7 @@ NeighbourList::State get_list(const CheckpointReader& r, const std::string& pref
 /// The particle arrays of type double, by name.
 template <class Store>
 auto double_arrays(Store& p) {
-  return std::array<std::pair<const char*, decltype(&p.x)>, 19>{{{"x", &p.x},
+  return std::array<std::pair<const char*, decltype(&p.x)>, 13>{{{"x", &p.x},
                                                                  {"y", &p.y},
                                                                  {"z", &p.z},
                                                                  {"vx", &p.vx},
@@ -69,17 +69,15 @@ auto double_arrays(Store& p) {
                                                                  {"wx", &p.wx},
                                                                  {"wy", &p.wy},
                                                                  {"wz", &p.wz},
-                                                                 {"fx", &p.fx},
-                                                                 {"fy", &p.fy},
-                                                                 {"fz", &p.fz},
-                                                                 {"tx", &p.tx},
-                                                                 {"ty", &p.ty},
-                                                                 {"tz", &p.tz},
                                                                  {"radius", &p.radius},
                                                                  {"mass", &p.mass},
                                                                  {"inv_mass", &p.inv_mass},
                                                                  {"inv_inertia", &p.inv_inertia}}};
 }
+
+/// The contact forces and torques the next kick uses (ContactScratch::acc entries 0..5), as
+/// particle arrays of the checkpoint.
+const char* const kContactForce[6] = {"fx", "fy", "fz", "tx", "ty", "tz"};
 
 const char* const kGasVelocity[3] = {"gas/u_x", "gas/u_y", "gas/u_z"};
 const char* const kGasForce[3] = {"gas/force_x", "gas/force_y", "gas/force_z"};
@@ -113,6 +111,17 @@ void Simulation::write_checkpoint(const std::string& path) {
   w.put_scalar("stats/elastic_energy", stats_.elastic_energy);
   w.put_scalar("stats/spring_losses", stats_.spring_losses);
   for (const auto& [name, v] : double_arrays(p_)) w.put(std::string("particles/") + name, *v);
+  {
+    // zero for the hard-sphere engine, which keeps no contact forces
+    const bool have = nc_.acc.size() == ContactScratch::kAcc * p_.size();
+    std::vector<double> column(p_.size(), 0.0);
+    for (std::size_t a = 0; a < 6; ++a) {
+      if (have)
+        for (std::size_t i = 0; i < p_.size(); ++i)
+          column[i] = nc_.acc[ContactScratch::kAcc * i + a];
+      w.put(std::string("particles/") + kContactForce[a], column);
+    }
+  }
   w.put("particles/species", p_.species);
   w.put("particles/id", p_.id);
   w.put("particles/layer", p_.layer);
@@ -187,6 +196,15 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
   // Checkpoints written before layers existed hold none: every particle in layer 0.
   p.layer = r.has("particles/layer") ? r.int32s("particles/layer")
                                      : std::vector<std::int32_t>(p.id.size(), 0);
+  std::array<std::vector<double>, 6> contact_force;
+  for (std::size_t a = 0; a < 6; ++a) {
+    contact_force[a] = r.doubles(std::string("particles/") + kContactForce[a]);
+    if (contact_force[a].size() != p.id.size())
+      throw CheckpointError(fmt::format("checkpoint '{}': particle array '{}' has {} entries for "
+                                        "{} particles",
+                                        checkpoint, kContactForce[a], contact_force[a].size(),
+                                        p.id.size()));
+  }
   for (const auto& [name, v] : double_arrays(p))
     if (v->size() != p.id.size() || p.species.size() != p.id.size() ||
         p.layer.size() != p.id.size())
@@ -201,6 +219,12 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
                                       "one its case gives, {:.17g} s",
                                       checkpoint, dt, s.dt_));
   s.p_ = p; // the constructor computed forces and moved nothing; the saved arrays win
+  if (!s.hard_) {
+    s.nc_.resize(p.size());
+    for (std::size_t a = 0; a < 6; ++a)
+      for (std::size_t i = 0; i < p.size(); ++i)
+        s.nc_.acc[ContactScratch::kAcc * i + a] = contact_force[a][i];
+  }
   s.step_ = static_cast<long>(r.integer("run/step"));
   s.time_ = static_cast<double>(s.step_) * s.dt_;
   s.e_dsp_ = r.scalar("run/e_dsp");

@@ -237,21 +237,27 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
     }
   }
 
-  // Wall entries.
-  wall_particle.clear();
-  wall_face.clear();
+  // Wall entries: counted, then filled (the arrays get their exact size).
   const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int f = 0; f < 6; ++f) {
-      if (!box_.wall[f]) continue;
-      const int a = f / 2;
-      const double gap = (f % 2 == 0) ? (*pos[a])[i] - box_.lo[a] : box_.hi[a] - (*pos[a])[i];
-      if (gap < p.radius[i] + skin_) {
-        wall_particle.push_back(static_cast<std::uint32_t>(i));
-        wall_face.push_back(static_cast<std::uint8_t>(f));
+  auto for_each_wall = [&](auto&& visit) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int f = 0; f < 6; ++f) {
+        if (!box_.wall[f]) continue;
+        const int a = f / 2;
+        const double gap = (f % 2 == 0) ? (*pos[a])[i] - box_.lo[a] : box_.hi[a] - (*pos[a])[i];
+        if (gap < p.radius[i] + skin_) visit(i, f);
       }
     }
-  }
+  };
+  std::size_t n_wall = 0;
+  for_each_wall([&](std::size_t, int) { ++n_wall; });
+  wall_particle.resize(n_wall);
+  wall_face.resize(n_wall);
+  n_wall = 0;
+  for_each_wall([&](std::size_t i, int f) {
+    wall_particle[n_wall] = static_cast<std::uint32_t>(i);
+    wall_face[n_wall++] = static_cast<std::uint8_t>(f);
+  });
   wall_history.assign(wall_particle.size() * hw_, 0.0);
   if (carry && hw_ > 0) {
     std::size_t o = 0;
@@ -272,7 +278,13 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
   ++builds_;
   // The previous list is needed only while its history is carried over: released here, so that
   // a run holds one list, not two (the next build allocates its arrays again; builds are rare
-  // next to steps, and the history carried over is ~100 bytes per particle).
+  // next to steps, and the history carried over is ~100 bytes per particle). So is the cell
+  // grid (~18 bytes per particle), which only the build reads.
+  release(cell_start_);
+  release(cell_particles_);
+  release(particle_cell_);
+  release(particle_slab_);
+  release(count_);
   release(old_offset_);
   release(old_partner_);
   release(old_history_);

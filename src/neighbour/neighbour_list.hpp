@@ -94,7 +94,7 @@ private:
   int hw_;
   long builds_ = 0;
   std::vector<double> x0_, y0_, z0_; ///< positions at the last build
-  // Cell grid
+  // Cell grid (its arrays are scratch of build(), released at its end)
   std::array<int, 3> ncell_{1, 1, 1};
   std::array<double, 3> inv_cell_{1, 1, 1};
   std::vector<std::uint32_t> cell_start_, cell_particles_, particle_cell_;

@@ -217,8 +217,6 @@ void H5mdReader::read_frame(std::size_t k, ParticleStore& out) const {
     out.inv_mass[i] = out.mass[i] > 0.0 ? 1.0 / out.mass[i] : 0.0;
     const double inertia = 0.4 * out.mass[i] * r * r;
     out.inv_inertia[i] = inertia > 0.0 ? 1.0 / inertia : 0.0;
-    out.fx[i] = out.fy[i] = out.fz[i] = 0.0;
-    out.tx[i] = out.ty[i] = out.tz[i] = 0.0;
   }
 }
 

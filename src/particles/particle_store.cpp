@@ -10,7 +10,6 @@ namespace {
 template <class F>
 void for_each_array(ParticleStore& p, F&& f) {
   f(p.x), f(p.y), f(p.z), f(p.vx), f(p.vy), f(p.vz), f(p.wx), f(p.wy), f(p.wz);
-  f(p.fx), f(p.fy), f(p.fz), f(p.tx), f(p.ty), f(p.tz);
   f(p.radius), f(p.mass), f(p.inv_mass), f(p.inv_inertia), f(p.species), f(p.id), f(p.layer);
 }
 } // namespace
@@ -23,6 +22,10 @@ void ParticleStore::reserve(std::size_t n) {
   for_each_array(*this, [n](auto& a) { a.reserve(n); });
 }
 
+void ParticleStore::shrink_to_fit() {
+  for_each_array(*this, [](auto& a) { a.shrink_to_fit(); });
+}
+
 void ParticleStore::resize(std::size_t n) {
   for_each_array(*this, [n](auto& a) { a.resize(n); });
 }
@@ -33,8 +36,6 @@ void ParticleStore::add(const Vec3& p, const Vec3& v, double r, double rho, std:
   x.push_back(p.x), y.push_back(p.y), z.push_back(p.z);
   vx.push_back(v.x), vy.push_back(v.y), vz.push_back(v.z);
   wx.push_back(0), wy.push_back(0), wz.push_back(0);
-  fx.push_back(0), fy.push_back(0), fz.push_back(0);
-  tx.push_back(0), ty.push_back(0), tz.push_back(0);
   radius.push_back(r);
   mass.push_back(m);
   inv_mass.push_back(1.0 / m);

@@ -18,9 +18,6 @@ public:
   std::vector<double> vx, vy, vz;
   // Angular velocities, rad/s
   std::vector<double> wx, wy, wz;
-  // Forces, N, and torques, N m (accumulated each step)
-  std::vector<double> fx, fy, fz;
-  std::vector<double> tx, ty, tz;
   // Radius (m), mass (kg), inverse mass (1/kg), inverse moment of inertia (1/(kg m^2))
   std::vector<double> radius, mass, inv_mass, inv_inertia;
   // Species index into the species table; unique id (stable across sorting)
@@ -33,16 +30,18 @@ public:
   std::size_t size() const { return x.size(); }
   void reserve(std::size_t n);
   void resize(std::size_t n);
+  /// Give back the arrays' spare capacity (after insertion, which grows them by appending).
+  void shrink_to_fit();
 
-  /// Append one particle at rest (forces zero). Mass and inertia from radius and density.
+  /// Append one particle at rest. Mass and inertia from radius and density. (The forces on the
+  /// particles are not kept here: the contact forces are in ContactScratch, the gas forces in the
+  /// coupling.)
   void add(const Vec3& position, const Vec3& velocity, double particle_radius, double density,
            std::int32_t species_index, std::int64_t particle_id);
 
   Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
   Vec3 velocity(std::size_t i) const { return {vx[i], vy[i], vz[i]}; }
   Vec3 angular_velocity(std::size_t i) const { return {wx[i], wy[i], wz[i]}; }
-  Vec3 force(std::size_t i) const { return {fx[i], fy[i], fz[i]}; }
-  Vec3 torque(std::size_t i) const { return {tx[i], ty[i], tz[i]}; }
 
   /// Reorder every array by new_to_old (new index k takes old particle new_to_old[k]).
   void permute(const std::vector<std::uint32_t>& new_to_old);

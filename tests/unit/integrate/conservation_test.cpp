@@ -177,10 +177,10 @@ PairRun oblique_pair(double mu) {
       continue;
     }
     touched = true;
-    // Tangential part of the contact force on particle 0 (no gravity: p.f is contact only).
+    // Tangential part of the contact force on particle 0 (no gravity: the force is contact only).
     const Vec3 d = p.position(1) - p.position(0);
     const Vec3 n = d / norm(d);
-    const Vec3 f = p.force(0);
+    const Vec3 f = sim.contact_force(0);
     ft_integral += norm(f - dot(f, n) * n) * sim.time_step();
     max_overlap = std::max(max_overlap, 2.0 * kR - norm(d));
   }
