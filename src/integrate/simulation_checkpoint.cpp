@@ -30,15 +30,16 @@ namespace {
 void put_list(CheckpointWriter& w, const std::string& prefix, const NeighbourList::State& s) {
   w.put_scalar(prefix + "/skin", s.skin);
   w.put_scalar(prefix + "/builds", s.builds);
-  w.put(prefix + "/x0", s.x0);
-  w.put(prefix + "/y0", s.y0);
-  w.put(prefix + "/z0", s.z0);
-  w.put(prefix + "/offset", s.offset);
-  w.put(prefix + "/partner", s.partner);
-  w.put(prefix + "/wall_particle", s.wall_particle);
-  w.put(prefix + "/wall_face", s.wall_face);
-  w.put(prefix + "/history", s.history);
-  w.put(prefix + "/wall_history", s.wall_history);
+  // views: `s` outlives the writer's commit (write_checkpoint)
+  w.put_view(prefix + "/x0", s.x0);
+  w.put_view(prefix + "/y0", s.y0);
+  w.put_view(prefix + "/z0", s.z0);
+  w.put_view(prefix + "/offset", s.offset);
+  w.put_view(prefix + "/partner", s.partner);
+  w.put_view(prefix + "/wall_particle", s.wall_particle);
+  w.put_view(prefix + "/wall_face", s.wall_face);
+  w.put_view(prefix + "/history", s.history);
+  w.put_view(prefix + "/wall_history", s.wall_history);
 }
 
 NeighbourList::State get_list(const CheckpointReader& r, const std::string& prefix) {
@@ -110,24 +111,27 @@ void Simulation::write_checkpoint(const std::string& path) {
                static_cast<std::int64_t>(stats_.max_overlap_particle));
   w.put_scalar("stats/elastic_energy", stats_.elastic_energy);
   w.put_scalar("stats/spring_losses", stats_.spring_losses);
-  for (const auto& [name, v] : double_arrays(p_)) w.put(std::string("particles/") + name, *v);
-  {
-    // zero for the hard-sphere engine, which keeps no contact forces
-    const bool have = nc_.acc.size() == ContactScratch::kAcc * p_.size();
-    std::vector<double> column(p_.size(), 0.0);
-    for (std::size_t a = 0; a < 6; ++a) {
-      if (have)
-        for (std::size_t i = 0; i < p_.size(); ++i)
-          column[i] = nc_.acc[ContactScratch::kAcc * i + a];
-      w.put(std::string("particles/") + kContactForce[a], column);
-    }
+  // The particle arrays and the list's state as views (no second copy of the run's largest
+  // arrays while the checkpoint is written); they stay unchanged until w.commit() below.
+  for (const auto& [name, v] : double_arrays(p_)) w.put_view(std::string("particles/") + name, *v);
+  // zero for the hard-sphere engine, which keeps no contact forces
+  const bool have_forces = nc_.acc.size() == ContactScratch::kAcc * p_.size();
+  std::array<std::vector<double>, 6> contact_force;
+  for (std::size_t a = 0; a < 6; ++a) {
+    contact_force[a].assign(p_.size(), 0.0);
+    if (have_forces)
+      for (std::size_t i = 0; i < p_.size(); ++i)
+        contact_force[a][i] = nc_.acc[ContactScratch::kAcc * i + a];
+    w.put_view(std::string("particles/") + kContactForce[a], contact_force[a]);
   }
-  w.put("particles/species", p_.species);
-  w.put("particles/id", p_.id);
-  w.put("particles/layer", p_.layer);
-  put_list(w, "neighbour", nl_->state());
+  w.put_view("particles/species", p_.species);
+  w.put_view("particles/id", p_.id);
+  w.put_view("particles/layer", p_.layer);
+  const NeighbourList::State list = nl_->state();
+  put_list(w, "neighbour", list);
+  HardSphereEngine::State h; // its list goes in as views: alive until w.commit()
   if (hard_) {
-    const HardSphereEngine::State h = hard_->state();
+    h = hard_->state();
     w.put("hardsphere/last_collision", h.last_collision);
     w.put("hardsphere/built_x", h.built_x);
     w.put("hardsphere/built_y", h.built_y);

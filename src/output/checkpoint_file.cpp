@@ -74,7 +74,7 @@ std::uint64_t checksum(const Map& arrays) {
     h = fnv1a(h, &t, 1);
     const std::uint64_t c = a.count;
     h = fnv1a(h, &c, sizeof c);
-    h = fnv1a(h, a.bytes.data(), a.bytes.size());
+    h = fnv1a(h, a.data(), a.size());
   }
   return h;
 }
@@ -163,8 +163,8 @@ void CheckpointWriter::commit() const {
                            tmp, "create dataset", name),
                   H5Dclose};
       if (a.count > 0)
-        check(H5Dwrite(dset.get(), mem_type(a.type), H5S_ALL, H5S_ALL, H5P_DEFAULT, a.bytes.data()),
-              tmp, "write dataset", name);
+        check(H5Dwrite(dset.get(), mem_type(a.type), H5S_ALL, H5S_ALL, H5P_DEFAULT, a.data()), tmp,
+              "write dataset", name);
     }
     check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), tmp, "flush file");
     check(file.reset(), tmp, "close file");

@@ -13,6 +13,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace fluidem {
@@ -24,10 +25,22 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-/// Collects the arrays in memory; commit() writes them atomically.
+/// Collects the arrays (copies, or views of the caller's arrays) in memory; commit() writes them
+/// atomically.
 class CheckpointWriter {
 public:
   explicit CheckpointWriter(std::string path) : path_(std::move(path)) {}
+  /// Like put, without a copy: `v` must stay alive and unchanged until commit() (the large
+  /// arrays of a run: a copy of them all would double the run's memory while it checkpoints).
+  template <class T>
+  void put_view(const std::string& name, const std::vector<T>& v) {
+    Array a;
+    a.type = type_code<T>();
+    a.count = v.size();
+    a.view = reinterpret_cast<const unsigned char*>(v.data());
+    a.view_bytes = v.size() * sizeof(T);
+    arrays_[name] = std::move(a);
+  }
   void put(const std::string& name, const std::vector<double>& v);
   void put(const std::string& name, const std::vector<std::int64_t>& v);
   void put(const std::string& name, const std::vector<std::int32_t>& v);
@@ -47,10 +60,30 @@ public:
 
 private:
   struct Array {
-    int type = 0; ///< 0 double, 1 int64, 2 int32, 3 uint32, 4 uint8
-    std::vector<unsigned char> bytes;
+    int type = 0;                        ///< 0 double, 1 int64, 2 int32, 3 uint32, 4 uint8
+    std::vector<unsigned char> bytes;    ///< a copy (put), or
+    const unsigned char* view = nullptr; ///< the caller's array (put_view)
+    std::size_t view_bytes = 0;
     std::size_t count = 0;
+    const unsigned char* data() const { return view ? view : bytes.data(); }
+    std::size_t size() const { return view ? view_bytes : bytes.size(); }
   };
+  template <class T>
+  static constexpr int type_code() {
+    if constexpr (std::is_same_v<T, double>)
+      return 0;
+    else if constexpr (std::is_same_v<T, std::int64_t>)
+      return 1;
+    else if constexpr (std::is_same_v<T, std::int32_t>)
+      return 2;
+    else if constexpr (std::is_same_v<T, std::uint32_t>)
+      return 3;
+    else {
+      static_assert(std::is_same_v<T, std::uint8_t>, "checkpoint arrays: double, int64, int32, "
+                                                     "uint32 or uint8");
+      return 4;
+    }
+  }
   void put_bytes(const std::string& name, int type, const void* data, std::size_t count,
                  std::size_t size);
   std::string path_;
@@ -77,6 +110,8 @@ private:
     int type = 0;
     std::vector<unsigned char> bytes;
     std::size_t count = 0;
+    const unsigned char* data() const { return bytes.data(); }
+    std::size_t size() const { return bytes.size(); }
   };
   const Array& get(const std::string& name, int type) const;
   std::string path_;

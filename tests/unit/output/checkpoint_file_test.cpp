@@ -81,6 +81,41 @@ TEST(CheckpointFile, EveryTypeRoundTripsBitwise) {
   EXPECT_FALSE(fs::exists(p + ".tmp"));
 }
 
+// put_view stores no copy: the file must be the one put (a copy) gives, byte for byte
+// (same arrays, same checksum), for every type; an empty view and a view replaced by a copy
+// under the same name included.
+TEST(CheckpointFile, ViewsWriteTheSameFileAsCopies) {
+  Dir d;
+  const std::vector<double> dbl{1.0 / 3.0, -0.0, 1e-300};
+  const std::vector<std::int64_t> i64{-5, 1LL << 62};
+  const std::vector<std::int32_t> i32{-7, 7};
+  const std::vector<std::uint32_t> u32{0u, 4294967295u};
+  const std::vector<std::uint8_t> u8{0, 255, 10};
+  const std::vector<double> empty;
+  const std::string copied = (d.path / "copied.h5").string();
+  const std::string viewed = (d.path / "viewed.h5").string();
+  {
+    CheckpointWriter w(copied);
+    w.put("a/doubles", dbl), w.put("i64", i64), w.put("i32", i32), w.put("u32", u32);
+    w.put("u8", u8), w.put("empty", empty), w.put("replaced", i32);
+    w.commit();
+  }
+  {
+    CheckpointWriter w(viewed);
+    w.put_view("a/doubles", dbl), w.put_view("i64", i64), w.put_view("i32", i32);
+    w.put_view("u32", u32), w.put_view("u8", u8), w.put_view("empty", empty);
+    w.put_view("replaced", dbl);
+    w.put("replaced", i32);
+    w.commit();
+  }
+  const CheckpointReader r(viewed); // checksum verified here
+  EXPECT_EQ(r.doubles("a/doubles").size(), 3u);
+  EXPECT_TRUE(std::signbit(r.doubles("a/doubles")[1]));
+  EXPECT_EQ(r.int64s("i64"), i64);
+  EXPECT_EQ(r.int32s("replaced"), i32);
+  EXPECT_EQ(slurp(copied), slurp(viewed));
+}
+
 TEST(CheckpointFile, MissingArrayAndWrongTypeNameTheFile) {
   Dir d;
   const std::string p = (d.path / "checkpoint.h5").string();
