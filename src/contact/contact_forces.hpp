@@ -21,12 +21,12 @@ struct ContactStats {
 /// `view` packs what the pair loop reads of each particle (position, radius, velocity, mass,
 /// angular velocity, inverse inertia: kView doubles, one base pointer instead of twelve);
 /// `acc` packs what it adds: contact force, torque, and their non-conservative parts (dashpots,
-/// sliding friction, rolling resistance); after compute_contact_forces it holds the step's
-/// contact forces and torques (force(i), torque(i)), which the integrator's kicks read (they
-/// are kept nowhere else). The work of the latter, evaluated by the integrator
-/// with the full-step velocities, is the energy the contacts dissipate: with velocity Verlet
-/// this is exactly the kinetic energy they remove, so the energy balance measures only the
-/// integration error.
+/// sliding friction, rolling resistance). The work of the non-conservative parts, evaluated by
+/// the integrator with the full-step velocities, is the energy the contacts dissipate: with
+/// velocity Verlet this is exactly the kinetic energy they remove, so the energy balance
+/// measures only the integration error. After compute_contact_forces `acc` holds the step's
+/// contact forces and torques (force(i), torque(i)), which the integrator's kicks read: they are
+/// kept nowhere else.
 struct ContactScratch {
   static constexpr std::size_t kView = 12; ///< x y z r | vx vy vz m | wx wy wz 1/I
   static constexpr std::size_t kAcc = 12;  ///< f | t | f_nc | t_nc

@@ -300,9 +300,10 @@ void Simulation::step() {
   // the step's first kick reads the previous step's, the second this step's.
   if (nc_.acc.size() != ContactScratch::kAcc * n)
     throw std::logic_error("Simulation::step: the contact forces are not those of the particles");
+  const double* contact = nc_.acc.data();
   auto kick = [&](std::size_t i) {
     const double im = p_.inv_mass[i], ii = p_.inv_inertia[i];
-    const double* fc = nc_.acc.data() + ContactScratch::kAcc * i; // force | torque | ...
+    const double* fc = contact + ContactScratch::kAcc * i; // force | torque | ...
     const double fx = gfx ? fc[0] + gfx[i] : fc[0];
     const double fy = gfy ? fc[1] + gfy[i] : fc[1];
     const double fz = gfz ? fc[2] + gfz[i] : fc[2];
