@@ -475,30 +475,47 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // particle), so the chunks run in parallel without races; each keeps its own statistics and
   // samples, joined in chunk order: the result does not depend on the number of threads.
   const auto& box = nl.box();
-  const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
-  // Pass 1 for a wall entry, as for a pair.
-  auto gather_wall = [&](std::size_t e, Batch& b, ContactStats& acc,
-                         std::vector<ContactSample>* buf) {
-    const std::uint32_t i = nl.wall_particle[e];
-    const int f = nl.wall_face[e];
-    const int a = f / 2;
-    const bool lo_face = (f % 2 == 0);
-    const double ri = view[ContactScratch::kView * i + 3];
-    const double gap = lo_face ? (*pos[a])[i] - box.lo[a] : box.hi[a] - (*pos[a])[i];
-    const bool touching = gap < ri;
-    const int k = b.n;
-    b.i[k] = i, b.e[k] = static_cast<std::uint32_t>(e);
-    b.params[k] = p.species[i] * 6 + f;
-    for (int c = 0; c < 3; ++c) b.normal[c][k] = 0.0;
-    b.normal[a][k] = lo_face ? -1.0 : 1.0; // from the particle towards the wall
-    b.overlap[k] = ri - gap;
-    b.wall_gap[k] = gap;
-    if constexpr (hw > 0) {
-      double* hist = &nl.wall_history[e * hw];
-      if ((loaded(hist) != 0) & !touching) release(acc, hist, wall_params[b.params[k]], ri);
+  // Pass 1 for the wall entries [e_begin, e_end), as for a row of pairs.
+  auto gather_walls = [&](std::size_t e_begin, std::size_t e_end, Batch& b, ContactStats& acc,
+                          std::vector<ContactSample>* buf) {
+    // Locals, as in the pair walk: the batch's stores could alias the list's and box's members.
+    const std::uint32_t* const wall_particle = nl.wall_particle.data();
+    const std::uint8_t* const wall_face = nl.wall_face.data();
+    const int* const spec = p.species.data();
+    double* const hist_base = nl.wall_history.data();
+    const double* const v = view;
+    const double lo[3] = {box.lo[0], box.lo[1], box.lo[2]};
+    const double hi[3] = {box.hi[0], box.hi[1], box.hi[2]};
+    int k = b.n;
+    for (std::size_t e = e_begin; e < e_end; ++e) {
+      const std::uint32_t i = wall_particle[e];
+      const int f = wall_face[e];
+      const int a = f / 2;
+      const bool lo_face = (f % 2 == 0);
+      const double* pi = v + ContactScratch::kView * i;
+      const double ri = pi[3];
+      const double gap = lo_face ? pi[a] - lo[a] : hi[a] - pi[a];
+      const bool touching = gap < ri;
+      b.i[k] = i, b.e[k] = static_cast<std::uint32_t>(e);
+      b.params[k] = spec[i] * 6 + f;
+      for (int c = 0; c < 3; ++c) b.normal[c][k] = 0.0;
+      b.normal[a][k] = lo_face ? -1.0 : 1.0; // from the particle towards the wall
+      b.overlap[k] = ri - gap;
+      b.wall_gap[k] = gap;
+      if constexpr (hw > 0) {
+        double* hist = hist_base + e * hw;
+        const std::uint64_t ended = loaded(hist) & (std::uint64_t{touching} - 1);
+        if (ended != 0) [[unlikely]]
+          release(acc, hist, wall_params[b.params[k]], ri);
+      }
+      k += touching ? 1 : 0;
+      if (k == Batch::kSize) {
+        b.n = k;
+        flush(b, kWalls, acc, buf);
+        k = 0;
+      }
     }
-    b.n += touching ? 1 : 0;
-    if (b.n == Batch::kSize) flush(b, kWalls, acc, buf);
+    b.n = k;
   };
   constexpr std::size_t kWallChunk = 2048;
   const std::size_t nwall = nl.wall_particle.size();
@@ -517,7 +534,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     const std::size_t end = chunk_start(k + 1);
     ContactStats local; // on the stack, as the slabs' (no false sharing)
     Batch batch;
-    for (std::size_t e = chunk_start(k); e < end; ++e) gather_wall(e, batch, local, buf);
+    gather_walls(chunk_start(k), end, batch, local, buf);
     flush(batch, kWalls, local, buf);
     wall_stats[k] = local;
   }
