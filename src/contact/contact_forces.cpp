@@ -364,6 +364,22 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     acc.spring_losses = spring_losses;
     b.n = 0;
   };
+  // The end of pass 1 for an entry (pairs and walls alike). A contact that just ended: one
+  // integer test, so one rarely taken branch instead of one on touching (unpredictable).
+  auto just_ended = [&](const double* hist, bool touching) {
+    return (loaded(hist) & (std::uint64_t{touching} - 1)) != 0;
+  };
+  // The slot is kept when the entry touches; a full batch is evaluated and emptied (the fill
+  // `k` lives in the walk's register, stored into the batch only for the flush).
+  auto keep = [&](Batch& b, int& k, bool touching, auto kind, ContactStats& acc,
+                  std::vector<ContactSample>* buf) {
+    k += touching ? 1 : 0;
+    if (k == Batch::kSize) {
+      b.n = k;
+      flush(b, kind, acc, buf);
+      k = 0;
+    }
+  };
   // The walk's arrays as local pointers: the batch's stores could otherwise alias them (the
   // box's periodic flags are chars) and the compiler would reload them for every entry.
   const std::uint32_t* partner = nl.partner.data();
@@ -412,18 +428,11 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       b.params[k] = si_row + spec[j];
       b.d[0][k] = dx, b.d[1][k] = dy, b.d[2][k] = dz;
       if constexpr (hw > 0) {
-        // One branch, on a contact that just ended (rare), not on touching (unpredictable).
         double* hist = hist_base + static_cast<std::size_t>(e) * hw;
-        const std::uint64_t ended = loaded(hist) & (std::uint64_t{touching} - 1);
-        if (ended != 0) [[unlikely]]
+        if (just_ended(hist, touching)) [[unlikely]]
           release(acc, hist, pair_params[b.params[k]], ri * rj / rsum);
       }
-      k += touching ? 1 : 0;
-      if (k == Batch::kSize) {
-        b.n = k;
-        flush(b, kPairs, acc, buf);
-        k = 0;
-      }
+      keep(b, k, touching, kPairs, acc, buf);
     }
     b.n = k;
   };
@@ -504,16 +513,10 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       b.wall_gap[k] = gap;
       if constexpr (hw > 0) {
         double* hist = hist_base + e * hw;
-        const std::uint64_t ended = loaded(hist) & (std::uint64_t{touching} - 1);
-        if (ended != 0) [[unlikely]]
+        if (just_ended(hist, touching)) [[unlikely]]
           release(acc, hist, wall_params[b.params[k]], ri);
       }
-      k += touching ? 1 : 0;
-      if (k == Batch::kSize) {
-        b.n = k;
-        flush(b, kWalls, acc, buf);
-        k = 0;
-      }
+      keep(b, k, touching, kWalls, acc, buf);
     }
     b.n = k;
   };
