@@ -29,6 +29,11 @@ BoundaryMap::BoundaryMap(const GasSettings& s, const GasGrid& g) : grid_(g) {
         }
       }
   }
+  for (int side = 0; side < 6; ++side) {
+    tangential_[side].resize(index_[side].size());
+    for (std::size_t q = 0; q < index_[side].size(); ++q)
+      tangential_[side][q] = tangential_factor(patches_[index_[side][q]].type);
+  }
   for (const BoundaryPatch& p : patches_) {
     any_pressure_ = any_pressure_ || p.type == BoundaryType::pressure;
     any_outflow_ = any_outflow_ || p.type == BoundaryType::outflow;

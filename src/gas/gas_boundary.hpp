@@ -4,6 +4,8 @@
 #pragma once
 #include "core/gas_settings.hpp"
 #include "gas/gas_grid.hpp"
+#include <array>
+#include <cstddef>
 #include <vector>
 
 namespace fluidem::gas {
@@ -25,10 +27,11 @@ public:
   /// (0 left, 1 right, 2 front, 3 back, 4 bottom, 5 top); the tangential indices of (i, j, k)
   /// are used, the normal one is ignored.
   const BoundaryPatch& at(int side, int i, int j, int k) const {
-    const int axis = side / 2;
-    const int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
-    const int c[3] = {i, j, k};
-    return patches_[index_[side][c[a1] + grid_.padded[a1] * c[a2]]];
+    return patches_[index_[side][slot(side, i, j, k)]];
+  }
+  /// tangential_factor(at(side, i, j, k).type), from a table (the momentum assembly's hot path).
+  double tangential_factor_at(int side, int i, int j, int k) const {
+    return tangential_[side][slot(side, i, j, k)];
   }
   bool periodic(int axis) const { return periodic_[axis]; }
   /// True if any boundary cell has a prescribed pressure.
@@ -42,7 +45,15 @@ public:
   }
 
 private:
+  /// Index of the ghost cell next to (i, j, k) across `side` in the side's tables: its two
+  /// tangential indices (axes a1 < a2 other than the side's axis), a1 fastest.
+  std::size_t slot(int side, int i, int j, int k) const {
+    const int axis = side / 2;
+    const int t1 = axis == 0 ? j : i, t2 = axis == 2 ? j : k;
+    return static_cast<std::size_t>(t1 + grid_.padded[axis == 0 ? 1 : 0] * t2);
+  }
   GasGrid grid_;
+  std::array<std::vector<double>, 6> tangential_;
   std::vector<BoundaryPatch> patches_;
   std::array<std::vector<int>, 6> index_;
   std::array<bool, 3> periodic_{false, false, false};

@@ -202,9 +202,9 @@ void GasSolver::solve_momentum(int d, double dt) {
             const int ie = c[e] + s;
             if (!bc_.periodic(e) && (ie < 1 || ie > g_.n[e])) {
               link = false;
-              int cb[3] = {i, j, k}; // the interior cell next to the face
-              cb[d] = std::clamp(id, 1, nd);
-              gfac = BoundaryMap::tangential_factor(bc_.at(2 * e + side, cb[0], cb[1], cb[2]).type);
+              const int cd = std::clamp(id, 1, nd); // the interior cell next to the face
+              gfac = bc_.tangential_factor_at(2 * e + side, d == 0 ? cd : i, d == 1 ? cd : j,
+                                              d == 2 ? cd : k);
             }
           }
         }

@@ -175,6 +175,45 @@ TEST(Porosity, SingleCellCapsMatchOctantSums) {
   EXPECT_LT(worst, 1e-13);
 }
 
+TEST(Porosity, RowOfCellsSlabsMatchOctantSums) {
+  // The same one-layer grid, spheres whose range crosses cell faces along x or along z but not
+  // both (each cell holds a slab of the ball between two parallel planes: the ball minus two
+  // caps). Reference: sphere_box_volume of each cell (the octant inclusion-exclusion), to
+  // 1e-13 of the ball's volume per cell (both are exact formulas; round-off only).
+  gas::GasGrid g(3, {4, 1, 3}, {0.0, 0.0, 0.0}, {0.04, 0.004, 0.06});
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> ux(0.0, 0.04), uy(0.0, 0.004), uz(0.0, 0.06);
+  std::uniform_real_distribution<double> rad(0.0015, 0.0021);
+  double worst = 0.0;
+  int rows = 0;
+  for (int n = 0; n < 4000; ++n) {
+    ParticleStore p;
+    const Vec3 x{ux(rng), uy(rng), uz(rng)};
+    const double R = rad(rng);
+    p.add(x, {0, 0, 0}, R, 2500.0, 0, 0);
+    std::vector<double> frac;
+    solid_fraction(g, p, {}, frac);
+    const auto c0 = g.cell_of({x[0] - R, x[1], x[2] - R});
+    const auto c1 = g.cell_of({x[0] + R, x[1], x[2] + R});
+    if ((c0[0] != c1[0]) == (c0[2] != c1[2])) continue; // one cell, or a corner: other paths
+    ++rows;
+    const double V = 4.0 / 3.0 * pi * R * R * R;
+    for (int k = c0[2]; k <= c1[2]; ++k)
+      for (int i = c0[0]; i <= c1[0]; ++i) {
+        const std::array<double, 3> lo{g.lo[0] + (i - 1) * g.h[0], g.lo[1],
+                                       g.lo[2] + (k - 1) * g.h[2]};
+        const std::array<double, 3> hi{lo[0] + g.h[0], g.lo[1] + g.h[1], lo[2] + g.h[2]};
+        const double ref = sphere_box_volume(x, R, lo, hi);
+        const double got = frac[static_cast<std::size_t>(g.idx(i, 1, k))] * g.cell_volume();
+        worst = std::max(worst, std::abs(got - ref) / V);
+      }
+  }
+  std::printf("spheres across one axis of faces: %d, max |slabs - octant sums| / V %.2e\n", rows,
+              worst);
+  EXPECT_GT(rows, 1000);
+  EXPECT_LT(worst, 1e-13);
+}
+
 TEST(Porosity, DiscAreasSumOverCells2D) {
   gas::GasGrid g(2, {6, 1, 7}, {0.0, 0.0, 0.0}, {0.006, 0.002, 0.007});
   std::mt19937_64 rng(11);
