@@ -6,35 +6,41 @@ namespace fluidem::coupling {
 
 namespace {
 /// Lower index and weight of the upper node along one axis: nodes at lo + (i + shift) h,
-/// i in [imin, imax + 1].
+/// i in [imin, imax + 1]. floor by truncation and a correction (std::floor is a library call
+/// without SSE4.1): the same integer for every s inside the int range, beyond it clamped anyway.
 void axis(double x, double lo, double h, double shift, int imin, int imax, int& i0, double& t) {
   const double s = (x - lo) / h - shift;
-  i0 = std::clamp(static_cast<int>(std::floor(s)), imin, imax);
+  const double c = std::clamp(s, -1e9, 1e9); // no overflow in the conversion; NaN stays NaN
+  int i = static_cast<int>(c);
+  i -= c < static_cast<double>(i) ? 1 : 0;
+  i0 = std::clamp(i, imin, imax);
   t = std::clamp(s - i0, 0.0, 1.0);
 }
 
+/// Tensor-product stencil: per active axis the lower node (weight 1 - t) and, unless t = 0, the
+/// upper one (weight t); inactive axes keep i0 alone. Nodes x fastest, then y, then z; the
+/// weight is the product of the active axes' factors in the order x, y, z.
 Stencil tensor(const gas::GasGrid& g, const std::array<int, 3>& i0, const std::array<double, 3>& t,
                const std::array<bool, 3>& active) {
   Stencil s;
-  for (int m = 0; m < 8; ++m) {
-    std::array<int, 3> ijk{};
-    double w = 1.0;
-    bool skip = false;
-    for (int d = 0; d < 3; ++d) {
-      const int up = (m >> d) & 1;
-      if (!active[d]) {
-        if (up) skip = true;
-        ijk[d] = i0[d];
-        continue;
-      }
-      ijk[d] = i0[d] + up;
-      w *= up ? t[d] : 1.0 - t[d];
-    }
-    if (skip) continue;
-    s.q[static_cast<std::size_t>(s.n)] = g.idx(ijk[0], ijk[1], ijk[2]);
-    s.w[static_cast<std::size_t>(s.n)] = w;
-    ++s.n;
+  double f[3][2];
+  int nb[3];
+  for (int d = 0; d < 3; ++d) {
+    const bool two = active[d] && t[d] != 0.0;
+    nb[d] = two ? 2 : 1;
+    f[d][0] = active[d] ? 1.0 - t[d] : 1.0;
+    f[d][1] = t[d];
   }
+  const long base = g.idx(i0[0], i0[1], i0[2]);
+  const long sy = g.stride[1], sz = g.stride[2];
+  int n = 0;
+  for (int bz = 0; bz < nb[2]; ++bz)
+    for (int by = 0; by < nb[1]; ++by)
+      for (int bx = 0; bx < nb[0]; ++bx, ++n) {
+        s.q[static_cast<std::size_t>(n)] = base + bx + by * sy + bz * sz;
+        s.w[static_cast<std::size_t>(n)] = f[0][bx] * f[1][by] * f[2][bz];
+      }
+  s.n = n;
   return s;
 }
 } // namespace
@@ -86,24 +92,20 @@ void face_stencils(const gas::GasGrid& g, const Vec3& x, Stencil* out) {
     sel(0, ix, tx);
     sel(1, iy, ty);
     sel(2, iz, tz);
-    const double wx[2] = {1.0 - tx, tx}, wz[2] = {1.0 - tz, tz};
+    const double wx[2] = {1.0 - tx, tx}, wy[2] = {1.0 - ty, ty}, wz[2] = {1.0 - tz, tz};
     const long base = g.idx(ix, iy, iz);
-    if (two_d) { // tensor(): nodes in the order (x0 z0), (x1 z0), (x0 z1), (x1 z1)
-      for (int m = 0; m < 4; ++m) {
-        const int bx = m & 1, bz = m >> 1;
-        s.q[static_cast<std::size_t>(m)] = base + bx + bz * sz;
-        s.w[static_cast<std::size_t>(m)] = wx[bx] * wz[bz];
-      }
-      s.n = 4;
-      continue;
-    }
-    const double wy[2] = {1.0 - ty, ty};
-    for (int m = 0; m < 8; ++m) {
-      const int bx = m & 1, by = (m >> 1) & 1, bz = m >> 2;
-      s.q[static_cast<std::size_t>(m)] = base + bx + by * sy + bz * sz;
-      s.w[static_cast<std::size_t>(m)] = wx[bx] * wy[by] * wz[bz];
-    }
-    s.n = 8;
+    // tensor(): nodes in the order x fastest, then y, then z; an axis with t = 0 (a particle
+    // on a node plane, e.g. mid-depth in a bed one cell deep) keeps only its lower node, of
+    // weight 1 (the upper one's weight is 0).
+    const int nx = tx == 0.0 ? 1 : 2, ny = two_d || ty == 0.0 ? 1 : 2, nz = tz == 0.0 ? 1 : 2;
+    int n = 0;
+    for (int bz = 0; bz < nz; ++bz)
+      for (int by = 0; by < ny; ++by)
+        for (int bx = 0; bx < nx; ++bx, ++n) {
+          s.q[static_cast<std::size_t>(n)] = base + bx + by * sy + bz * sz;
+          s.w[static_cast<std::size_t>(n)] = two_d ? wx[bx] * wz[bz] : wx[bx] * wy[by] * wz[bz];
+        }
+    s.n = n;
   }
 }
 

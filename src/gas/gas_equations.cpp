@@ -132,56 +132,82 @@ void GasSolver::solve_momentum(int d, double dt) {
   const bool per_d = bc_.periodic(d);
   const bool two_d = g_.dimension == 2;
   std::vector<double>& u = u_[d];
-  const std::array<double*, 6> slots{sys_.xm.data(), sys_.xp.data(), sys_.ym.data(),
-                                     sys_.yp.data(), sys_.zm.data(), sys_.zp.data()};
+  // Everything the rows read, in locals: the rows' stores (through pointers into vectors) would
+  // otherwise make the compiler reload the members after each of them.
+  double* const slots[6] = {sys_.xm.data(), sys_.xp.data(), sys_.ym.data(),
+                            sys_.yp.data(), sys_.zm.data(), sys_.zp.data()};
+  double* const diag = sys_.diag.data();
+  double* const rhs_out = sys_.rhs.data();
+  double* const dcoef = dcoef_[d].data();
+  const double* const uu = u.data();
+  const double* const u_old = u_old_[d].data();
+  const double* const eps = eps_.data();
+  const double* const rho = rho_.data();
+  const double* const eps_old = eps_old_.data();
+  const double* const rho_old = rho_old_.data();
+  const double* const p = p_.data();
+  const double* const K = K_[d].data();
+  const double* const Kus = Kus_[d].data();
+  const double* const fsrc = f_[d].data();
+  const unsigned char* const role = role_[d].data();
+  const double* const F[3] = {F_[0].data(), F_[1].data(), F_[2].data()};
+  const long stride[3] = {g_.stride[0], g_.stride[1], g_.stride[2]};
+  const int n[3] = {g_.n[0], g_.n[1], g_.n[2]};
+  const bool periodic[3] = {bc_.periodic(0), bc_.periodic(1), bc_.periodic(2)};
+  const double area[3] = {g_.face_area(0), g_.face_area(1), g_.face_area(2)};
+  const double h[3] = {g_.h[0], g_.h[1], g_.h[2]};
+  const double gd = s_.gravity[d];
+  const bool model_a = s_.model == PressureModel::A;
+  const long sx = g_.stride[0], sy = g_.stride[1], sz = g_.stride[2];
   // One row: face (i, j, k) of component d. Interior = every link of the face stays inside the
   // domain (or wraps around a periodic axis) and no boundary face is involved: the same
   // arithmetic without the boundary tests.
   const auto row = [&]<bool interior>(int i, int j, int k) {
-    const long q = g_.idx(i, j, k);
+    const long q = i * sx + j * sy + k * sz;
     if constexpr (!interior) {
-      const unsigned char r = role_[d][q];
+      const unsigned char r = role[q];
       if (r == fixed || r == outflow) {
-        sys_.diag[q] = 1.0;
-        sys_.rhs[q] = u[q];
+        diag[q] = 1.0;
+        rhs_out[q] = uu[q];
         for (double* sl : slots) sl[q] = 0.0;
-        dcoef_[d][q] = 0.0;
+        dcoef[q] = 0.0;
         return;
       }
     }
     const int c[3] = {i, j, k};
     const int id = c[d];
     const long c0 = q, c1 = q + sd;
-    const double eps_f = 0.5 * (eps_[c0] + eps_[c1]);
-    const double er = 0.5 * (eps_[c0] * rho_[c0] + eps_[c1] * rho_[c1]);
-    const double er_old = 0.5 * (eps_old_[c0] * rho_old_[c0] + eps_old_[c1] * rho_old_[c1]);
-    const double cp = s_.model == PressureModel::A ? eps_f : 1.0;
-    double aP = er * V / dt + K_[d][q] * V;
-    double rhs = er_old * V / dt * u_old_[d][q] + (Kus_[d][q] + f_[d][q]) * V +
-                 er * V * s_.gravity[d] - cp * Ad * (p_[c1] - p_[c0]);
+    const double eps_f = 0.5 * (eps[c0] + eps[c1]);
+    const double er = 0.5 * (eps[c0] * rho[c0] + eps[c1] * rho[c1]);
+    const double er_old = 0.5 * (eps_old[c0] * rho_old[c0] + eps_old[c1] * rho_old[c1]);
+    const double cp = model_a ? eps_f : 1.0;
+    double aP = er * V / dt + K[q] * V;
+    const double rhs = er_old * V / dt * u_old[q] + (Kus[q] + fsrc[q]) * V + er * V * gd -
+                       cp * Ad * (p[c1] - p[c0]);
     double sum_nb = 0.0;
+    double nb[6];
     for (int e = 0; e < 3; ++e) {
       if (two_d && e == 1) { // no flow and free slip across y in 2-D
-        slots[2][q] = slots[3][q] = 0.0;
+        nb[2] = nb[3] = 0.0;
         continue;
       }
-      const long se = g_.stride[e];
-      const double Ae = g_.face_area(e);
+      const long se = stride[e];
+      const double Ae = area[e];
       for (int side = 0; side < 2; ++side) {
         const int s = side == 0 ? -1 : 1;
-        double F = 0.0, D = 0.0, gfac = 0.0;
+        double Fv = 0.0, D = 0.0, gfac = 0.0;
         bool link = true;
         if (e == d) {
           const long cell = s < 0 ? c0 : c1;
-          double Fa = 0.0, Fb = F_[d][cell];
+          double Fa = 0.0, Fb = F[d][cell];
           if constexpr (interior) {
-            Fa = F_[d][cell - sd];
+            Fa = F[d][cell - sd];
           } else { // the face below face 0 is not stored (index -1 along z): not read
-            Fa = !per_d && s < 0 && id == 0 ? Fb : F_[d][cell - sd];
+            Fa = !per_d && s < 0 && id == 0 ? Fb : F[d][cell - sd];
             if (!per_d && s > 0 && id == nd) Fb = Fa;
           }
-          F = 0.5 * (Fa + Fb);
-          D = mu * eps_[cell] * Ad / g_.h[d];
+          Fv = 0.5 * (Fa + Fb);
+          D = mu * eps[cell] * Ad / h[d];
           if constexpr (!interior) {
             if (!per_d && (id + s < 0 || id + s > nd)) {
               link = false;
@@ -190,17 +216,17 @@ void GasSolver::solve_momentum(int d, double dt) {
           }
         } else {
           const long f0 = s > 0 ? c0 : c0 - se, f1 = s > 0 ? c1 : c1 - se;
-          double F0 = F_[e][f0], F1 = F_[e][f1];
+          double F0 = F[e][f0], F1 = F[e][f1];
           if constexpr (!interior) {
             if (!per_d && id == 0) F0 = F1;
             if (!per_d && id == nd) F1 = F0;
           }
-          F = 0.5 * (F0 + F1);
-          const double eps_l = 0.25 * (eps_[c0] + eps_[c1] + eps_[c0 + s * se] + eps_[c1 + s * se]);
-          D = mu * eps_l * Ae / g_.h[e];
+          Fv = 0.5 * (F0 + F1);
+          const double eps_l = 0.25 * (eps[c0] + eps[c1] + eps[c0 + s * se] + eps[c1 + s * se]);
+          D = mu * eps_l * Ae / h[e];
           if constexpr (!interior) {
             const int ie = c[e] + s;
-            if (!bc_.periodic(e) && (ie < 1 || ie > g_.n[e])) {
+            if (!periodic[e] && (ie < 1 || ie > n[e])) {
               link = false;
               const int cd = std::clamp(id, 1, nd); // the interior cell next to the face
               gfac = bc_.tangential_factor_at(2 * e + side, d == 0 ? cd : i, d == 1 ? cd : j,
@@ -208,22 +234,23 @@ void GasSolver::solve_momentum(int d, double dt) {
             }
           }
         }
-        const double Fout = s * F;
+        const double Fout = s * Fv;
         const double anb = D + std::max(-Fout, 0.0);
         aP += D + std::max(Fout, 0.0);
         if (link) {
-          slots[2 * e + side][q] = -anb;
+          nb[2 * e + side] = -anb;
           sum_nb += anb;
         } else {
-          slots[2 * e + side][q] = 0.0;
+          nb[2 * e + side] = 0.0;
           aP -= gfac * anb;
         }
       }
     }
     const double aPr = aP / alpha;
-    sys_.diag[q] = aPr;
-    sys_.rhs[q] = rhs + (1.0 - alpha) * aPr * u[q];
-    dcoef_[d][q] = cp * Ad / std::max(aPr - sum_nb, 1e-6 * aPr);
+    for (int m = 0; m < 6; ++m) slots[m][q] = nb[m];
+    diag[q] = aPr;
+    rhs_out[q] = rhs + (1.0 - alpha) * aPr * uu[q];
+    dcoef[q] = cp * Ad / std::max(aPr - sum_nb, 1e-6 * aPr);
   };
   // The box of unknowns and, per axis, the index range of interior faces.
   const std::array<int, 3> lo = momentum_box_lo(d);
