@@ -108,8 +108,9 @@ struct GasSettings {
   // Pressure-correction iterations per flow step (`gas.solver.*`).
   double tolerance = 1e-8; ///< `gas.solver.tolerance`: mass residual, sum|cell imbalance| dt /
                            ///< total gas mass (dimensionless)
-  double velocity_tolerance = 1e-6; ///< `gas.solver.velocity_tolerance`, m/s: max velocity
-                                    ///< change in the last iteration
+  double velocity_tolerance = 1e-6; ///< `gas.solver.velocity_tolerance`, m/s: estimated max
+                                    ///< distance of the velocity from the converged solution
+                                    ///< (docs/gas.md)
   int max_iterations = 100;         ///< `gas.solver.max_iterations`
   double velocity_relaxation = 1.0; ///< `gas.solver.velocity_relaxation`, (0, 1]
   double pressure_relaxation = 1.0; ///< `gas.solver.pressure_relaxation`, (0, 1]
