@@ -10,10 +10,12 @@ namespace {
 constexpr double pi = 3.14159265358979323846;
 }
 
+std::array<std::vector<double>*, 11> ParticleGasForces::per_particle() {
+  return {&drag_x, &drag_y, &drag_z, &pres_x, &pres_y, &pres_z, &coeff, &ux, &uy, &uz, &eps};
+}
+
 void ParticleGasForces::resize(std::size_t n) {
-  for (auto* v :
-       {&drag_x, &drag_y, &drag_z, &pres_x, &pres_y, &pres_z, &coeff, &ux, &uy, &uz, &eps})
-    v->assign(n, 0.0);
+  for (auto* v : per_particle()) v->assign(n, 0.0);
 }
 
 namespace {
@@ -122,7 +124,7 @@ void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingS
 void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
                              const CouplingSettings& c, ParticleGasForces& out) {
   const std::size_t n = p.size();
-  out.resize(n);
+  for (auto* v : out.per_particle()) v->resize(n); // not zeroed: the loop below writes them all
   out.scheme = c.scheme;
   out.porosity = c.porosity;
   if (c.scheme == ExchangeScheme::scheme3) {

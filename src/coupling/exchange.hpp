@@ -85,6 +85,7 @@
 #include "coupling/porosity.hpp"
 #include "gas/gas_solver.hpp"
 #include "particles/particle_store.hpp"
+#include <array>
 #include <vector>
 
 namespace fluidem::coupling {
@@ -120,7 +121,9 @@ struct ParticleGasForces {
   /// at the positions compute_particle_forces saw (as in a flow step: the particles do not move
   /// within it). Empty for the porous cube.
   std::vector<Stencil> face_stencils;
-  void resize(std::size_t n);
+  void resize(std::size_t n); ///< every per-particle array n long, zeroed
+  /// The per-particle arrays drag_x .. eps.
+  std::array<std::vector<double>*, 11> per_particle();
 };
 
 /// Sets gs.porosity() (interior cells) from the particles (porosity.hpp).

@@ -386,11 +386,16 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
   // the cells in particle order by one thread, so the sums do not depend on the thread count.
   const std::size_t n = p.size();
   std::vector<long>& offset = scratch.offset;
+  std::vector<std::array<int, 6>>& range = scratch.range;
   offset.resize(n + 1);
+  range.resize(n);
   offset[0] = 0;
 #pragma omp parallel for schedule(static) if (n >= parallel_particles)
-  for (std::size_t i = 0; i < n; ++i)
-    offset[i + 1] = covered_cells(g, p.position(i), p.radius[i], na, axes, wrap).count();
+  for (std::size_t i = 0; i < n; ++i) {
+    const CellRange r = covered_cells(g, p.position(i), p.radius[i], na, axes, wrap);
+    range[i] = {r.c0[0], r.c0[1], r.c0[2], r.c1[0], r.c1[1], r.c1[2]};
+    offset[i + 1] = r.count();
+  }
   for (std::size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
   const auto total = static_cast<std::size_t>(offset[n]);
   if (scratch.cell.size() < total) { // with slack: the count changes a little from step to step
@@ -403,7 +408,9 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 x = p.position(i);
     const double R = p.radius[i];
-    const CellRange r = covered_cells(g, x, R, na, axes, wrap);
+    CellRange r;
+    r.c0 = {range[i][0], range[i][1], range[i][2]};
+    r.c1 = {range[i][3], range[i][4], range[i][5]};
     sphere_cell_parts(g, x, R, r, two_d, wrap, cell_measure, cell + offset[i], part + offset[i]);
   }
   for (std::size_t e = 0; e < total; ++e) out[static_cast<std::size_t>(cell[e])] += part[e];

@@ -53,8 +53,9 @@ double porosity_2d_to_3d(double eps_2d);
 /// a flow step does not allocate (the per-particle parts of the cell method, the solid field,
 /// the porous cube's weights).
 struct PorosityScratch {
-  std::vector<long> offset; ///< cell method: first entry of particle i (size n + 1)
-  std::vector<long> cell;   ///< cell method: grid index of each entry
+  std::vector<long> offset;              ///< cell method: first entry of particle i (size n + 1)
+  std::vector<std::array<int, 6>> range; ///< cell method: cells c0[3], c1[3] of particle i
+  std::vector<long> cell;                ///< cell method: grid index of each entry
   std::vector<double> part; ///< cell method: solid fraction of the entry's cell from its particle
   std::vector<double> solid;
   CubeWeights cube;
