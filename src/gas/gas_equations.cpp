@@ -162,7 +162,8 @@ void GasSolver::solve_momentum(int d, double dt) {
   // One row: face (i, j, k) of component d. Interior = every link of the face stays inside the
   // domain (or wraps around a periodic axis) and no boundary face is involved: the same
   // arithmetic without the boundary tests.
-  const auto row = [&]<bool interior>(int i, int j, int k) {
+  const auto row = [&]<bool interior, int Dir>(int i, int j, int k) {
+    static_assert(Dir >= 0 && Dir < 3);
     const long q = i * sx + j * sy + k * sz;
     if constexpr (!interior) {
       const unsigned char r = role[q];
@@ -175,7 +176,7 @@ void GasSolver::solve_momentum(int d, double dt) {
       }
     }
     const int c[3] = {i, j, k};
-    const int id = c[d];
+    const int id = c[Dir];
     const long c0 = q, c1 = q + sd;
     const double eps_f = 0.5 * (eps[c0] + eps[c1]);
     const double er = 0.5 * (eps[c0] * rho[c0] + eps[c1] * rho[c1]);
@@ -186,6 +187,7 @@ void GasSolver::solve_momentum(int d, double dt) {
                        cp * Ad * (p[c1] - p[c0]);
     double sum_nb = 0.0;
     double nb[6];
+#pragma GCC unroll 3
     for (int e = 0; e < 3; ++e) {
       if (two_d && e == 1) { // no flow and free slip across y in 2-D
         nb[2] = nb[3] = 0.0;
@@ -193,21 +195,22 @@ void GasSolver::solve_momentum(int d, double dt) {
       }
       const long se = stride[e];
       const double Ae = area[e];
+#pragma GCC unroll 2
       for (int side = 0; side < 2; ++side) {
         const int s = side == 0 ? -1 : 1;
         double Fv = 0.0, D = 0.0, gfac = 0.0;
         bool link = true;
-        if (e == d) {
+        if (e == Dir) {
           const long cell = s < 0 ? c0 : c1;
-          double Fa = 0.0, Fb = F[d][cell];
+          double Fa = 0.0, Fb = F[Dir][cell];
           if constexpr (interior) {
-            Fa = F[d][cell - sd];
+            Fa = F[Dir][cell - sd];
           } else { // the face below face 0 is not stored (index -1 along z): not read
-            Fa = !per_d && s < 0 && id == 0 ? Fb : F[d][cell - sd];
+            Fa = !per_d && s < 0 && id == 0 ? Fb : F[Dir][cell - sd];
             if (!per_d && s > 0 && id == nd) Fb = Fa;
           }
           Fv = 0.5 * (Fa + Fb);
-          D = mu * eps[cell] * Ad / h[d];
+          D = mu * eps[cell] * Ad / h[Dir];
           if constexpr (!interior) {
             if (!per_d && (id + s < 0 || id + s > nd)) {
               link = false;
@@ -229,8 +232,8 @@ void GasSolver::solve_momentum(int d, double dt) {
             if (!periodic[e] && (ie < 1 || ie > n[e])) {
               link = false;
               const int cd = std::clamp(id, 1, nd); // the interior cell next to the face
-              gfac = bc_.tangential_factor_at(2 * e + side, d == 0 ? cd : i, d == 1 ? cd : j,
-                                              d == 2 ? cd : k);
+              gfac = bc_.tangential_factor_at(2 * e + side, Dir == 0 ? cd : i, Dir == 1 ? cd : j,
+                                              Dir == 2 ? cd : k);
             }
           }
         }
@@ -273,9 +276,19 @@ void GasSolver::solve_momentum(int d, double dt) {
     const bool inside = j >= in_lo[1] && j <= in_hi[1] && k >= in_lo[2] && k <= in_hi[2];
     const int i0 = inside ? std::max(in_lo[0], lo[0]) : g_.n[0] + 1;
     const int i1 = inside ? in_hi[0] : g_.n[0];
-    for (int i = lo[0]; i < i0 && i <= g_.n[0]; ++i) row.template operator()<false>(i, j, k);
-    for (int i = i0; i <= i1; ++i) row.template operator()<true>(i, j, k);
-    for (int i = std::max(i1 + 1, i0); i <= g_.n[0]; ++i) row.template operator()<false>(i, j, k);
+    // The row code of this component (its axis a template argument: the tests on it fold away).
+    const auto rows_of = [&]<int Dir>() {
+      for (int i = lo[0]; i < i0 && i <= g_.n[0]; ++i) row.template operator()<false, Dir>(i, j, k);
+      for (int i = i0; i <= i1; ++i) row.template operator()<true, Dir>(i, j, k);
+      for (int i = std::max(i1 + 1, i0); i <= g_.n[0]; ++i)
+        row.template operator()<false, Dir>(i, j, k);
+    };
+    if (d == 0)
+      rows_of.template operator()<0>();
+    else if (d == 1)
+      rows_of.template operator()<1>();
+    else
+      rows_of.template operator()<2>();
   };
   if (parallel_) { // unthreaded: no OpenMP region at all (its runtime call shows on small grids)
 #pragma omp parallel for schedule(static)
