@@ -175,21 +175,37 @@ void velocity_and_pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x, 
   velocity_and_pressure_gradient_on(gs, st, u, grad_p);
 }
 
+namespace {
+/// sum w u and sum w (p[q + sd] - p[q]) over the first n nodes of s, in node order; N > 0: n = N
+/// (the loop unrolled for the common stencils of 4 and 8 nodes).
+template <int N>
+void weighted_sums(const Stencil& s, int n, const double* ud, const double* p, long sd, double& uv,
+                   double& gv) {
+  if constexpr (N > 0) n = N;
+  for (int m = 0; m < n; ++m) {
+    const long q = s.q[static_cast<std::size_t>(m)];
+    const double w = s.w[static_cast<std::size_t>(m)];
+    uv += w * ud[q];
+    gv += w * (p[q + sd] - p[q]);
+  }
+}
+} // namespace
+
 void velocity_and_pressure_gradient_on(const gas::GasSolver& gs, const Stencil* st, Vec3& u,
                                        Vec3& grad_p) {
   const gas::GasGrid& g = gs.grid();
-  const std::vector<double>& p = gs.pressure();
+  const double* p = gs.pressure().data();
   for (int d = 0; d < 3; ++d) {
     const Stencil& s = st[d];
-    const std::vector<double>& ud = gs.velocity(d);
-    const auto sd = static_cast<std::size_t>(g.stride[d]);
+    const double* ud = gs.velocity(d).data();
+    const long sd = g.stride[d];
     double uv = 0.0, gv = 0.0;
-    for (int m = 0; m < s.n; ++m) {
-      const auto q = static_cast<std::size_t>(s.q[static_cast<std::size_t>(m)]);
-      const double w = s.w[static_cast<std::size_t>(m)];
-      uv += w * ud[q];
-      gv += w * (p[q + sd] - p[q]);
-    }
+    if (s.n == 4)
+      weighted_sums<4>(s, 4, ud, p, sd, uv, gv);
+    else if (s.n == 8)
+      weighted_sums<8>(s, 8, ud, p, sd, uv, gv);
+    else
+      weighted_sums<0>(s, s.n, ud, p, sd, uv, gv);
     u[d] = uv;
     grad_p[d] = gv / g.h[d];
   }
