@@ -30,8 +30,7 @@ public:
   /// e1 e2) need to be set. (Stored as the upper band, row i - off, the factor's layout.)
   void clear();
   double& lower(std::size_t i, int off) {
-    return a_[(i - static_cast<std::size_t>(off)) * static_cast<std::size_t>(b_ + 1) +
-              static_cast<std::size_t>(off)];
+    return a_[(i - static_cast<std::size_t>(off)) * stride_ + static_cast<std::size_t>(off)];
   }
   /// Factorises in place. False if a pivot is not positive (not SPD to round-off): the band
   /// is then unusable until set again.
@@ -42,6 +41,7 @@ public:
 private:
   std::size_t n_ = 0;
   int b_ = 0;
+  std::size_t stride_ = 1;  ///< 2 (b + 1): each row's band, then as many zeros
   std::vector<double> a_;   ///< row k: U(k, k .. k + b) of U = L^T (the diagonal first)
   std::vector<double> inv_; ///< 1 / L(i, i)
 };

@@ -151,7 +151,9 @@ TEST(StructLinearSolver, DirectSolveAgreesWithHypre) {
   direct.direct_max_work = 1e9;
   for (const std::array<int, 3> n :
        {std::array<int, 3>{15, 1, 25}, std::array<int, 3>{9, 4, 5}, std::array<int, 3>{3, 11, 4},
-        std::array<int, 3>{4, 5, 3}, std::array<int, 3>{1, 1, 1}}) {
+        std::array<int, 3>{4, 5, 3}, std::array<int, 3>{1, 1, 1},
+        // band widths b + 1 = 8 and 32 (the factor's compile-time widths, as 16 above)
+        std::array<int, 3>{7, 1, 30}, std::array<int, 3>{31, 1, 40}}) {
     const Box b = make_box(n, {false, false, false});
     const StencilSystem s = symmetric_system(b, 5u + static_cast<unsigned>(n[0]), 1e-2);
     StructLinearSolver ds(b.padded, b.lo, b.hi, b.periodic, true, direct);
