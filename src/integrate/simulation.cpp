@@ -301,39 +301,64 @@ void Simulation::step() {
   if (nc_.acc.size() != ContactScratch::kAcc * n)
     throw std::logic_error("Simulation::step: the contact forces are not those of the particles");
   const double* contact = nc_.acc.data();
-  auto kick = [&](std::size_t i) {
-    const double im = p_.inv_mass[i], ii = p_.inv_inertia[i];
+  // The particle arrays in locals (the stores below would otherwise make the compiler reload
+  // dt_ and the array pointers of p_ for every particle).
+  double *const x = p_.x.data(), *const y = p_.y.data(), *const z = p_.z.data();
+  double *const vx = p_.vx.data(), *const vy = p_.vy.data(), *const vz = p_.vz.data();
+  double *const wx = p_.wx.data(), *const wy = p_.wy.data(), *const wz = p_.wz.data();
+  const double *const inv_m = p_.inv_mass.data(), *const inv_i = p_.inv_inertia.data();
+  const double dt = dt_;
+  // Gas: with gas forces; Field: a body force field may be there (tested per particle).
+  const auto kick = [&]<bool Gas, bool Field>(std::size_t i) {
+    const double im = inv_m[i], ii = inv_i[i];
     const double* fc = contact + ContactScratch::kAcc * i; // force | torque | ...
-    const double fx = gfx ? fc[0] + gfx[i] : fc[0];
-    const double fy = gfy ? fc[1] + gfy[i] : fc[1];
-    const double fz = gfz ? fc[2] + gfz[i] : fc[2];
+    double fx = fc[0], fy = fc[1], fz = fc[2];
+    if constexpr (Gas) fx = fc[0] + gfx[i], fy = fc[1] + gfy[i], fz = fc[2] + gfz[i];
     std::array<double, 3> a{gx, gy, gz};
-    if (body) {
-      const auto b = body_acceleration(*body, p_.x[i], p_.y[i], p_.z[i]);
-      a[0] += b[0], a[1] += b[1], a[2] += b[2];
+    if constexpr (Field) {
+      if (body) {
+        const auto b = body_acceleration(*body, x[i], y[i], z[i]);
+        a[0] += b[0], a[1] += b[1], a[2] += b[2];
+      }
     }
-    p_.vx[i] += h * (fx * im + a[0]);
-    p_.vy[i] += h * (fy * im + a[1]);
-    p_.vz[i] += h * (fz * im + a[2]);
-    p_.wx[i] += h * fc[3] * ii;
-    p_.wy[i] += h * fc[4] * ii;
-    p_.wz[i] += h * fc[5] * ii;
+    vx[i] += h * (fx * im + a[0]);
+    vy[i] += h * (fy * im + a[1]);
+    vz[i] += h * (fz * im + a[2]);
+    wx[i] += h * fc[3] * ii;
+    wy[i] += h * fc[4] * ii;
+    wz[i] += h * fc[5] * ii;
   };
-  auto t0 = Clock::now();
+  const bool any_periodic = box.periodic[0] || box.periodic[1] || box.periodic[2];
+  // First half kick and drift; Wrap: periodic axes (centres kept inside [lo, hi)).
+  const auto kick_drift = [&]<bool Gas, bool Field, bool Wrap>() {
 #pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) {
-    kick(i);
-    p_.x[i] += dt_ * p_.vx[i];
-    p_.y[i] += dt_ * p_.vy[i];
-    p_.z[i] += dt_ * p_.vz[i];
-    // Periodic axes: keep centres inside [lo, hi).
-    if (box.periodic[0])
-      p_.x[i] -= box.length(0) * std::floor((p_.x[i] - box.lo[0]) / box.length(0));
-    if (box.periodic[1])
-      p_.y[i] -= box.length(1) * std::floor((p_.y[i] - box.lo[1]) / box.length(1));
-    if (box.periodic[2])
-      p_.z[i] -= box.length(2) * std::floor((p_.z[i] - box.lo[2]) / box.length(2));
-  }
+    for (std::size_t i = 0; i < n; ++i) {
+      kick.template operator()<Gas, Field>(i);
+      x[i] += dt * vx[i];
+      y[i] += dt * vy[i];
+      z[i] += dt * vz[i];
+      if constexpr (Wrap) {
+        if (box.periodic[0]) x[i] -= box.length(0) * std::floor((x[i] - box.lo[0]) / box.length(0));
+        if (box.periodic[1]) y[i] -= box.length(1) * std::floor((y[i] - box.lo[1]) / box.length(1));
+        if (box.periodic[2]) z[i] -= box.length(2) * std::floor((z[i] - box.lo[2]) / box.length(2));
+      }
+    }
+  };
+  // The second half kick, after the forces.
+  const auto second_kick = [&]<bool Gas, bool Field>() {
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (std::size_t i = 0; i < n; ++i) kick.template operator()<Gas, Field>(i);
+  };
+  const bool with_gas = gfx != nullptr, with_field = body != nullptr;
+  auto t0 = Clock::now();
+  if (with_gas && !with_field && !any_periodic)
+    kick_drift.template operator()<true, false, false>();
+  else if (!with_gas && !with_field && !any_periodic)
+    kick_drift.template operator()<false, false, false>();
+  else if (with_gas)
+    kick_drift.template operator()<true, true, true>();
+  else
+    kick_drift.template operator()<false, true, true>();
   t_integration_ += seconds_since(t0);
 
   t0 = Clock::now();
@@ -351,8 +376,14 @@ void Simulation::step() {
   compute_forces();
 
   t0 = Clock::now();
-#pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) kick(i);
+  if (with_gas && !with_field)
+    second_kick.template operator()<true, false>();
+  else if (!with_gas && !with_field)
+    second_kick.template operator()<false, false>();
+  else if (with_gas)
+    second_kick.template operator()<true, true>();
+  else
+    second_kick.template operator()<false, true>();
   // Work of the non-conservative contact forces with the full-step velocities: with velocity
   // Verlet the force computed at t+dt acts with mean velocity v(t+dt) over [t+dt/2, t+3dt/2].
   e_dsp_ += nc_.dissipated(p_, dt_);
