@@ -141,34 +141,52 @@ TEST(Porosity, SingleCellClosedForms) {
   EXPECT_NEAR(s / V, 1.0, 1e-13);
 }
 
-TEST(Porosity, SingleCellCapsMatchOctantSums) {
-  // One layer of cells 4 mm deep in y between walls (the 3-D Tsuji bed: spheres of 4 mm touch
-  // or cut both y walls) and 10 x 20 mm in x-z.
-  gas::GasGrid g(3, {4, 1, 3}, {0.0, 0.0, 0.0}, {0.04, 0.004, 0.06});
-  std::mt19937_64 rng(11);
+namespace {
+// One layer of cells 4 mm deep in y between walls (the 3-D Tsuji bed: spheres of 4 mm touch
+// or cut both y walls) and 10 x 20 mm in x-z, and `count` single spheres at random in it
+// (R = 1.5 .. 2.1 mm): f(x, R, solid fraction of the grid's cells) for each.
+gas::GasGrid layer_grid() {
+  return gas::GasGrid(3, {4, 1, 3}, {0.0, 0.0, 0.0}, {0.04, 0.004, 0.06});
+}
+template <class F>
+void random_spheres_in_layer(const gas::GasGrid& g, unsigned seed, int count, F f) {
+  std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> ux(0.0, 0.04), uy(0.0, 0.004), uz(0.0, 0.06);
   std::uniform_real_distribution<double> rad(0.0015, 0.0021);
-  double worst = 0.0;
-  int single = 0;
-  for (int n = 0; n < 2000; ++n) {
+  for (int n = 0; n < count; ++n) {
     ParticleStore p;
     const Vec3 x{ux(rng), uy(rng), uz(rng)};
     const double R = rad(rng);
     p.add(x, {0, 0, 0}, R, 2500.0, 0, 0);
     std::vector<double> frac;
     solid_fraction(g, p, {}, frac);
-    const auto c = g.cell_of(x);
-    const std::array<double, 3> lo{g.lo[0] + (c[0] - 1) * g.h[0], g.lo[1],
-                                   g.lo[2] + (c[2] - 1) * g.h[2]};
-    const std::array<double, 3> hi{lo[0] + g.h[0], g.lo[1] + g.h[1], lo[2] + g.h[2]};
-    const bool inside_xz =
-        x[0] - R >= lo[0] && x[0] + R <= hi[0] && x[2] - R >= lo[2] && x[2] + R <= hi[2];
-    if (!inside_xz) continue;
-    ++single; // whole, or cut by one or both y walls
-    const double ref = sphere_box_volume(x, R, lo, hi) / g.cell_volume();
-    const double got = frac[static_cast<std::size_t>(g.idx(c[0], c[1], c[2]))];
-    worst = std::max(worst, std::abs(got / ref - 1.0));
+    f(x, R, frac);
   }
+}
+/// Corners lo, hi of cell (i, 1, k) of the layer.
+std::array<std::array<double, 3>, 2> layer_cell(const gas::GasGrid& g, int i, int k) {
+  const std::array<double, 3> lo{g.lo[0] + (i - 1) * g.h[0], g.lo[1], g.lo[2] + (k - 1) * g.h[2]};
+  return {lo, {lo[0] + g.h[0], g.lo[1] + g.h[1], lo[2] + g.h[2]}};
+}
+} // namespace
+
+TEST(Porosity, SingleCellCapsMatchOctantSums) {
+  // Spheres inside one cell in x-z: whole, or cut by one or both y walls.
+  const gas::GasGrid g = layer_grid();
+  double worst = 0.0;
+  int single = 0;
+  random_spheres_in_layer(
+      g, 11, 2000, [&](const Vec3& x, double R, const std::vector<double>& frac) {
+        const auto c = g.cell_of(x);
+        const auto [lo, hi] = layer_cell(g, c[0], c[2]);
+        const bool inside_xz =
+            x[0] - R >= lo[0] && x[0] + R <= hi[0] && x[2] - R >= lo[2] && x[2] + R <= hi[2];
+        if (!inside_xz) return;
+        ++single;
+        const double ref = sphere_box_volume(x, R, lo, hi) / g.cell_volume();
+        const double got = frac[static_cast<std::size_t>(g.idx(c[0], c[1], c[2]))];
+        worst = std::max(worst, std::abs(got / ref - 1.0));
+      });
   std::printf("single-cell spheres: %d, max rel. difference caps vs octant sums %.2e\n", single,
               worst);
   EXPECT_GT(single, 200);
@@ -176,38 +194,28 @@ TEST(Porosity, SingleCellCapsMatchOctantSums) {
 }
 
 TEST(Porosity, RowOfCellsSlabsMatchOctantSums) {
-  // The same one-layer grid, spheres whose range crosses cell faces along x or along z but not
-  // both (each cell holds a slab of the ball between two parallel planes: the ball minus two
-  // caps). Reference: sphere_box_volume of each cell (the octant inclusion-exclusion), to
-  // 1e-13 of the ball's volume per cell (both are exact formulas; round-off only).
-  gas::GasGrid g(3, {4, 1, 3}, {0.0, 0.0, 0.0}, {0.04, 0.004, 0.06});
-  std::mt19937_64 rng(12);
-  std::uniform_real_distribution<double> ux(0.0, 0.04), uy(0.0, 0.004), uz(0.0, 0.06);
-  std::uniform_real_distribution<double> rad(0.0015, 0.0021);
+  // Spheres whose range crosses cell faces along x or along z but not both (each cell holds a
+  // slab of the ball between two parallel planes: the ball minus two caps). Reference:
+  // sphere_box_volume of each cell (the octant inclusion-exclusion), to 1e-13 of the ball's
+  // volume per cell (both are exact formulas; round-off only).
+  const gas::GasGrid g = layer_grid();
   double worst = 0.0;
   int rows = 0;
-  for (int n = 0; n < 4000; ++n) {
-    ParticleStore p;
-    const Vec3 x{ux(rng), uy(rng), uz(rng)};
-    const double R = rad(rng);
-    p.add(x, {0, 0, 0}, R, 2500.0, 0, 0);
-    std::vector<double> frac;
-    solid_fraction(g, p, {}, frac);
-    const auto c0 = g.cell_of({x[0] - R, x[1], x[2] - R});
-    const auto c1 = g.cell_of({x[0] + R, x[1], x[2] + R});
-    if ((c0[0] != c1[0]) == (c0[2] != c1[2])) continue; // one cell, or a corner: other paths
-    ++rows;
-    const double V = 4.0 / 3.0 * pi * R * R * R;
-    for (int k = c0[2]; k <= c1[2]; ++k)
-      for (int i = c0[0]; i <= c1[0]; ++i) {
-        const std::array<double, 3> lo{g.lo[0] + (i - 1) * g.h[0], g.lo[1],
-                                       g.lo[2] + (k - 1) * g.h[2]};
-        const std::array<double, 3> hi{lo[0] + g.h[0], g.lo[1] + g.h[1], lo[2] + g.h[2]};
-        const double ref = sphere_box_volume(x, R, lo, hi);
-        const double got = frac[static_cast<std::size_t>(g.idx(i, 1, k))] * g.cell_volume();
-        worst = std::max(worst, std::abs(got - ref) / V);
-      }
-  }
+  random_spheres_in_layer(
+      g, 12, 4000, [&](const Vec3& x, double R, const std::vector<double>& frac) {
+        const auto c0 = g.cell_of({x[0] - R, x[1], x[2] - R});
+        const auto c1 = g.cell_of({x[0] + R, x[1], x[2] + R});
+        if ((c0[0] != c1[0]) == (c0[2] != c1[2])) return; // one cell, or a corner: other paths
+        ++rows;
+        const double V = 4.0 / 3.0 * pi * R * R * R;
+        for (int k = c0[2]; k <= c1[2]; ++k)
+          for (int i = c0[0]; i <= c1[0]; ++i) {
+            const auto [lo, hi] = layer_cell(g, i, k);
+            const double ref = sphere_box_volume(x, R, lo, hi);
+            const double got = frac[static_cast<std::size_t>(g.idx(i, 1, k))] * g.cell_volume();
+            worst = std::max(worst, std::abs(got - ref) / V);
+          }
+      });
   std::printf("spheres across one axis of faces: %d, max |slabs - octant sums| / V %.2e\n", rows,
               worst);
   EXPECT_GT(rows, 1000);
