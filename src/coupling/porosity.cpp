@@ -212,15 +212,6 @@ int raw_cell(const gas::GasGrid& g, int d, double x) {
 /// region costs a few microseconds; one particle's exact volumes ~0.3 us).
 constexpr std::size_t parallel_particles = 256;
 
-/// The cells the sphere of particle i covers, c0..c1 per axis (1..1 across y in 2-D); along
-/// periodic axes on the unwrapped index range (folded onto their images by the caller).
-struct CellRange {
-  std::array<int, 3> c0{1, 1, 1}, c1{1, 1, 1};
-  long count() const {
-    return static_cast<long>(c1[0] - c0[0] + 1) * (c1[1] - c0[1] + 1) * (c1[2] - c0[2] + 1);
-  }
-};
-
 CellRange covered_cells(const gas::GasGrid& g, const Vec3& x, double R, int na,
                         const std::array<int, 3>& axes, const std::array<bool, 3>& wrap) {
   CellRange r;
@@ -263,6 +254,11 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
   // holds the ball minus its caps beyond the cell's faces, which are disjoint,
   // V = 4/3 pi R^3 - sum pi h^2 (3R - h) / 3, h the cap height: the same volume as the octant
   // sums below in a few operations (the common case of the Tsuji beds, ~90% of the spheres).
+  const auto minus_caps = [R](double v, double h_lo, double h_hi) { // caps of height h > 0
+    for (const double h : {h_lo, h_hi})
+      if (h > 0.0) v -= pi * h * h * (3.0 * R - h) / 3.0;
+    return v;
+  };
   if (!two_d) {
     int along = -1, n_along = 0; // the axis along which the range has several cells
     for (int d = 0; d < 3; ++d)
@@ -275,8 +271,7 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
         const double h_lo = R + node(d, r.c0[d]), h_hi = R - node(d, r.c0[d] + 1);
         if (h_lo <= 0.0 && h_hi <= 0.0) continue;
         ++cut_axes;
-        for (const double h : {h_lo, h_hi})
-          if (h > 0.0) v -= pi * h * h * (3.0 * R - h) / 3.0;
+        v = minus_caps(v, h_lo, h_hi);
       }
       if (cut_axes <= 1 && n_along == 0) {
         cell[0] = grid_index(r.c0[0], r.c0[1], r.c0[2]);
@@ -286,10 +281,7 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
       if (cut_axes <= 1) {
         std::array<int, 3> c = r.c0;
         for (long e = 0; c[along] <= r.c1[along]; ++c[along], ++e) {
-          const double h_lo = R + node(along, c[along]), h_hi = R - node(along, c[along] + 1);
-          double w = v;
-          for (const double h : {h_lo, h_hi})
-            if (h > 0.0) w -= pi * h * h * (3.0 * R - h) / 3.0;
+          const double w = minus_caps(v, R + node(along, c[along]), R - node(along, c[along] + 1));
           cell[e] = grid_index(c[0], c[1], c[2]);
           part[e] = std::max(w, 0.0) / measure;
         }
@@ -386,15 +378,14 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
   // the cells in particle order by one thread, so the sums do not depend on the thread count.
   const std::size_t n = p.size();
   std::vector<long>& offset = scratch.offset;
-  std::vector<std::array<int, 6>>& range = scratch.range;
+  std::vector<CellRange>& range = scratch.range;
   offset.resize(n + 1);
   range.resize(n);
   offset[0] = 0;
 #pragma omp parallel for schedule(static) if (n >= parallel_particles)
   for (std::size_t i = 0; i < n; ++i) {
-    const CellRange r = covered_cells(g, p.position(i), p.radius[i], na, axes, wrap);
-    range[i] = {r.c0[0], r.c0[1], r.c0[2], r.c1[0], r.c1[1], r.c1[2]};
-    offset[i + 1] = r.count();
+    range[i] = covered_cells(g, p.position(i), p.radius[i], na, axes, wrap);
+    offset[i + 1] = range[i].count();
   }
   for (std::size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
   const auto total = static_cast<std::size_t>(offset[n]);
@@ -408,10 +399,8 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 x = p.position(i);
     const double R = p.radius[i];
-    CellRange r;
-    r.c0 = {range[i][0], range[i][1], range[i][2]};
-    r.c1 = {range[i][3], range[i][4], range[i][5]};
-    sphere_cell_parts(g, x, R, r, two_d, wrap, cell_measure, cell + offset[i], part + offset[i]);
+    sphere_cell_parts(g, x, R, range[i], two_d, wrap, cell_measure, cell + offset[i],
+                      part + offset[i]);
   }
   for (std::size_t e = 0; e < total; ++e) out[static_cast<std::size_t>(cell[e])] += part[e];
 }

@@ -52,10 +52,19 @@ double porosity_2d_to_3d(double eps_2d);
 /// Work space of solid_fraction / compute_porosity, kept between calls by the caller so that
 /// a flow step does not allocate (the per-particle parts of the cell method, the solid field,
 /// the porous cube's weights).
+/// The cells a sphere covers, c0..c1 per axis (1..1 across y in 2-D); along periodic axes on
+/// the unwrapped index range (folded onto their images when the parts are stored).
+struct CellRange {
+  std::array<int, 3> c0{1, 1, 1}, c1{1, 1, 1};
+  long count() const {
+    return static_cast<long>(c1[0] - c0[0] + 1) * (c1[1] - c0[1] + 1) * (c1[2] - c0[2] + 1);
+  }
+};
+
 struct PorosityScratch {
-  std::vector<long> offset;              ///< cell method: first entry of particle i (size n + 1)
-  std::vector<std::array<int, 6>> range; ///< cell method: cells c0[3], c1[3] of particle i
-  std::vector<long> cell;                ///< cell method: grid index of each entry
+  std::vector<long> offset;     ///< cell method: first entry of particle i (size n + 1)
+  std::vector<CellRange> range; ///< cell method: the cells of particle i
+  std::vector<long> cell;       ///< cell method: grid index of each entry
   std::vector<double> part; ///< cell method: solid fraction of the entry's cell from its particle
   std::vector<double> solid;
   CubeWeights cube;

@@ -313,10 +313,8 @@ void GasSolver::step(double time, double dt) {
     // is tighter than the change itself (r < 1/2): never stricter than the plain change test.
     dv_err = dv;
     const double ratio = it >= 2 && dv_prev > 0.0 ? dv / dv_prev : 1.0;
-    if (it >= 3 && std::max(ratio, ratio_prev) < 0.5) {
-      const double r = std::max(ratio, ratio_prev);
-      dv_err = dv * r / (1.0 - r);
-    }
+    const double r = std::max(ratio, ratio_prev);
+    if (it >= 3 && r < 0.5) dv_err = dv * r / (1.0 - r);
     ratio_prev = ratio;
     dv_prev = dv;
     converged = res < s_.tolerance && dv_err < s_.velocity_tolerance;
