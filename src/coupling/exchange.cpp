@@ -245,9 +245,9 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
     const std::vector<double>& v = d == 0 ? p.vx : (d == 1 ? p.vy : p.vz);
     // One particle's share over the weights (index q[m], weight wt[m], m < nw).
     // N > 0: nw = N (the loops unrolled for the common stencils of 4 and 8 nodes).
-    const auto deposit = [&]<std::size_t N>(std::size_t i, const long* qs, const double* wt,
-                                            std::size_t nw) {
-      if constexpr (N > 0) nw = N;
+    const auto deposit = [&]<int N>(std::size_t i, const long* qs, const double* wt,
+                                    std::size_t nw) {
+      if constexpr (N > 0) nw = static_cast<std::size_t>(N);
       double wsum = 0.0;
       bool solved[8] = {}; // stencils: nw <= 8; the porous cube's lists may be longer
       for (std::size_t m = 0; m < nw; ++m) {
@@ -273,13 +273,10 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
       if (cached) {
         const Stencil& st = f.face_stencils[3 * i + static_cast<std::size_t>(d)];
         if (!any_periodic) {
-          if (st.n == 4)
-            deposit.template operator()<4>(i, st.q.data(), st.w.data(), 4);
-          else if (st.n == 8)
-            deposit.template operator()<8>(i, st.q.data(), st.w.data(), 8);
-          else
-            deposit.template operator()<0>(i, st.q.data(), st.w.data(),
+          with_node_count(st.n, [&]<int N>() {
+            deposit.template operator()<N>(i, st.q.data(), st.w.data(),
                                            static_cast<std::size_t>(st.n));
+          });
           continue;
         }
         std::array<long, 8> qs{};

@@ -20,9 +20,9 @@ void axis(double x, double lo, double h, double shift, int imin, int imax, int& 
 /// Tensor-product stencil: per active axis the lower node (weight 1 - t) and, unless t = 0, the
 /// upper one (weight t); inactive axes keep i0 alone. Nodes x fastest, then y, then z; the
 /// weight is the product of the active axes' factors in the order x, y, z.
-Stencil tensor(const gas::GasGrid& g, const std::array<int, 3>& i0, const std::array<double, 3>& t,
-               const std::array<bool, 3>& active) {
-  Stencil s;
+[[gnu::always_inline]] inline void tensor(const gas::GasGrid& g, const std::array<int, 3>& i0,
+                                          const std::array<double, 3>& t,
+                                          const std::array<bool, 3>& active, Stencil& s) {
   double f[3][2];
   int nb[3];
   for (int d = 0; d < 3; ++d) {
@@ -41,6 +41,11 @@ Stencil tensor(const gas::GasGrid& g, const std::array<int, 3>& i0, const std::a
         s.w[static_cast<std::size_t>(n)] = f[0][bx] * f[1][by] * f[2][bz];
       }
   s.n = n;
+}
+Stencil tensor(const gas::GasGrid& g, const std::array<int, 3>& i0, const std::array<double, 3>& t,
+               const std::array<bool, 3>& active) {
+  Stencil s;
+  tensor(g, i0, t, active, s);
   return s;
 }
 } // namespace
@@ -76,36 +81,21 @@ void face_stencils(const gas::GasGrid& g, const Vec3& x, Stencil* out) {
     axis(x[e], g.lo[e], g.h[e], 0.0, 0, g.n[e] - 1, i_face[e], t_face[e]);
     axis(x[e], g.lo[e], g.h[e], -0.5, 0, g.n[e], i_cell[e], t_cell[e]);
   }
-  const long sy = g.stride[1], sz = g.stride[2];
   for (int d = 0; d < 3; ++d) {
     Stencil& s = out[d];
     if (two_d && d == 1) {
       s.n = 0;
       continue;
     }
-    const auto sel = [&](int e, int& i0, double& t) {
-      i0 = e == d ? i_face[e] : i_cell[e];
-      t = e == d ? t_face[e] : t_cell[e];
-    };
-    int ix, iy, iz;
-    double tx, ty, tz;
-    sel(0, ix, tx);
-    sel(1, iy, ty);
-    sel(2, iz, tz);
-    const double wx[2] = {1.0 - tx, tx}, wy[2] = {1.0 - ty, ty}, wz[2] = {1.0 - tz, tz};
-    const long base = g.idx(ix, iy, iz);
-    // tensor(): nodes in the order x fastest, then y, then z; an axis with t = 0 (a particle
-    // on a node plane, e.g. mid-depth in a bed one cell deep) keeps only its lower node, of
-    // weight 1 (the upper one's weight is 0).
-    const int nx = tx == 0.0 ? 1 : 2, ny = two_d || ty == 0.0 ? 1 : 2, nz = tz == 0.0 ? 1 : 2;
-    int n = 0;
-    for (int bz = 0; bz < nz; ++bz)
-      for (int by = 0; by < ny; ++by)
-        for (int bx = 0; bx < nx; ++bx, ++n) {
-          s.q[static_cast<std::size_t>(n)] = base + bx + by * sy + bz * sz;
-          s.w[static_cast<std::size_t>(n)] = two_d ? wx[bx] * wz[bz] : wx[bx] * wy[by] * wz[bz];
-        }
-    s.n = n;
+    // The faces' lattice along d, the cell centres' across (y inactive in 2-D): tensor()'s
+    // nodes and weights.
+    std::array<int, 3> i0{};
+    std::array<double, 3> t{};
+    for (int e = 0; e < 3; ++e) {
+      i0[e] = e == d ? i_face[e] : i_cell[e];
+      t[e] = e == d ? t_face[e] : t_cell[e];
+    }
+    tensor(g, i0, t, {true, !two_d, true}, s);
   }
 }
 
@@ -200,12 +190,7 @@ void velocity_and_pressure_gradient_on(const gas::GasSolver& gs, const Stencil* 
     const double* ud = gs.velocity(d).data();
     const long sd = g.stride[d];
     double uv = 0.0, gv = 0.0;
-    if (s.n == 4)
-      weighted_sums<4>(s, 4, ud, p, sd, uv, gv);
-    else if (s.n == 8)
-      weighted_sums<8>(s, 8, ud, p, sd, uv, gv);
-    else
-      weighted_sums<0>(s, s.n, ud, p, sd, uv, gv);
+    with_node_count(s.n, [&]<int N>() { weighted_sums<N>(s, s.n, ud, p, sd, uv, gv); });
     u[d] = uv;
     grad_p[d] = gv / g.h[d];
   }

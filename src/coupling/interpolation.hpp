@@ -39,6 +39,18 @@ Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool
 /// (cells 1..n; along d for faces: 1..n, face 0 being the copy of face n). Other q unchanged.
 long periodic_image(const gas::GasGrid& g, const std::array<bool, 3>& periodic, int d, long q);
 
+/// Calls f.template operator()<N>() with N = n for the common stencil sizes 4 and 8 (loops over
+/// the nodes then have a compile-time trip count), N = 0 for any other n.
+template <class F>
+void with_node_count(int n, F&& f) {
+  if (n == 4)
+    f.template operator()<4>();
+  else if (n == 8)
+    f.template operator()<8>();
+  else
+    f.template operator()<0>();
+}
+
 inline double interpolate(const Stencil& s, const std::vector<double>& a) {
   double v = 0.0;
   for (int m = 0; m < s.n; ++m)
