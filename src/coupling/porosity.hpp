@@ -49,9 +49,6 @@ inline constexpr double min_porosity = 1e-6;
 /// [Hoomans96 eq. 49]: 3-D porosity from the 2-D (area) porosity of a disc layer.
 double porosity_2d_to_3d(double eps_2d);
 
-/// Work space of solid_fraction / compute_porosity, kept between calls by the caller so that
-/// a flow step does not allocate (the per-particle parts of the cell method, the solid field,
-/// the porous cube's weights).
 /// The cells a sphere covers, c0..c1 per axis (1..1 across y in 2-D); along periodic axes on
 /// the unwrapped index range (folded onto their images when the parts are stored).
 struct CellRange {
@@ -61,6 +58,9 @@ struct CellRange {
   }
 };
 
+/// Work space of solid_fraction / compute_porosity, kept between calls by the caller so that
+/// a flow step does not allocate (the per-particle parts of the cell method, the solid field,
+/// the porous cube's weights).
 struct PorosityScratch {
   std::vector<long> offset;     ///< cell method: first entry of particle i (size n + 1)
   std::vector<CellRange> range; ///< cell method: the cells of particle i
