@@ -257,12 +257,6 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     std::fill_n(hist, hw, 0.0);
   };
   const std::size_t n = p.size();
-  auto track_overlap = [&](ContactStats& acc, double ratio, std::size_t i) {
-    if (ratio > acc.max_overlap_ratio) {
-      acc.max_overlap_ratio = ratio;
-      acc.max_overlap_particle = p.id[i];
-    }
-  };
   // Particle-particle pairs (half list: each pair once, forces applied to both). The rows of a
   // slab write only to particles of that slab and the next, so all even slabs run in parallel,
   // then all odd slabs; each slab runs its rows in a fixed order and keeps its own statistics,
@@ -313,8 +307,11 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       for (int m = 0; m < Batch::kHistory; ++m) b.hist[m][k] = hist[m];
     }
     evaluate_batch<Normal, Tangential, Rolling, wall>(b, wall ? wall_params : pair_params, dt);
-    // The sums in registers (the accumulator's stores could alias them), in the same order.
+    // The sums and the deepest overlap in registers (the accumulator's stores could alias
+    // them), in the same order.
     double elastic = acc.elastic_energy, spring_losses = acc.spring_losses;
+    double max_ratio = acc.max_overlap_ratio;
+    std::size_t deepest = n; // the particle of the deepest overlap, when this batch has it
     for (int k = 0; k < b.n; ++k) {
       const std::uint32_t i = b.i[k];
       const double ri = b.ri[k];
@@ -342,7 +339,10 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       elastic += b.elastic[k];
       spring_losses += b.spring_loss[k];
       const double dmin = wall ? 2.0 * ri : 2.0 * std::min(ri, b.rj[k]);
-      if (b.overlap[k] > acc.max_overlap_ratio * dmin) track_overlap(acc, b.overlap[k] / dmin, i);
+      if (b.overlap[k] > max_ratio * dmin) [[unlikely]] {
+        const double ratio = b.overlap[k] / dmin;
+        if (ratio > max_ratio) max_ratio = ratio, deepest = i;
+      }
       if (buf) {
         const Vec3 nk = b.get(b.normal, k);
         const Vec3 xi{view[ContactScratch::kView * i], view[ContactScratch::kView * i + 1],
@@ -363,6 +363,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     acc.n_contacts += b.n;
     acc.elastic_energy = elastic;
     acc.spring_losses = spring_losses;
+    if (deepest < n) acc.max_overlap_ratio = max_ratio, acc.max_overlap_particle = p.id[deepest];
     b.n = 0;
   };
   // The end of pass 1 for an entry (pairs and walls alike). A contact that just ended: one
