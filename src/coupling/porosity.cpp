@@ -289,6 +289,45 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
       }
     }
   }
+  if (two_d) {
+    // The same for a disc in the x-z plane: the disc minus its circular segments beyond the
+    // cell's faces, a segment of height h being R^2 theta - (R - h) s with s = sqrt(h (2R - h)),
+    // theta = atan2(s, R - h) (half the angle it subtends); no segments overlap when the faces
+    // of one axis at most cut the disc. (Hoomans' bubble bed, 10 x 20 mm cells and 4 mm discs: 92%
+    // of them, against four quadrant areas with two arcsines each per cell.)
+    // (h >= 2R: the disc lies wholly beyond the face, as when its centre is outside the grid.)
+    const auto minus_segments = [R](double a, double h_lo, double h_hi) {
+      for (double h : {h_lo, h_hi})
+        if (h > 0.0) {
+          h = std::min(h, 2.0 * R);
+          const double s = std::sqrt(h * (2.0 * R - h));
+          a -= R * R * std::atan2(s, R - h) - (R - h) * s;
+        }
+      return a;
+    };
+    const bool several_x = r.c1[0] > r.c0[0], several_z = r.c1[2] > r.c0[2];
+    if (!(several_x && several_z)) {
+      const int along = several_x ? 0 : 2, across = 2 - along;
+      const double h_lo = R + node(across, r.c0[across]);
+      const double h_hi = R - node(across, r.c0[across] + 1);
+      // A face of the range's own cell(s) can cut the disc where a domain wall clamps the range.
+      const bool cut_across = h_lo > 0.0 || h_hi > 0.0;
+      const bool cut_along = several_x || several_z || R + node(along, r.c0[along]) > 0.0 ||
+                             R - node(along, r.c1[along] + 1) > 0.0;
+      if (!(cut_across && cut_along)) {
+        double a = pi * R * R;
+        if (cut_across) a = minus_segments(a, h_lo, h_hi);
+        std::array<int, 3> c = r.c0;
+        for (long e = 0; c[along] <= r.c1[along]; ++c[along], ++e) {
+          const double w =
+              minus_segments(a, R + node(along, c[along]), R - node(along, c[along] + 1));
+          cell[e] = grid_index(c[0], c[1], c[2]);
+          part[e] = std::max(w, 0.0) / measure;
+        }
+        return;
+      }
+    }
+  }
   constexpr int max_nodes = 4; // per axis for the node table; larger ranges: corners directly
   std::array<int, 3> nn{};
   for (int d = 0; d < 3; ++d) nn[d] = r.c1[d] - r.c0[d] + 2;
