@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -33,14 +34,32 @@ std::optional<std::array<double, 2>> cpu_times() {
   for (const double v : t) total += v;
   return std::array<double, 2>{t[3] + t[4], total};
 }
+/// CPU time of this process (user + system, all its threads), in the jiffies of /proc/stat
+/// (fields 14 and 15 of /proc/self/stat, after the command name in parentheses), or 0.
+double own_cpu_time() {
+  std::ifstream f("/proc/self/stat");
+  std::string line;
+  if (!std::getline(f, line)) return 0.0;
+  const auto close = line.rfind(')');
+  if (close == std::string::npos) return 0.0;
+  std::istringstream rest(line.substr(close + 1));
+  std::string field;
+  double utime = 0.0, stime = 0.0;
+  for (int k = 3; k <= 13; ++k) rest >> field; // state .. cmajflt
+  if (!(rest >> utime >> stime)) return 0.0;
+  return utime + stime;
+}
 } // namespace
 
 std::optional<double> busy_cores(int window_ms) {
   const auto a = cpu_times();
+  const double own_a = own_cpu_time();
   std::this_thread::sleep_for(std::chrono::milliseconds(window_ms));
   const auto b = cpu_times();
+  const double own_b = own_cpu_time();
   if (!a || !b || !((*b)[1] > (*a)[1])) return std::nullopt;
-  const double busy_fraction = 1.0 - ((*b)[0] - (*a)[0]) / ((*b)[1] - (*a)[1]);
+  const double total = (*b)[1] - (*a)[1];
+  const double busy_fraction = (total - ((*b)[0] - (*a)[0]) - (own_b - own_a)) / total;
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   return std::clamp(busy_fraction, 0.0, 1.0) * cores;
 }

@@ -16,8 +16,10 @@ namespace fluidem {
 std::optional<std::string> busy_machine_warning(double busy, int cores, int threads);
 
 /// Cores kept busy by other processes, measured from /proc/stat over `window` milliseconds
-/// while this process sleeps (a load average would count the last minute, including this run's
-/// own set-up or the run before it in a script); nothing where there is no /proc/stat.
+/// while this thread sleeps, minus this process's own CPU time in the window (/proc/self/stat:
+/// its idle OpenMP threads may still spin after the set-up's parallel loops, and spin throughout
+/// under OMP_WAIT_POLICY=active). A load average would count the last minute, including this
+/// run's own set-up or the run before it in a script. Nothing where there is no /proc/stat.
 std::optional<double> busy_cores(int window_ms);
 
 } // namespace fluidem
