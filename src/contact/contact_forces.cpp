@@ -462,8 +462,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     // particles (the particles are sorted by slab): the same particles as in the integrator's
     // and the packing's static loops, so their view and accumulator lines stay in the one
     // core's cache from step to step instead of moving between the cores (with the slabs
-    // handed out dynamically, a third of the time with two threads went to those transfers and
-    // to waiting). Both phases in one parallel region, a barrier between them.
+    // handed out dynamically, the packing's share of the time tripled with two threads and the
+    // spin-wait took 7-17%). Both phases in one parallel region, a barrier between them.
 #pragma omp parallel if (threaded)
     {
       const int nt = omp_get_num_threads(), t = omp_get_thread_num();

@@ -295,7 +295,8 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
     // theta = atan2(s, R - h) (half the angle it subtends); no segments overlap when the faces
     // of one axis at most cut the disc. (Hoomans' bubble bed, 10 x 20 mm cells and 4 mm discs: 92%
     // of them, against four quadrant areas with two arcsines each per cell.)
-    // (h >= 2R: the disc lies wholly beyond the face, as when its centre is outside the grid.)
+    // h is at most 2R (the whole disc beyond the face); round-off makes it slightly larger for a
+    // disc touching a face, and the root would be NaN.
     const auto minus_segments = [R](double a, double h_lo, double h_hi) {
       for (double h : {h_lo, h_hi})
         if (h > 0.0) {
