@@ -254,79 +254,54 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
   // holds the ball minus its caps beyond the cell's faces, which are disjoint,
   // V = 4/3 pi R^3 - sum pi h^2 (3R - h) / 3, h the cap height: the same volume as the octant
   // sums below in a few operations (the common case of the Tsuji beds, ~90% of the spheres).
-  const auto minus_caps = [R](double v, double h_lo, double h_hi) { // caps of height h > 0
-    for (const double h : {h_lo, h_hi})
-      if (h > 0.0) v -= pi * h * h * (3.0 * R - h) / 3.0;
-    return v;
-  };
-  if (!two_d) {
-    int along = -1, n_along = 0; // the axis along which the range has several cells
-    for (int d = 0; d < 3; ++d)
-      if (r.c1[d] > r.c0[d]) along = d, ++n_along;
-    if (n_along <= 1) {
-      int cut_axes = n_along;
-      double v = 4.0 / 3.0 * pi * R * R * R; // minus the caps across the other axes' faces
-      for (int d = 0; d < 3; ++d) {
-        if (d == along) continue;
-        const double h_lo = R + node(d, r.c0[d]), h_hi = R - node(d, r.c0[d] + 1);
-        if (h_lo <= 0.0 && h_hi <= 0.0) continue;
-        ++cut_axes;
-        v = minus_caps(v, h_lo, h_hi);
-      }
-      if (cut_axes <= 1 && n_along == 0) {
-        cell[0] = grid_index(r.c0[0], r.c0[1], r.c0[2]);
-        part[0] = v / measure;
-        return;
-      }
-      if (cut_axes <= 1) {
-        std::array<int, 3> c = r.c0;
-        for (long e = 0; c[along] <= r.c1[along]; ++c[along], ++e) {
-          const double w = minus_caps(v, R + node(along, c[along]), R - node(along, c[along] + 1));
-          cell[e] = grid_index(c[0], c[1], c[2]);
-          part[e] = std::max(w, 0.0) / measure;
-        }
-        return;
+  // A disc in the x-z plane (2-D) likewise: the disc minus its circular segments, a segment of
+  // height h being R^2 theta - (R - h) s with s = sqrt(h (2R - h)), theta = atan2(s, R - h)
+  // (half the angle it subtends), against four quadrant areas with two arcsines each per cell
+  // (Hoomans' bubble bed, 10 x 20 mm cells and 4 mm discs: 92% of the discs). A segment's h is
+  // at most 2R (the whole disc beyond the face); round-off makes it slightly larger for a disc
+  // touching a face, and the root would be NaN.
+  const auto minus_caps = [R, two_d](double v, double h_lo, double h_hi) { // caps of height h > 0
+    for (double h : {h_lo, h_hi}) {
+      if (!(h > 0.0)) continue;
+      if (!two_d) {
+        v -= pi * h * h * (3.0 * R - h) / 3.0;
+      } else {
+        h = std::min(h, 2.0 * R);
+        const double s = std::sqrt(h * (2.0 * R - h));
+        v -= R * R * std::atan2(s, R - h) - (R - h) * s;
       }
     }
-  }
-  if (two_d) {
-    // The same for a disc in the x-z plane: the disc minus its circular segments beyond the
-    // cell's faces, a segment of height h being R^2 theta - (R - h) s with s = sqrt(h (2R - h)),
-    // theta = atan2(s, R - h) (half the angle it subtends); no segments overlap when the faces
-    // of one axis at most cut the disc. (Hoomans' bubble bed, 10 x 20 mm cells and 4 mm discs: 92%
-    // of them, against four quadrant areas with two arcsines each per cell.)
-    // h is at most 2R (the whole disc beyond the face); round-off makes it slightly larger for a
-    // disc touching a face, and the root would be NaN.
-    const auto minus_segments = [R](double a, double h_lo, double h_hi) {
-      for (double h : {h_lo, h_hi})
-        if (h > 0.0) {
-          h = std::min(h, 2.0 * R);
-          const double s = std::sqrt(h * (2.0 * R - h));
-          a -= R * R * std::atan2(s, R - h) - (R - h) * s;
-        }
-      return a;
-    };
-    const bool several_x = r.c1[0] > r.c0[0], several_z = r.c1[2] > r.c0[2];
-    if (!(several_x && several_z)) {
-      const int along = several_x ? 0 : 2, across = 2 - along;
-      const double h_lo = R + node(across, r.c0[across]);
-      const double h_hi = R - node(across, r.c0[across] + 1);
-      // A face of the range's own cell(s) can cut the disc where a domain wall clamps the range.
-      const bool cut_across = h_lo > 0.0 || h_hi > 0.0;
-      const bool cut_along = several_x || several_z || R + node(along, r.c0[along]) > 0.0 ||
-                             R - node(along, r.c1[along] + 1) > 0.0;
-      if (!(cut_across && cut_along)) {
-        double a = pi * R * R;
-        if (cut_across) a = minus_segments(a, h_lo, h_hi);
-        std::array<int, 3> c = r.c0;
-        for (long e = 0; c[along] <= r.c1[along]; ++c[along], ++e) {
-          const double w =
-              minus_segments(a, R + node(along, c[along]), R - node(along, c[along] + 1));
-          cell[e] = grid_index(c[0], c[1], c[2]);
-          part[e] = std::max(w, 0.0) / measure;
-        }
-        return;
+    return v;
+  };
+  const auto is_axis = [two_d](int d) { return !(two_d && d == 1); }; // 2-D: x and z
+  int along = -1, n_along = 0; // the axis along which the range has several cells
+  for (int d = 0; d < 3; ++d)
+    if (is_axis(d) && r.c1[d] > r.c0[d]) along = d, ++n_along;
+  if (n_along <= 1) {
+    // The whole ball (disc) minus the caps across the other axes' faces (a face of the range's
+    // own cell cuts it where a domain wall clamps the range).
+    int cut_axes = n_along;
+    double v = two_d ? pi * R * R : 4.0 / 3.0 * pi * R * R * R;
+    for (int d = 0; d < 3; ++d) {
+      if (d == along || !is_axis(d)) continue;
+      const double h_lo = R + node(d, r.c0[d]), h_hi = R - node(d, r.c0[d] + 1);
+      if (h_lo <= 0.0 && h_hi <= 0.0) continue;
+      ++cut_axes;
+      v = minus_caps(v, h_lo, h_hi);
+    }
+    if (cut_axes <= 1 && n_along == 0) {
+      cell[0] = grid_index(r.c0[0], r.c0[1], r.c0[2]);
+      part[0] = v / measure;
+      return;
+    }
+    if (cut_axes <= 1) {
+      std::array<int, 3> c = r.c0;
+      for (long e = 0; c[along] <= r.c1[along]; ++c[along], ++e) {
+        const double w = minus_caps(v, R + node(along, c[along]), R - node(along, c[along] + 1));
+        cell[e] = grid_index(c[0], c[1], c[2]);
+        part[e] = std::max(w, 0.0) / measure;
       }
+      return;
     }
   }
   constexpr int max_nodes = 4; // per axis for the node table; larger ranges: corners directly
