@@ -1,7 +1,7 @@
 // Results must not depend on the number of threads (fluidem's standard): the slab-ordered
-// contact loop (neighbour/neighbour_list.hpp) gives bitwise identical particle arrays with one
-// and two OpenMP threads. The case has > 4096 particles (the parallel threshold), periodic x and
-// y axes (pairs across the periodic slab boundary), a floor, gravity and random velocities, so
+// contact loop (neighbour/neighbour_list.hpp) gives bitwise identical particle arrays with one,
+// two and three OpenMP threads. The case has > 4096 particles (the parallel threshold), periodic x
+// and y axes (pairs across the periodic slab boundary), a floor, gravity and random velocities, so
 // contacts form, slide and end and the neighbour list is rebuilt with history carried over.
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -69,11 +69,17 @@ State run_with_threads(int threads) {
 TEST(ThreadIndependence, OneAndTwoThreadsGiveBitwiseIdenticalParticles) {
   const State one = run_with_threads(1);
   const State two = run_with_threads(2);
+  // Three threads: the slabs are shared out in contiguous runs by particle count, which two
+  // threads split in halves; three split them unevenly (and share two cores here).
+  const State three = run_with_threads(3);
   ASSERT_EQ(one.x.size(), 18000u);
   // Bitwise: operator== on doubles, no tolerance.
   EXPECT_TRUE(one.x == two.x);
   EXPECT_TRUE(one.v == two.v);
   EXPECT_TRUE(one.w == two.w);
+  EXPECT_TRUE(one.x == three.x);
+  EXPECT_TRUE(one.v == three.v);
+  EXPECT_TRUE(one.w == three.w);
   // The run did something: contacts exist, particles rotate.
   EXPECT_GT(one.contacts, 100);
   double wmax = 0.0;
