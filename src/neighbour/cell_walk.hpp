@@ -3,7 +3,6 @@
 // periodic axis of fewer than 3 cells would otherwise visit a cell twice). Shared by the soft-
 // sphere neighbour list and the hard-sphere engine's list.
 #pragma once
-#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -11,34 +10,38 @@ namespace fluidem {
 
 /// Calls visit(cell) for each distinct cell of the block around `cell` (flat index, x fastest:
 /// (cz * ny + cy) * nx + cx), in the order dz, dy, dx = -1 .. 1 (dx fastest).
+///
+/// The block is the product of three per-axis index lists (the offsets -1, 0, 1 of each axis,
+/// wrapped or cut, each index at its first occurrence), so two cells of it are the same only if
+/// all three indices are: deduplicating per axis visits each cell once, in the order of the
+/// first offsets (dz, dy, dx) that reach it — the order of a walk over all 27 offsets that skips
+/// the cells it has seen.
 template <class Visit>
 void for_each_cell_around(std::uint32_t cell, const std::array<int, 3>& ncell,
                           const std::array<bool, 3>& periodic, Visit&& visit) {
   const auto nx = static_cast<std::uint32_t>(ncell[0]), ny = static_cast<std::uint32_t>(ncell[1]);
-  const int cx = static_cast<int>(cell % nx);
-  const int cy = static_cast<int>((cell / nx) % ny);
-  const int cz = static_cast<int>(cell / (nx * ny));
-  std::uint32_t seen[27];
-  int nseen = 0;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        int q[3] = {cx + dx, cy + dy, cz + dz};
-        bool ok = true;
-        for (int a = 0; a < 3 && ok; ++a) {
-          if (q[a] < 0 || q[a] >= ncell[a]) {
-            if (periodic[a])
-              q[a] = (q[a] + ncell[a]) % ncell[a];
-            else
-              ok = false;
-          }
-        }
-        if (!ok) continue;
-        const auto c = static_cast<std::uint32_t>((q[2] * ncell[1] + q[1]) * ncell[0] + q[0]);
-        if (std::find(seen, seen + nseen, c) != seen + nseen) continue;
-        seen[nseen++] = c;
-        visit(c);
+  const int c[3] = {static_cast<int>(cell % nx), static_cast<int>((cell / nx) % ny),
+                    static_cast<int>(cell / (nx * ny))};
+  int idx[3][3];
+  int count[3];
+  for (int a = 0; a < 3; ++a) {
+    count[a] = 0;
+    for (int d = -1; d <= 1; ++d) {
+      int q = c[a] + d;
+      if (q < 0 || q >= ncell[a]) {
+        if (!periodic[a]) continue;
+        q = (q + ncell[a]) % ncell[a];
       }
+      bool seen = false;
+      for (int m = 0; m < count[a]; ++m) seen = seen || idx[a][m] == q;
+      if (!seen) idx[a][count[a]++] = q;
+    }
+  }
+  for (int kz = 0; kz < count[2]; ++kz)
+    for (int ky = 0; ky < count[1]; ++ky) {
+      const auto row = static_cast<std::uint32_t>((idx[2][kz] * ncell[1] + idx[1][ky]) * ncell[0]);
+      for (int kx = 0; kx < count[0]; ++kx) visit(row + static_cast<std::uint32_t>(idx[0][kx]));
+    }
 }
 
 } // namespace fluidem
