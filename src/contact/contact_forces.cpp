@@ -11,6 +11,7 @@
 #include "contact/kernels/normal_force.hpp"
 #include "contact/kernels/rolling_torque.hpp"
 #include "contact/kernels/tangential_force.hpp"
+#include "core/parallel.hpp"
 
 namespace fluidem {
 
@@ -464,9 +465,9 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     // core's cache from step to step instead of moving between the cores (with the slabs
     // handed out dynamically, the packing's share of the time tripled with two threads and the
     // spin-wait took 7-17%). Both phases in one parallel region, a barrier between them.
-#pragma omp parallel if (threaded)
-    {
-      const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+    // One thread (or a recording below the threshold): the same slabs in the same order,
+    // outside any OpenMP region (core/parallel.hpp).
+    auto run_slabs = [&](int nt, int t) {
       auto first_slab = [&](int thread) {
         const std::size_t share = n * static_cast<std::size_t>(thread) / nt;
         return static_cast<int>(
@@ -487,8 +488,16 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
           flush(batch, kPairs, local, buf);
           slab_stats[sl] = local;
         }
+        if (nt > 1) {
 #pragma omp barrier
+        }
       }
+    };
+    if (go_parallel(threaded)) {
+#pragma omp parallel
+      run_slabs(omp_get_num_threads(), omp_get_thread_num());
+    } else {
+      run_slabs(1, 0);
     }
   }
   if (recording) {
@@ -551,8 +560,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   auto& wall_stats = nc.wall_stats;
   wall_stats.assign(nchunk, ContactStats{});
   std::vector<std::vector<ContactSample>> chunk_samples(recording ? nchunk : 0);
-#pragma omp parallel for schedule(static) if (nwall > 4096)
-  for (std::size_t k = 0; k < nchunk; ++k) {
+  parallel_for(nchunk, go_parallel(nwall > 4096), [&](std::size_t k) {
     std::vector<ContactSample>* buf = recording ? &chunk_samples[k] : nullptr;
     const std::size_t end = chunk_start(k + 1);
     ContactStats local; // on the stack, as the slabs' (no false sharing)
@@ -560,7 +568,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     gather_walls(chunk_start(k), end, batch, local, buf);
     flush(batch, kWalls, local, buf);
     wall_stats[k] = local;
-  }
+  });
   for (std::size_t k = 0; k < nchunk; ++k) {
     add_stats(st, wall_stats[k]);
     if (recording)
@@ -600,14 +608,13 @@ void ContactScratch::reset(const ParticleStore& p) {
   resize(n);
   double* v = view.data();
   double* a = acc.data();
-#pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) {
+  parallel_for(n, go_parallel(n > 4096), [&](std::size_t i) {
     double* vi = v + kView * i;
     vi[0] = p.x[i], vi[1] = p.y[i], vi[2] = p.z[i], vi[3] = p.radius[i];
     vi[4] = p.vx[i], vi[5] = p.vy[i], vi[6] = p.vz[i], vi[7] = p.mass[i];
     vi[8] = p.wx[i], vi[9] = p.wy[i], vi[10] = p.wz[i], vi[11] = p.inv_inertia[i];
     std::fill_n(a + kAcc * i, kAcc, 0.0);
-  }
+  });
 }
 
 double ContactScratch::dissipated(const ParticleStore& p, double dt) {
@@ -617,8 +624,7 @@ double ContactScratch::dissipated(const ParticleStore& p, double dt) {
   const std::size_t n = p.size();
   const std::size_t nchunk = (n + kChunk - 1) / kChunk;
   chunk_sums.resize(nchunk); // kept between steps
-#pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::size_t c = 0; c < nchunk; ++c) {
+  parallel_for(nchunk, go_parallel(n > 4096), [&](std::size_t c) {
     double w = 0.0;
     for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
       const double* nci = acc.data() + kAcc * i + 6;
@@ -626,7 +632,7 @@ double ContactScratch::dissipated(const ParticleStore& p, double dt) {
       w += nci[3] * p.wx[i] + nci[4] * p.wy[i] + nci[5] * p.wz[i];
     }
     chunk_sums[c] = w;
-  }
+  });
   double w = 0.0;
   for (const double c : chunk_sums) w += c;
   return -w * dt;

@@ -1,5 +1,6 @@
 #include "coupling/exchange.hpp"
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "coupling/interpolation.hpp"
 #include "coupling/particle_mapping.hpp"
 #include <cmath>
@@ -142,50 +143,48 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   drag::with_drag_closure(c.drag, [&](auto closure) {
     using C = decltype(closure);
     // Independent per particle: parallel, and the same result for any thread count.
-#pragma omp parallel if (n >= parallel_particles)
-    {
-      ParticleMapping map(gs, c.porosity); // per thread: scratch space
-#pragma omp for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) {
-        const Vec3 x = p.position(i);
-        drag::DragInput in;
-        in.d = 2.0 * p.radius[i];
-        Vec3 u, gp;
-        if (stencils) { // [Hoomans96 eq. 40-41], the stencils kept for the rest of the step
-          Stencil* st = &out.face_stencils[3 * i];
-          face_stencils(gs.grid(), x, st);
-          velocity_and_pressure_gradient_on(gs, st, u, gp);
-        } else {
-          map.velocity_and_pressure_gradient(x, in.d, u, gp);
-        }
-        map.porosity_and_density(x, in.d, in.eps, in.rho);
-        in.mu = mu;
-        in.d_mean = c.d_mean;
-        const Vec3 v = p.velocity(i);
-        const Vec3 slip{u[0] - v[0], u[1] - v[1], u[2] - v[2]};
-        in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
-        const double vol = pi * in.d * in.d * in.d / 6.0;
-        double ci = vol * C::k(in); // [Deen07 eq. 1]: F = V K (u - v)
-        if (!model_a) ci /= in.eps; // Model B: f_d / eps (exchange.hpp)
-        out.coeff[i] = ci;
-        out.eps[i] = in.eps;
-        out.ux[i] = u[0];
-        out.uy[i] = u[1];
-        out.uz[i] = u[2];
-        out.drag_x[i] = ci * slip[0];
-        out.drag_y[i] = ci * slip[1];
-        out.drag_z[i] = ci * slip[2];
-        if (model_a) { // [Zhu07 eq. 5]: -V grad p on the particle
-          out.pres_x[i] = -vol * gp[0];
-          out.pres_y[i] = -vol * gp[1];
-          out.pres_z[i] = -vol * gp[2];
-        } else { // Model B: the buoyancy term -V rho g of f_pf (exchange.hpp)
-          out.pres_x[i] = -vol * in.rho * grav[0];
-          out.pres_y[i] = -vol * in.rho * grav[1];
-          out.pres_z[i] = -vol * in.rho * grav[2];
-        }
-      }
-    }
+    parallel_for_with(
+        n, go_parallel(n >= parallel_particles),
+        [&] { return ParticleMapping(gs, c.porosity); }, // per thread: scratch space
+        [&](ParticleMapping& map, std::size_t i) {
+          const Vec3 x = p.position(i);
+          drag::DragInput in;
+          in.d = 2.0 * p.radius[i];
+          Vec3 u, gp;
+          if (stencils) { // [Hoomans96 eq. 40-41], the stencils kept for the rest of the step
+            Stencil* st = &out.face_stencils[3 * i];
+            face_stencils(gs.grid(), x, st);
+            velocity_and_pressure_gradient_on(gs, st, u, gp);
+          } else {
+            map.velocity_and_pressure_gradient(x, in.d, u, gp);
+          }
+          map.porosity_and_density(x, in.d, in.eps, in.rho);
+          in.mu = mu;
+          in.d_mean = c.d_mean;
+          const Vec3 v = p.velocity(i);
+          const Vec3 slip{u[0] - v[0], u[1] - v[1], u[2] - v[2]};
+          in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
+          const double vol = pi * in.d * in.d * in.d / 6.0;
+          double ci = vol * C::k(in); // [Deen07 eq. 1]: F = V K (u - v)
+          if (!model_a) ci /= in.eps; // Model B: f_d / eps (exchange.hpp)
+          out.coeff[i] = ci;
+          out.eps[i] = in.eps;
+          out.ux[i] = u[0];
+          out.uy[i] = u[1];
+          out.uz[i] = u[2];
+          out.drag_x[i] = ci * slip[0];
+          out.drag_y[i] = ci * slip[1];
+          out.drag_z[i] = ci * slip[2];
+          if (model_a) { // [Zhu07 eq. 5]: -V grad p on the particle
+            out.pres_x[i] = -vol * gp[0];
+            out.pres_y[i] = -vol * gp[1];
+            out.pres_z[i] = -vol * gp[2];
+          } else { // Model B: the buoyancy term -V rho g of f_pf (exchange.hpp)
+            out.pres_x[i] = -vol * in.rho * grav[0];
+            out.pres_y[i] = -vol * in.rho * grav[1];
+            out.pres_z[i] = -vol * in.rho * grav[2];
+          }
+        });
     // Schemes 1, 2: the cell averages (scheme 2 replaces the per-particle drag above).
     if (c.scheme != ExchangeScheme::scheme3) compute_cell_forces<C>(gs, p, c, out);
   });
@@ -297,38 +296,36 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const bool model_a = gs.settings().model == gas::PressureModel::A;
   const bool scheme2 = f.scheme == ExchangeScheme::scheme2;
   const bool cached = f.face_stencils.size() == 3 * n;
-#pragma omp parallel if (n >= parallel_particles)
-  {
-    ParticleMapping map(gs, f.porosity); // per thread: scratch space
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      Vec3 u, gp;
-      if (cached)
-        velocity_and_pressure_gradient_on(gs, &f.face_stencils[3 * i], u, gp);
-      else
-        map.velocity_and_pressure_gradient(p.position(i), 2.0 * p.radius[i], u, gp);
-      Vec3 v = p.velocity(i);
-      if (scheme2) { // s_i C_c (u_c,new - v_c): minus what the gas received [Chang08 eq. 2.11]
-        const long q = f.cell[i];
-        const auto uq = static_cast<std::size_t>(q);
-        for (int d = 0; d < 3; ++d) u[d] = cell_gas_velocity(gs, q, d);
-        v = {f.cell_vx[uq], f.cell_vy[uq], f.cell_vz[uq]};
-      }
-      f.ux[i] = u[0];
-      f.uy[i] = u[1];
-      f.uz[i] = u[2];
-      f.drag_x[i] = f.coeff[i] * (u[0] - v[0]);
-      f.drag_y[i] = f.coeff[i] * (u[1] - v[1]);
-      f.drag_z[i] = f.coeff[i] * (u[2] - v[2]);
-      if (model_a) {
-        const double d = 2.0 * p.radius[i];
-        const double vol = pi * d * d * d / 6.0;
-        f.pres_x[i] = -vol * gp[0];
-        f.pres_y[i] = -vol * gp[1];
-        f.pres_z[i] = -vol * gp[2];
-      }
-    }
-  }
+  parallel_for_with(
+      n, go_parallel(n >= parallel_particles),
+      [&] { return ParticleMapping(gs, f.porosity); }, // per thread: scratch space
+      [&](ParticleMapping& map, std::size_t i) {
+        Vec3 u, gp;
+        if (cached)
+          velocity_and_pressure_gradient_on(gs, &f.face_stencils[3 * i], u, gp);
+        else
+          map.velocity_and_pressure_gradient(p.position(i), 2.0 * p.radius[i], u, gp);
+        Vec3 v = p.velocity(i);
+        if (scheme2) { // s_i C_c (u_c,new - v_c): minus what the gas received [Chang08 eq. 2.11]
+          const long q = f.cell[i];
+          const auto uq = static_cast<std::size_t>(q);
+          for (int d = 0; d < 3; ++d) u[d] = cell_gas_velocity(gs, q, d);
+          v = {f.cell_vx[uq], f.cell_vy[uq], f.cell_vz[uq]};
+        }
+        f.ux[i] = u[0];
+        f.uy[i] = u[1];
+        f.uz[i] = u[2];
+        f.drag_x[i] = f.coeff[i] * (u[0] - v[0]);
+        f.drag_y[i] = f.coeff[i] * (u[1] - v[1]);
+        f.drag_z[i] = f.coeff[i] * (u[2] - v[2]);
+        if (model_a) {
+          const double d = 2.0 * p.radius[i];
+          const double vol = pi * d * d * d / 6.0;
+          f.pres_x[i] = -vol * gp[0];
+          f.pres_y[i] = -vol * gp[1];
+          f.pres_z[i] = -vol * gp[2];
+        }
+      });
 }
 
 } // namespace fluidem::coupling

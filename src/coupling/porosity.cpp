@@ -1,5 +1,6 @@
 #include "coupling/porosity.hpp"
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "coupling/cube_mapping.hpp"
 #include <algorithm>
 #include <cmath>
@@ -397,11 +398,11 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
   offset.resize(n + 1);
   range.resize(n);
   offset[0] = 0;
-#pragma omp parallel for schedule(static) if (n >= parallel_particles)
-  for (std::size_t i = 0; i < n; ++i) {
+  const bool threaded = go_parallel(n >= parallel_particles);
+  parallel_for(n, threaded, [&](std::size_t i) {
     range[i] = covered_cells(g, p.position(i), p.radius[i], na, axes, wrap);
     offset[i + 1] = range[i].count();
-  }
+  });
   for (std::size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
   const auto total = static_cast<std::size_t>(offset[n]);
   if (scratch.cell.size() < total) { // with slack: the count changes a little from step to step
@@ -410,13 +411,12 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
   }
   long* cell = scratch.cell.data();
   double* part = scratch.part.data();
-#pragma omp parallel for schedule(static) if (n >= parallel_particles)
-  for (std::size_t i = 0; i < n; ++i) {
+  parallel_for(n, threaded, [&](std::size_t i) {
     const Vec3 x = p.position(i);
     const double R = p.radius[i];
     sphere_cell_parts(g, x, R, range[i], two_d, wrap, cell_measure, cell + offset[i],
                       part + offset[i]);
-  }
+  });
   for (std::size_t e = 0; e < total; ++e) out[static_cast<std::size_t>(cell[e])] += part[e];
 }
 

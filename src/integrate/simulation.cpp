@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "analysis/bed_height.hpp"
+#include "core/parallel.hpp"
 #include "fluidem_version.hpp"
 #include "io/case_writer.hpp"
 #include "neighbour/spatial_order.hpp"
@@ -309,7 +310,7 @@ void Simulation::step() {
   const double *const inv_m = p_.inv_mass.data(), *const inv_i = p_.inv_inertia.data();
   const double dt = dt_;
   // Gas: with gas forces; Field: a body force field may be there (tested per particle).
-  const auto kick = [&]<bool Gas, bool Field>(std::size_t i) {
+  const auto kick = [&]<bool Gas, bool Field>(std::size_t i) __attribute__((always_inline)) {
     const double im = inv_m[i], ii = inv_i[i];
     const double* fc = contact + ContactScratch::kAcc * i; // force | torque | ...
     double fx = fc[0], fy = fc[1], fz = fc[2];
@@ -330,9 +331,9 @@ void Simulation::step() {
   };
   const bool any_periodic = box.periodic[0] || box.periodic[1] || box.periodic[2];
   // First half kick and drift; Wrap: periodic axes (centres kept inside [lo, hi)).
+  const bool threaded = go_parallel(n > 4096);
   const auto kick_drift = [&]<bool Gas, bool Field, bool Wrap>() {
-#pragma omp parallel for schedule(static) if (n > 4096)
-    for (std::size_t i = 0; i < n; ++i) {
+    parallel_for(n, threaded, [&](std::size_t i) {
       kick.template operator()<Gas, Field>(i);
       x[i] += dt * vx[i];
       y[i] += dt * vy[i];
@@ -342,12 +343,11 @@ void Simulation::step() {
         if (box.periodic[1]) y[i] -= box.length(1) * std::floor((y[i] - box.lo[1]) / box.length(1));
         if (box.periodic[2]) z[i] -= box.length(2) * std::floor((z[i] - box.lo[2]) / box.length(2));
       }
-    }
+    });
   };
   // The second half kick, after the forces.
   const auto second_kick = [&]<bool Gas, bool Field>() {
-#pragma omp parallel for schedule(static) if (n > 4096)
-    for (std::size_t i = 0; i < n; ++i) kick.template operator()<Gas, Field>(i);
+    parallel_for(n, threaded, [&](std::size_t i) { kick.template operator()<Gas, Field>(i); });
   };
   const bool with_gas = gfx != nullptr, with_field = body != nullptr;
   auto t0 = Clock::now();

@@ -17,8 +17,9 @@ namespace fluidem {
 /// first offsets (dz, dy, dx) that reach it — the order of a walk over all 27 offsets that skips
 /// the cells it has seen.
 template <class Visit>
-void for_each_cell_around(std::uint32_t cell, const std::array<int, 3>& ncell,
-                          const std::array<bool, 3>& periodic, Visit&& visit) {
+[[gnu::always_inline]] inline void
+for_each_cell_around(std::uint32_t cell, const std::array<int, 3>& ncell,
+                     const std::array<bool, 3>& periodic, Visit&& visit) {
   const auto nx = static_cast<std::uint32_t>(ncell[0]), ny = static_cast<std::uint32_t>(ncell[1]);
   const int c[3] = {static_cast<int>(cell % nx), static_cast<int>((cell / nx) % ny),
                     static_cast<int>(cell / (nx * ny))};

@@ -1,4 +1,5 @@
 #include "neighbour/neighbour_list.hpp"
+#include "core/parallel.hpp"
 #include "neighbour/cell_walk.hpp"
 #include "neighbour/spatial_order.hpp"
 
@@ -25,12 +26,19 @@ bool NeighbourList::needs_rebuild(const ParticleStore& p) const {
   if (builds_ == 0 || x0_.size() != n) return true;
   const double limit2 = 0.25 * skin_ * skin_;
   int moved = 0;
-#pragma omp parallel for schedule(static) reduction(max : moved) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) {
+  const auto far = [&](std::size_t i) {
     const double dx = min_image(p.x[i] - x0_[i], 0);
     const double dy = min_image(p.y[i] - y0_[i], 1);
     const double dz = min_image(p.z[i] - z0_[i], 2);
-    if (dx * dx + dy * dy + dz * dz > limit2) moved = 1;
+    return dx * dx + dy * dy + dz * dz > limit2;
+  };
+  if (go_parallel(n > 4096)) {
+#pragma omp parallel for schedule(static) reduction(max : moved)
+    for (std::size_t i = 0; i < n; ++i)
+      if (far(i)) moved = 1;
+  } else {
+    for (std::size_t i = 0; i < n; ++i)
+      if (far(i)) moved = 1;
   }
   return moved != 0;
 }
@@ -47,8 +55,7 @@ void NeighbourList::build_cells(const ParticleStore& p, double cell_size) {
   const std::size_t ncells = static_cast<std::size_t>(ncell_[0]) * ncell_[1] * ncell_[2];
   particle_cell_.resize(n);
   const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
-#pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) {
+  parallel_for(n, go_parallel(n > 4096), [&](std::size_t i) {
     std::array<int, 3> c{};
     for (int a = 0; a < 3; ++a) {
       double rel = (*pos[a])[i] - box_.lo[a];
@@ -56,7 +63,7 @@ void NeighbourList::build_cells(const ParticleStore& p, double cell_size) {
       c[a] = std::clamp(static_cast<int>(rel * inv_cell_[a]), 0, ncell_[a] - 1);
     }
     particle_cell_[i] = static_cast<std::uint32_t>((c[2] * ncell_[1] + c[1]) * ncell_[0] + c[0]);
-  }
+  });
   // Counting sort, stable: particles of a cell in ascending index order.
   cell_start_.assign(ncells + 1, 0);
   for (std::size_t i = 0; i < n; ++i) ++cell_start_[particle_cell_[i] + 1];
@@ -200,17 +207,22 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
   };
 
   offset.assign(n + 1, 0);
-#pragma omp parallel for schedule(dynamic, 256) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) {
+  const bool threaded = go_parallel(n > 4096);
+  const auto count_row = [&](std::size_t i) {
     std::uint32_t count = 0;
     for_each_partner(i, [&](std::uint32_t) { ++count; });
     offset[i + 1] = count;
+  };
+  if (threaded) {
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) count_row(i);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) count_row(i);
   }
   for (std::size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
   partner.resize(offset[n]);
   history.assign(static_cast<std::size_t>(offset[n]) * hw_, 0.0);
-#pragma omp parallel for schedule(dynamic, 256) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) {
+  const auto fill_row = [&](std::size_t i) {
     std::uint32_t k = offset[i];
     for_each_partner(i, [&](std::uint32_t j) { partner[k++] = j; });
     // Deterministic order within a row: ascending partner index.
@@ -235,6 +247,12 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
         }
       }
     }
+  };
+  if (threaded) {
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) fill_row(i);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) fill_row(i);
   }
 
   // Wall entries: counted, then filled (the arrays get their exact size).

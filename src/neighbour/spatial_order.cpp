@@ -1,4 +1,5 @@
 #include "neighbour/spatial_order.hpp"
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <array>
@@ -44,15 +45,15 @@ std::vector<std::uint32_t> spatial_order(const ParticleStore& p, const BoxGeomet
   }
   std::vector<std::array<std::uint32_t, 3>> cell(n);
   const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
-#pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i) {
+  const bool threaded = go_parallel(n > 4096);
+  parallel_for(n, threaded, [&](std::size_t i) {
     for (int a = 0; a < 3; ++a) {
       double rel = (*pos[a])[i] - box.lo[a];
       if (box.periodic[a]) rel -= box.length(a) * std::floor(rel / box.length(a));
       cell[i][a] =
           static_cast<std::uint32_t>(std::clamp(static_cast<int>(rel * inv[a]), 0, ncell[a] - 1));
     }
-  }
+  });
   std::array<std::uint32_t, 3> cmin{~0u, ~0u, ~0u}, cmax{0, 0, 0};
   for (const auto& c : cell)
     for (int a = 0; a < 3; ++a)
@@ -61,9 +62,9 @@ std::vector<std::uint32_t> spatial_order(const ParticleStore& p, const BoxGeomet
   const int u = s == 0 ? 1 : 0, v = s == 2 ? 1 : 2; // the other two axes, in order
   // (slab cell, Morton code across the slab, index): sorting orders by all three.
   std::vector<std::tuple<std::uint32_t, std::uint64_t, std::uint32_t>> key(n);
-#pragma omp parallel for schedule(static) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i)
+  parallel_for(n, threaded, [&](std::size_t i) {
     key[i] = {cell[i][s], morton_code(cell[i][u], cell[i][v], 0), static_cast<std::uint32_t>(i)};
+  });
   std::sort(key.begin(), key.end());
   std::vector<std::uint32_t> order(n);
   for (std::size_t k = 0; k < n; ++k) order[k] = std::get<2>(key[k]);

@@ -1,0 +1,49 @@
+// Loops over particles (or rows) that run on the OpenMP threads only when that pays, and enter
+// no OpenMP region at all otherwise. A `#pragma omp parallel ... if (false)` region still costs a
+// system call: libgomp ends every region, even one of a single thread, with a futex wake-up
+// (1.2 us measured in this VM, against 0.03 us for the loop it wrapped). With seven such regions
+// per DEM step, 0.1 s of the coupled Tsuji bed on one thread made 36 000 of them.
+#pragma once
+#include <cstddef>
+
+#include <omp.h>
+
+namespace fluidem {
+
+/// True if a loop that is `large_enough` to share out should go parallel: more than one
+/// OpenMP thread is available (the --threads setting, OMP_NUM_THREADS).
+inline bool go_parallel(bool large_enough) {
+  return large_enough && omp_get_max_threads() > 1;
+}
+
+/// body(i) for i = 0 .. n-1: statically scheduled over the threads if `parallel`, else a plain
+/// loop. The static schedule gives each thread a fixed contiguous range, the same from call to
+/// call (results must not depend on the thread count: the bodies write per-index data only).
+template <class Index, class Body>
+void parallel_for(Index n, bool parallel, Body&& body) {
+  if (parallel) {
+#pragma omp parallel for schedule(static)
+    for (Index i = 0; i < n; ++i) body(i);
+  } else {
+    for (Index i = 0; i < n; ++i) body(i);
+  }
+}
+
+/// As parallel_for with per-thread scratch: make() builds one per thread (one in all when the
+/// loop runs serially), body(scratch, i).
+template <class Index, class Make, class Body>
+void parallel_for_with(Index n, bool parallel, Make&& make, Body&& body) {
+  if (parallel) {
+#pragma omp parallel
+    {
+      auto scratch = make();
+#pragma omp for schedule(static)
+      for (Index i = 0; i < n; ++i) body(scratch, i);
+    }
+  } else {
+    auto scratch = make();
+    for (Index i = 0; i < n; ++i) body(scratch, i);
+  }
+}
+
+} // namespace fluidem
