@@ -20,7 +20,10 @@ BandCholesky::BandCholesky(std::array<int, 3> extent) {
 }
 
 void BandCholesky::clear() {
-  std::fill(a_.begin(), a_.end(), 0.0);
+  // The band part of each row only: the zeros that follow it are never written (factor()'s
+  // updates write columns k+i .. k+i+b of row k+i, its band part, and only read the zeros).
+  const std::size_t w = static_cast<std::size_t>(b_) + 1;
+  for (std::size_t r = 0; r <= n_; ++r) std::fill_n(&a_[r * stride_], w, 0.0);
 }
 
 namespace {

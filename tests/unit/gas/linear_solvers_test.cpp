@@ -166,6 +166,12 @@ TEST(StructLinearSolver, DirectSolveAgreesWithHypre) {
     EXPECT_EQ(hs.direct_solves(), 0);
     EXPECT_LE(relative_residual(b, s, xd), 1e-12);
     EXPECT_LT(max_rel_diff(b, xd, xh), 1e-9) << n[0] << "x" << n[1] << "x" << n[2];
+    // A second system through the same band: the first factor's fill-in must be cleared.
+    const StencilSystem s2 = symmetric_system(b, 17u + static_cast<unsigned>(n[2]), 3e-2);
+    std::vector<double> x2(b.size(), 0.0);
+    ASSERT_TRUE(ds.solve(s2, x2, 1e-12, 100).converged) << n[0] << "x" << n[1] << "x" << n[2];
+    EXPECT_LE(relative_residual(b, s2, x2), 1e-12);
+    EXPECT_EQ(ds.direct_solves(), 2); // solved directly, not by the iterative fallback
   }
   // Not positive definite (A -> -A): the factorisation refuses it.
   const Box b = make_box({6, 1, 7}, {false, false, false});
