@@ -140,6 +140,7 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const Vec3 grav = gs.settings().gravity;
   const bool stencils = c.porosity.method != PorosityMethod::porous_cube;
   out.face_stencils.resize(stencils ? 3 * n : 0);
+  if (stencils) face_pressure_differences(gs, out.face_dp);
   drag::with_drag_closure(c.drag, [&](auto closure) {
     using C = decltype(closure);
     // Independent per particle: parallel, and the same result for any thread count.
@@ -154,7 +155,7 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
           if (stencils) { // [Hoomans96 eq. 40-41], the stencils kept for the rest of the step
             Stencil* st = &out.face_stencils[3 * i];
             face_stencils(gs.grid(), x, st);
-            velocity_and_pressure_gradient_on(gs, st, u, gp);
+            velocity_and_pressure_gradient_on(gs, out.face_dp, st, u, gp);
           } else {
             map.velocity_and_pressure_gradient(x, in.d, u, gp);
           }
@@ -296,13 +297,14 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const bool model_a = gs.settings().model == gas::PressureModel::A;
   const bool scheme2 = f.scheme == ExchangeScheme::scheme2;
   const bool cached = f.face_stencils.size() == 3 * n;
+  if (cached) face_pressure_differences(gs, f.face_dp); // the pressure of this flow step
   parallel_for_with(
       n, go_parallel(n >= parallel_particles),
       [&] { return ParticleMapping(gs, f.porosity); }, // per thread: scratch space
       [&](ParticleMapping& map, std::size_t i) {
         Vec3 u, gp;
         if (cached)
-          velocity_and_pressure_gradient_on(gs, &f.face_stencils[3 * i], u, gp);
+          velocity_and_pressure_gradient_on(gs, f.face_dp, &f.face_stencils[3 * i], u, gp);
         else
           map.velocity_and_pressure_gradient(p.position(i), 2.0 * p.radius[i], u, gp);
         Vec3 v = p.velocity(i);

@@ -121,6 +121,9 @@ struct ParticleGasForces {
   /// at the positions compute_particle_forces saw (as in a flow step: the particles do not move
   /// within it). Empty for the porous cube.
   std::vector<Stencil> face_stencils;
+  /// With the stencils: the face pressure differences of the gas pressure the last loop over
+  /// the particles read (face_pressure_differences), grid-sized per component.
+  std::array<std::vector<double>, 3> face_dp;
   void resize(std::size_t n); ///< every per-particle array n long, zeroed
   /// The per-particle arrays drag_x .. eps.
   std::array<std::vector<double>*, 11> per_particle();

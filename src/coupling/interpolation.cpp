@@ -196,6 +196,49 @@ void velocity_and_pressure_gradient_on(const gas::GasSolver& gs, const Stencil* 
   }
 }
 
+void face_pressure_differences(const gas::GasSolver& gs, std::array<std::vector<double>, 3>& dp) {
+  const std::vector<double>& p = gs.pressure();
+  const std::size_t n = p.size();
+  for (int d = 0; d < 3; ++d) {
+    std::vector<double>& out = dp[static_cast<std::size_t>(d)];
+    out.resize(n);
+    const auto sd = static_cast<std::size_t>(gs.grid().stride[d]);
+    const std::size_t m = n > sd ? n - sd : 0;
+    for (std::size_t q = 0; q < m; ++q) out[q] = p[q + sd] - p[q];
+    for (std::size_t q = m; q < n; ++q) out[q] = 0.0;
+  }
+}
+
+namespace {
+/// sum w u and sum w dp over the first n nodes of s, in node order; N > 0: n = N.
+template <int N>
+void weighted_sums_dp(const Stencil& s, int n, const double* ud, const double* dp, double& uv,
+                      double& gv) {
+  if constexpr (N > 0) n = N;
+  for (int m = 0; m < n; ++m) {
+    const long q = s.q[static_cast<std::size_t>(m)];
+    const double w = s.w[static_cast<std::size_t>(m)];
+    uv += w * ud[q];
+    gv += w * dp[q];
+  }
+}
+} // namespace
+
+void velocity_and_pressure_gradient_on(const gas::GasSolver& gs,
+                                       const std::array<std::vector<double>, 3>& dp,
+                                       const Stencil* st, Vec3& u, Vec3& grad_p) {
+  const gas::GasGrid& g = gs.grid();
+  for (int d = 0; d < 3; ++d) {
+    const Stencil& s = st[d];
+    const double* ud = gs.velocity(d).data();
+    const double* dpd = dp[static_cast<std::size_t>(d)].data();
+    double uv = 0.0, gv = 0.0;
+    with_node_count(s.n, [&]<int N>() { weighted_sums_dp<N>(s, s.n, ud, dpd, uv, gv); });
+    u[d] = uv;
+    grad_p[d] = gv / g.h[d];
+  }
+}
+
 double porosity_at(const gas::GasSolver& gs, const Vec3& x) {
   return interpolate(cell_stencil(gs.grid(), x, periodic_axes(gs)), gs.porosity());
 }

@@ -72,6 +72,15 @@ void velocity_and_pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x, 
 /// component d.
 void velocity_and_pressure_gradient_on(const gas::GasSolver& gs, const Stencil* stencils, Vec3& u,
                                        Vec3& grad_p);
+/// The face pressure differences p[q + stride_d] - p[q] of each component d (the numerators of
+/// the face gradients), for the stencils' faces, into dp[d] (grid-sized; 0 where q + stride_d
+/// is beyond the grid, a face no stencil holds).
+void face_pressure_differences(const gas::GasSolver& gs, std::array<std::vector<double>, 3>& dp);
+/// velocity_and_pressure_gradient_on with the differences of face_pressure_differences taken
+/// once for all particles: bitwise the same values.
+void velocity_and_pressure_gradient_on(const gas::GasSolver& gs,
+                                       const std::array<std::vector<double>, 3>& dp,
+                                       const Stencil* stencils, Vec3& u, Vec3& grad_p);
 /// Which axes of the solver's grid are periodic.
 std::array<bool, 3> periodic_axes(const gas::GasSolver& gs);
 /// Porosity at x (cell-centre stencil; periodic axes from the solver's boundary map).
