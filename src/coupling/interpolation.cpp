@@ -33,6 +33,27 @@ void axis(double x, double lo, double h, double shift, int imin, int imax, int& 
   }
   const long base = g.idx(i0[0], i0[1], i0[2]);
   const long sy = g.stride[1], sz = g.stride[2];
+  // Two nodes along x and z (the common case): the loops below unrolled, 8 nodes (3-D) or 4
+  // (one node along y); the same nodes, and the weights the same products in the same order.
+  const auto two_by_two = [&]<int NY>() {
+    int n = 0;
+    for (int bz = 0; bz < 2; ++bz)
+      for (int by = 0; by < NY; ++by, n += 2) {
+        const long row = base + by * sy + bz * sz;
+        s.q[static_cast<std::size_t>(n)] = row;
+        s.w[static_cast<std::size_t>(n)] = f[0][0] * f[1][by] * f[2][bz];
+        s.q[static_cast<std::size_t>(n + 1)] = row + 1;
+        s.w[static_cast<std::size_t>(n + 1)] = f[0][1] * f[1][by] * f[2][bz];
+      }
+    s.n = n;
+  };
+  if (nb[0] == 2 && nb[2] == 2) {
+    if (nb[1] == 2)
+      two_by_two.template operator()<2>();
+    else
+      two_by_two.template operator()<1>();
+    return;
+  }
   int n = 0;
   for (int bz = 0; bz < nb[2]; ++bz)
     for (int by = 0; by < nb[1]; ++by)
