@@ -91,5 +91,7 @@ private:
 
 /// Initialises MPI (one rank, MPI_THREAD_FUNNELED) and hypre once, if not done already.
 void ensure_mpi_initialised();
+/// True once MPI has been initialised in this process (by the first solve that needs hypre).
+bool mpi_started();
 
 } // namespace fluidem::gas

@@ -8,7 +8,8 @@
 //  - the direct (banded Cholesky) path of StructLinearSolver agrees with hypre PCG + PFMG
 //    (solved to 1e-13) to 1e-9 relative on random symmetric diagonally dominant systems on 2-D
 //    and 3-D boxes whose longest axis is any of x, y, z, reaches a relative residual of 1e-12,
-//    and its factorisation refuses a matrix that is not positive definite;
+//    and its factorisation refuses a matrix that is not positive definite; a second system
+//    through the same solver is solved directly again; direct solves leave MPI unstarted;
 //  - GasSolver: results bitwise independent of the thread count (1, 2, 3 threads with every
 //    threaded loop switched on, and unthreaded); the linear-solver options (hypre momentum,
 //    SMG with a set-up per solve, hypre PCG instead of the direct pressure solve) agree with
@@ -145,6 +146,28 @@ StencilSystem symmetric_system(const Box& b, unsigned seed, double shift) {
 }
 
 } // namespace
+
+// The direct path needs no hypre objects: a run whose pressure is solved directly never starts
+// MPI (a singleton MPI_Init spawns Open MPI's daemon, 0.35 s on this machine); the first
+// iterative solve does.
+TEST(StructLinearSolver, DirectSolvesDoNotStartMpi) {
+  if (mpi_started()) GTEST_SKIP() << "MPI was started by an earlier test in this process";
+  const Box b = make_box({15, 1, 25}, {false, false, false});
+  const StencilSystem s = symmetric_system(b, 11u, 1e-2);
+  StructSolverOptions direct, hypre;
+  direct.direct_max_work = 1e9;
+  hypre.direct_max_work = 0.0;
+  StructLinearSolver ds(b.padded, b.lo, b.hi, b.periodic, true, direct);
+  StructLinearSolver hs(b.padded, b.lo, b.hi, b.periodic, true, hypre);
+  std::vector<double> x(b.size(), 0.0);
+  ASSERT_TRUE(ds.solve(s, x, 1e-12, 100).converged);
+  EXPECT_EQ(ds.direct_solves(), 1);
+  EXPECT_FALSE(mpi_started());
+  std::vector<double> xh(b.size(), 0.0);
+  ASSERT_TRUE(hs.solve(s, xh, 1e-12, 500).converged);
+  EXPECT_TRUE(mpi_started());
+  EXPECT_LT(max_rel_diff(b, x, xh), 1e-8);
+}
 
 TEST(StructLinearSolver, DirectSolveAgreesWithHypre) {
   StructSolverOptions direct, hypre;
