@@ -209,9 +209,9 @@ int raw_cell(const gas::GasGrid& g, int d, double x) {
   return static_cast<int>(std::floor((x - g.lo[d]) / g.h[d])) + 1;
 }
 
-/// Particles from which the per-particle loops of solid_fraction run threaded (a parallel
-/// region costs a few microseconds; one particle's exact volumes ~0.3 us).
-constexpr std::size_t parallel_particles = 256;
+/// Particles from which the per-particle loops of solid_fraction run threaded: as the other
+/// particle loops of the coupling (exchange.hpp parallel_particles, where the measurement is).
+constexpr std::size_t parallel_particles = 4097;
 
 CellRange covered_cells(const gas::GasGrid& g, const Vec3& x, double R, int na,
                         const std::array<int, 3>& axes, const std::array<bool, 3>& wrap) {

@@ -1,7 +1,7 @@
 // One coupled flow step as GasCoupling::step does it (integrate/gas_coupling.cpp): porosity by
 // cell, gas -> particle forces, deposit, gas step, forces after the gas step; five steps with
 // the particles moved in between, for the Tsuji grid in 2-D (15 x 1 x 25 cells, discs) and in
-// 3-D (the same box one cell deep, spheres), 3000 particles of 4 mm (above the threshold of the
+// 3-D (the same box one cell deep, spheres), 5000 particles of 2 mm (above the threshold of the
 // threaded particle loops, exchange.hpp parallel_particles), the ergun_wen_yu closure.
 //  - Thread independence: porosity, gas velocity and pressure, and the particle forces are
 //    bitwise identical with 1 and 2 OpenMP threads.
@@ -44,13 +44,14 @@ gas::GasSettings tsuji(int dim) {
 }
 
 ParticleStore particles(unsigned seed) {
-  // Random discs / spheres of 4 mm below 0.45 m (mean area fraction 0.29, volume fraction 0.19:
-  // no cell fills up).
+  // Random discs / spheres of 2 mm below 0.45 m (mean area fraction 0.24, volume fraction 0.08:
+  // no cell fills up), more than exchange.hpp's parallel_particles.
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> x(0.002, 0.148), z(0.002, 0.448), v(-0.3, 0.3);
   ParticleStore p;
-  for (int n = 0; n < 1500; ++n)
-    p.add({x(rng), 0.002, z(rng)}, {v(rng), 0.0, v(rng)}, 0.002, 2700.0, 0, n);
+  for (int n = 0; n < 5000; ++n)
+    p.add({x(rng), 0.002, z(rng)}, {v(rng), 0.0, v(rng)}, 0.001, 2700.0, 0, n);
+  EXPECT_GT(p.size(), parallel_particles);
   return p;
 }
 
@@ -85,7 +86,7 @@ Result run(int dim, int threads) {
     for (std::size_t i = 0; i < p.size(); ++i) {
       const Vec3 u = gas_velocity_at(gs, p.position(i)),
                  gp = pressure_gradient_at(gs, p.position(i));
-      const double vol = std::numbers::pi * 0.004 * 0.004 * 0.004 / 6.0;
+      const double vol = std::numbers::pi * 0.002 * 0.002 * 0.002 / 6.0; // d = 2 mm
       if (u[0] != f.ux[i] || u[2] != f.uz[i] || -gp[2] * vol != f.pres_z[i]) ++mismatches;
     }
     for (std::size_t i = 0; i < p.size(); ++i) { // move (stay inside the box)
