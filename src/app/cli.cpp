@@ -273,7 +273,9 @@ int run_cli(int argc, char** argv) {
                s.seconds_contacts, s.seconds_integration, s.seconds_neighbour, s.neighbour_builds,
                s.spatial_sorts > 0 ? fmt::format(", {} spatial sorts", s.spatial_sorts) : "",
                s.seconds_output,
-               sim.gas() ? fmt::format(", gas and coupling {:.3f} s", s.seconds_gas) : "");
+               sim.gas() ? fmt::format(", gas and coupling {:.3f} s (gas solver {:.3f} s)",
+                                       s.seconds_gas, s.seconds_gas_solver)
+                         : "");
     if (s.collisions == 0 && s.pairs_per_particle > 0.0)
       fmt::print("neighbour pairs {:.2f} per particle, {} contacts (pairs and walls) at the end\n",
                  s.pairs_per_particle, s.contacts);

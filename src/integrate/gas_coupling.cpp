@@ -1,5 +1,6 @@
 #include "integrate/gas_coupling.hpp"
 
+#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -67,8 +68,10 @@ void GasCoupling::step(const ParticleStore& p, double time, double dt) {
   coupling::compute_particle_forces(*gas_, p, settings_, f_);
   coupling::deposit_momentum_source(*gas_, p, f_);
   if (settings_.hold_gas_at_rest) hold_at_rest(dt);
+  const auto t0 = std::chrono::steady_clock::now();
   gas_->step(time, dt);
   gas_->check_courant(time + dt, dt);
+  solver_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   coupling::update_particle_forces(*gas_, p, f_);
   const std::size_t n = p.size();
   for (auto& f : force_) f.resize(n);

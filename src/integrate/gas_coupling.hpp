@@ -52,6 +52,8 @@ public:
   void kick(ParticleStore& p, double dt) const;
 
   const gas::GasSolver& solver() const { return *gas_; }
+  /// Wall seconds spent in the gas solver's steps so far (the rest of step(): the coupling).
+  double solver_seconds() const { return solver_seconds_; }
 
   /// Checkpoint state: the gas solver's and the force on each particle of the last flow step
   /// (it acts until the next one: soft-sphere runs may be checkpointed between flow steps).
@@ -95,6 +97,7 @@ private:
   coupling::ParticleGasForces f_;
   coupling::PorosityScratch porosity_scratch_; ///< kept between flow steps: no allocation
   std::array<std::vector<double>, 3> force_;
+  double solver_seconds_ = 0.0;
   int vertical_ = 2;      ///< the axis of gravity (z if there is none)
   bool falls_low_ = true; ///< gravity points to the low side of that axis
 };

@@ -797,6 +797,7 @@ RunSummary Simulation::run(const std::string& out_dir,
   s.seconds_neighbour = t_neighbour_;
   s.seconds_output = seconds_output;
   s.seconds_gas = t_gas_;
+  s.seconds_gas_solver = gas_ ? gas_->solver_seconds() : 0.0;
   s.bytes_per_particle =
       p_.size()
           ? (p_.bytes() + nl_->bytes() + nc_.bytes() + (hard_ ? hard_->bytes() : 0)) / p_.size()

@@ -56,6 +56,7 @@ struct RunSummary {
   long spatial_sorts = 0; ///< soft spheres: sorts of the store in space by this process
   double seconds_contacts = 0.0, seconds_integration = 0.0, seconds_neighbour = 0.0,
          seconds_output = 0.0, seconds_gas = 0.0;
+  double seconds_gas_solver = 0.0; ///< the part of seconds_gas in the gas solver's steps
   std::size_t bytes_per_particle = 0;
   double energy_drift = 0.0;       ///< (E_total(end) - E_total(0)) / E_scale
   long collisions = 0;             ///< hard-sphere engine: collisions processed
