@@ -159,11 +159,14 @@ void GasSolver::solve_momentum(int d, double dt) {
   const double gd = s_.gravity[d];
   const bool model_a = s_.model == PressureModel::A;
   const long sx = g_.stride[0], sy = g_.stride[1], sz = g_.stride[2];
-  // One row: face (i, j, k) of component d. Interior = every link of the face stays inside the
-  // domain (or wraps around a periodic axis) and no boundary face is involved: the same
-  // arithmetic without the boundary tests.
-  const auto row = [&]<bool interior, int Dir>(int i, int j, int k) {
-    static_assert(Dir >= 0 && Dir < 3);
+  // One row: face (i, j, k) of component d. Kind 1, interior: every link of the face stays
+  // inside the domain (or wraps around a periodic axis) and no boundary face is involved: the
+  // same arithmetic without the boundary tests. Kind 2: interior along x and z of a 3-D box one
+  // cell deep between walls in y (the pseudo-2-D beds): both y links end at a wall, as the
+  // boundary path finds for them, the rest as in the interior. Kind 0: any face.
+  const auto row = [&]<int Kind, int Dir>(int i, int j, int k) {
+    static_assert(Dir >= 0 && Dir < 3 && Kind >= 0 && Kind <= 2);
+    constexpr bool interior = Kind != 0; // along Dir, and along x and z
     const long q = i * sx + j * sy + k * sz;
     if constexpr (!interior) {
       const unsigned char r = role[q];
@@ -227,7 +230,7 @@ void GasSolver::solve_momentum(int d, double dt) {
           Fv = 0.5 * (F0 + F1);
           const double eps_l = 0.25 * (eps[c0] + eps[c1] + eps[c0 + s * se] + eps[c1 + s * se]);
           D = mu * eps_l * Ae / h[e];
-          if constexpr (!interior) {
+          if (!interior || (Kind == 2 && e == 1)) {
             const int ie = c[e] + s;
             if (!periodic[e] && (ie < 1 || ie > n[e])) {
               link = false;
@@ -270,18 +273,26 @@ void GasSolver::solve_momentum(int d, double dt) {
       in_hi[a] = g_.n[a] - 1;
     }
   }
+  // A 3-D box one cell deep between y boundaries (pseudo-2-D beds): no row is interior in y,
+  // but the rows interior in x and z take the Kind 2 row (both y links at the wall).
+  const bool one_cell_in_y = !two_d && g_.n[1] == 1 && !bc_.periodic(1) && d != 1;
   const int ny = g_.n[1] - lo[1] + 1, rows = ny * (g_.n[2] - lo[2] + 1);
   const auto assemble_row = [&](int r) {
     const int j = lo[1] + r % ny, k = lo[2] + r / ny;
-    const bool inside = j >= in_lo[1] && j <= in_hi[1] && k >= in_lo[2] && k <= in_hi[2];
-    const int i0 = inside ? std::max(in_lo[0], lo[0]) : g_.n[0] + 1;
-    const int i1 = inside ? in_hi[0] : g_.n[0];
+    const bool inside_z = k >= in_lo[2] && k <= in_hi[2];
+    const bool inside = j >= in_lo[1] && j <= in_hi[1] && inside_z;
+    const bool inside_xz = inside || (one_cell_in_y && inside_z);
+    const int i0 = inside_xz ? std::max(in_lo[0], lo[0]) : g_.n[0] + 1;
+    const int i1 = inside_xz ? in_hi[0] : g_.n[0];
     // The row code of this component (its axis a template argument: the tests on it fold away).
     const auto rows_of = [&]<int Dir>() {
-      for (int i = lo[0]; i < i0 && i <= g_.n[0]; ++i) row.template operator()<false, Dir>(i, j, k);
-      for (int i = i0; i <= i1; ++i) row.template operator()<true, Dir>(i, j, k);
+      for (int i = lo[0]; i < i0 && i <= g_.n[0]; ++i) row.template operator()<0, Dir>(i, j, k);
+      if (inside)
+        for (int i = i0; i <= i1; ++i) row.template operator()<1, Dir>(i, j, k);
+      else
+        for (int i = i0; i <= i1; ++i) row.template operator()<2, Dir>(i, j, k);
       for (int i = std::max(i1 + 1, i0); i <= g_.n[0]; ++i)
-        row.template operator()<false, Dir>(i, j, k);
+        row.template operator()<0, Dir>(i, j, k);
     };
     if (d == 0)
       rows_of.template operator()<0>();
