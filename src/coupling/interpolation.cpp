@@ -187,34 +187,50 @@ void velocity_and_pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x, 
 }
 
 namespace {
-/// sum w u and sum w (p[q + sd] - p[q]) over the first n nodes of s, in node order; N > 0: n = N
-/// (the loop unrolled for the common stencils of 4 and 8 nodes).
-template <int N>
-void weighted_sums(const Stencil& s, int n, const double* ud, const double* p, long sd, double& uv,
+/// sum w u and sum w diff(q) over the first n nodes of s, in node order (diff(q): the pressure
+/// difference p[q + s_d] - p[q] across face q); N > 0: n = N (the loop unrolled for the common
+/// stencils of 4 and 8 nodes).
+template <int N, class Diff>
+void weighted_sums(const Stencil& s, int n, const double* ud, const Diff& diff, double& uv,
                    double& gv) {
   if constexpr (N > 0) n = N;
   for (int m = 0; m < n; ++m) {
     const long q = s.q[static_cast<std::size_t>(m)];
     const double w = s.w[static_cast<std::size_t>(m)];
     uv += w * ud[q];
-    gv += w * (p[q + sd] - p[q]);
+    gv += w * diff(q);
+  }
+}
+
+/// u and grad p at a point from its three face stencils; diff_of(d): the face pressure
+/// differences of component d, as a function of the face index.
+template <class DiffOf>
+void velocity_and_gradient(const gas::GasSolver& gs, const Stencil* st, const DiffOf& diff_of,
+                           Vec3& u, Vec3& grad_p) {
+  const gas::GasGrid& g = gs.grid();
+  for (int d = 0; d < 3; ++d) {
+    const Stencil& s = st[d];
+    const double* ud = gs.velocity(d).data();
+    const auto diff = diff_of(d);
+    double uv = 0.0, gv = 0.0;
+    with_node_count(s.n, [&]<int N>() { weighted_sums<N>(s, s.n, ud, diff, uv, gv); });
+    u[d] = uv;
+    grad_p[d] = gv / g.h[d];
   }
 }
 } // namespace
 
 void velocity_and_pressure_gradient_on(const gas::GasSolver& gs, const Stencil* st, Vec3& u,
                                        Vec3& grad_p) {
-  const gas::GasGrid& g = gs.grid();
   const double* p = gs.pressure().data();
-  for (int d = 0; d < 3; ++d) {
-    const Stencil& s = st[d];
-    const double* ud = gs.velocity(d).data();
-    const long sd = g.stride[d];
-    double uv = 0.0, gv = 0.0;
-    with_node_count(s.n, [&]<int N>() { weighted_sums<N>(s, s.n, ud, p, sd, uv, gv); });
-    u[d] = uv;
-    grad_p[d] = gv / g.h[d];
-  }
+  const auto& stride = gs.grid().stride;
+  velocity_and_gradient(
+      gs, st,
+      [p, &stride](int d) {
+        const long sd = stride[static_cast<std::size_t>(d)];
+        return [p, sd](long q) { return p[q + sd] - p[q]; };
+      },
+      u, grad_p);
 }
 
 void face_pressure_differences(const gas::GasSolver& gs, std::array<std::vector<double>, 3>& dp) {
@@ -230,34 +246,16 @@ void face_pressure_differences(const gas::GasSolver& gs, std::array<std::vector<
   }
 }
 
-namespace {
-/// sum w u and sum w dp over the first n nodes of s, in node order; N > 0: n = N.
-template <int N>
-void weighted_sums_dp(const Stencil& s, int n, const double* ud, const double* dp, double& uv,
-                      double& gv) {
-  if constexpr (N > 0) n = N;
-  for (int m = 0; m < n; ++m) {
-    const long q = s.q[static_cast<std::size_t>(m)];
-    const double w = s.w[static_cast<std::size_t>(m)];
-    uv += w * ud[q];
-    gv += w * dp[q];
-  }
-}
-} // namespace
-
 void velocity_and_pressure_gradient_on(const gas::GasSolver& gs,
                                        const std::array<std::vector<double>, 3>& dp,
                                        const Stencil* st, Vec3& u, Vec3& grad_p) {
-  const gas::GasGrid& g = gs.grid();
-  for (int d = 0; d < 3; ++d) {
-    const Stencil& s = st[d];
-    const double* ud = gs.velocity(d).data();
-    const double* dpd = dp[static_cast<std::size_t>(d)].data();
-    double uv = 0.0, gv = 0.0;
-    with_node_count(s.n, [&]<int N>() { weighted_sums_dp<N>(s, s.n, ud, dpd, uv, gv); });
-    u[d] = uv;
-    grad_p[d] = gv / g.h[d];
-  }
+  velocity_and_gradient(
+      gs, st,
+      [&dp](int d) {
+        const double* a = dp[static_cast<std::size_t>(d)].data();
+        return [a](long q) { return a[q]; };
+      },
+      u, grad_p);
 }
 
 double porosity_at(const gas::GasSolver& gs, const Vec3& x) {
