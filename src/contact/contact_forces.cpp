@@ -454,7 +454,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // one batch runs through all of them (a slab of a small bed holds a few contacts, too few to
   // fill the vector lanes), its statistics in the first slab's entry. The record keeps the
   // per-slab batches (its samples are ordered by slab).
-  const bool threaded = n > 4096;
+  const bool threaded = n > kThreadedParticles;
   if (!threaded && !recording) {
     ContactStats local;
     Batch batch;
@@ -617,7 +617,7 @@ void ContactScratch::reset(const ParticleStore& p) {
   resize(n);
   double* v = view.data();
   double* a = acc.data();
-  parallel_for(n, go_parallel(n > 4096), [&](std::size_t i) {
+  parallel_for(n, threaded_particles(n), [&](std::size_t i) {
     double* vi = v + kView * i;
     vi[0] = p.x[i], vi[1] = p.y[i], vi[2] = p.z[i], vi[3] = p.radius[i];
     vi[4] = p.vx[i], vi[5] = p.vy[i], vi[6] = p.vz[i], vi[7] = p.mass[i];
@@ -633,7 +633,7 @@ double ContactScratch::dissipated(const ParticleStore& p, double dt) {
   const std::size_t n = p.size();
   const std::size_t nchunk = (n + kChunk - 1) / kChunk;
   chunk_sums.resize(nchunk); // kept between steps
-  parallel_for(nchunk, go_parallel(n > 4096), [&](std::size_t c) {
+  parallel_for(nchunk, threaded_particles(n), [&](std::size_t c) {
     double w = 0.0;
     for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
       const double* nci = acc.data() + kAcc * i + 6;

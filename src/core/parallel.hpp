@@ -16,6 +16,18 @@ inline bool go_parallel(bool large_enough) {
   return large_enough && omp_get_max_threads() > 1;
 }
 
+/// Loops over particles go parallel above this many particles (soft-sphere DEM, neighbour
+/// lists, coupling, porosity). Below it the threads cost more than they share out: on a bed of
+/// 2400 particles the worker thread's reads of what the main thread had just written (the gas
+/// fields, the contact accumulators) made two threads slower than one (bench/RESULTS.md,
+/// 2026-12-03).
+inline constexpr std::size_t kThreadedParticles = 4096;
+
+/// go_parallel for a loop over n particles.
+inline bool threaded_particles(std::size_t n) {
+  return go_parallel(n > kThreadedParticles);
+}
+
 /// body(i) for i = 0 .. n-1: statically scheduled over the threads if `parallel`, else a plain
 /// loop. The static schedule gives each thread a fixed contiguous range, the same from call to
 /// call (results must not depend on the thread count: the bodies write per-index data only).

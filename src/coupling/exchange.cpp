@@ -145,7 +145,7 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
     using C = decltype(closure);
     // Independent per particle: parallel, and the same result for any thread count.
     parallel_for_with(
-        n, go_parallel(n >= parallel_particles),
+        n, threaded_particles(n),
         [&] { return ParticleMapping(gs, c.porosity); }, // per thread: scratch space
         [&](ParticleMapping& map, std::size_t i) {
           const Vec3 x = p.position(i);
@@ -299,7 +299,7 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const bool cached = f.face_stencils.size() == 3 * n;
   if (cached) face_pressure_differences(gs, f.face_dp); // the pressure of this flow step
   parallel_for_with(
-      n, go_parallel(n >= parallel_particles),
+      n, threaded_particles(n),
       [&] { return ParticleMapping(gs, f.porosity); }, // per thread: scratch space
       [&](ParticleMapping& map, std::size_t i) {
         Vec3 u, gp;

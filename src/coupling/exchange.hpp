@@ -142,14 +142,13 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
                              const CouplingSettings& c, ParticleGasForces& out);
 
 /// The particle loops of compute_particle_forces and update_particle_forces (and those of the
-/// porosity) run with OpenMP threads from this many particles on, as the DEM's loops do (n >
-/// 4096); per-particle results, independent of the thread count. Below it the loops' share of
+/// porosity) run on the OpenMP threads above core/parallel.hpp's kThreadedParticles, as the
+/// DEM's do; per-particle results, independent of the thread count. Below it the loops' share of
 /// the work does not pay for reading the gas fields, which the solver has just written on the
 /// main thread, into the other core's cache: on the coupled Tsuji bed (2400 particles, 15 x 25
-/// cells) two threads took 1.54 s for 0.1 s with a threshold of 256, against 1.46-1.48 s with
-/// the loops serial (one thread: 1.44-1.51 s); perf showed the gas interpolation 7x slower on
-/// the worker thread than on the main one.
-inline constexpr std::size_t parallel_particles = 4097;
+/// cells) two threads took 1.54 s for 0.1 s with the loops threaded from 256 particles, against
+/// 1.46-1.48 s with them serial (one thread: 1.44-1.51 s); perf showed the gas interpolation 7x
+/// slower on the worker thread than on the main one.
 
 /// Particles -> gas: overwrites gs.drag_coefficient(d), drag_velocity_term(d) and
 /// explicit_source(d) for all d (the latter 0 in Model A, minus the buoyancy terms f.pres_* in

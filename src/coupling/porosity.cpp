@@ -209,10 +209,6 @@ int raw_cell(const gas::GasGrid& g, int d, double x) {
   return static_cast<int>(std::floor((x - g.lo[d]) / g.h[d])) + 1;
 }
 
-/// Particles from which the per-particle loops of solid_fraction run threaded: as the other
-/// particle loops of the coupling (exchange.hpp parallel_particles, where the measurement is).
-constexpr std::size_t parallel_particles = 4097;
-
 CellRange covered_cells(const gas::GasGrid& g, const Vec3& x, double R, int na,
                         const std::array<int, 3>& axes, const std::array<bool, 3>& wrap) {
   CellRange r;
@@ -398,7 +394,7 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
   offset.resize(n + 1);
   range.resize(n);
   offset[0] = 0;
-  const bool threaded = go_parallel(n >= parallel_particles);
+  const bool threaded = threaded_particles(n);
   parallel_for(n, threaded, [&](std::size_t i) {
     range[i] = covered_cells(g, p.position(i), p.radius[i], na, axes, wrap);
     offset[i + 1] = range[i].count();

@@ -331,7 +331,7 @@ void Simulation::step() {
   };
   const bool any_periodic = box.periodic[0] || box.periodic[1] || box.periodic[2];
   // First half kick and drift; Wrap: periodic axes (centres kept inside [lo, hi)).
-  const bool threaded = go_parallel(n > 4096);
+  const bool threaded = threaded_particles(n);
   const auto kick_drift = [&]<bool Gas, bool Field, bool Wrap>() {
     parallel_for(n, threaded, [&](std::size_t i) {
       kick.template operator()<Gas, Field>(i);

@@ -32,7 +32,7 @@ bool NeighbourList::needs_rebuild(const ParticleStore& p) const {
     const double dz = min_image(p.z[i] - z0_[i], 2);
     return dx * dx + dy * dy + dz * dz > limit2;
   };
-  if (go_parallel(n > 4096)) {
+  if (threaded_particles(n)) {
 #pragma omp parallel for schedule(static) reduction(max : moved)
     for (std::size_t i = 0; i < n; ++i)
       if (far(i)) moved = 1;
@@ -55,7 +55,7 @@ void NeighbourList::build_cells(const ParticleStore& p, double cell_size) {
   const std::size_t ncells = static_cast<std::size_t>(ncell_[0]) * ncell_[1] * ncell_[2];
   particle_cell_.resize(n);
   const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
-  parallel_for(n, go_parallel(n > 4096), [&](std::size_t i) {
+  parallel_for(n, threaded_particles(n), [&](std::size_t i) {
     std::array<int, 3> c{};
     for (int a = 0; a < 3; ++a) {
       double rel = (*pos[a])[i] - box_.lo[a];
@@ -207,7 +207,7 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
   };
 
   offset.assign(n + 1, 0);
-  const bool threaded = go_parallel(n > 4096);
+  const bool threaded = threaded_particles(n);
   const auto count_row = [&](std::size_t i) {
     std::uint32_t count = 0;
     for_each_partner(i, [&](std::uint32_t) { ++count; });

@@ -45,7 +45,7 @@ std::vector<std::uint32_t> spatial_order(const ParticleStore& p, const BoxGeomet
   }
   std::vector<std::array<std::uint32_t, 3>> cell(n);
   const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
-  const bool threaded = go_parallel(n > 4096);
+  const bool threaded = threaded_particles(n);
   parallel_for(n, threaded, [&](std::size_t i) {
     for (int a = 0; a < 3; ++a) {
       double rel = (*pos[a])[i] - box.lo[a];

@@ -2,7 +2,7 @@
 // cell, gas -> particle forces, deposit, gas step, forces after the gas step; five steps with
 // the particles moved in between, for the Tsuji grid in 2-D (15 x 1 x 25 cells, discs) and in
 // 3-D (the same box one cell deep, spheres), 5000 particles of 2 mm (above the threshold of the
-// threaded particle loops, exchange.hpp parallel_particles), the ergun_wen_yu closure.
+// threaded particle loops, core/parallel.hpp kThreadedParticles), the ergun_wen_yu closure.
 //  - Thread independence: porosity, gas velocity and pressure, and the particle forces are
 //    bitwise identical with 1 and 2 OpenMP threads.
 //  - The per-step stencil cache (ParticleGasForces::face_stencils, built by face_stencils):
@@ -12,6 +12,7 @@
 //  - The shared-corner porosity (porosity.cpp): the solid fraction of every cell agrees with
 //    the per-cell closed forms sphere_box_volume / disc_rect_area (each cell's 8 / 4 corners
 //    evaluated on their own, the method before the corners were shared) to 1e-14 absolute.
+#include "core/parallel.hpp"
 #include "coupling/exchange.hpp"
 #include <algorithm>
 #include <cmath>
@@ -45,13 +46,13 @@ gas::GasSettings tsuji(int dim) {
 
 ParticleStore particles(unsigned seed) {
   // Random discs / spheres of 2 mm below 0.45 m (mean area fraction 0.24, volume fraction 0.08:
-  // no cell fills up), more than exchange.hpp's parallel_particles.
+  // no cell fills up), more than core/parallel.hpp's kThreadedParticles.
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> x(0.002, 0.148), z(0.002, 0.448), v(-0.3, 0.3);
   ParticleStore p;
   for (int n = 0; n < 5000; ++n)
     p.add({x(rng), 0.002, z(rng)}, {v(rng), 0.0, v(rng)}, 0.001, 2700.0, 0, n);
-  EXPECT_GT(p.size(), parallel_particles);
+  EXPECT_GT(p.size(), kThreadedParticles);
   return p;
 }
 
