@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/nearest_integer.hpp"
+
 namespace fluidem {
 
 namespace {
@@ -23,7 +25,7 @@ bool CollisionStatistics::inside(const CollisionRegion& r, const Vec3& x) const 
   for (int a = 0; a < 3; ++a) {
     if (s_.dimension == 2 && a == 1) continue; // circles in the x-z plane
     double d = x[a] - r.centre[a];
-    if (s_.periodic[a]) d -= s_.box_length[a] * std::nearbyint(d / s_.box_length[a]);
+    if (s_.periodic[a]) d -= s_.box_length[a] * nearest_integer(d / s_.box_length[a]);
     d2 += d * d;
   }
   return d2 < r.radius * r.radius;

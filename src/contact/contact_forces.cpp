@@ -445,74 +445,6 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     }
     b.n = k;
   };
-  const int nslab = nl.slab_count();
-  auto& slab_stats = nc.slab_stats; // kept between steps: no allocation per step
-  slab_stats.assign(nslab, ContactStats{});
-  // Recording: one buffer per slab (a slab runs on one thread), concatenated in slab order.
-  std::vector<std::vector<ContactSample>> slab_samples(recording ? nslab : 0);
-  // Below the threading threshold the slabs run on one thread whatever the thread count: then
-  // one batch runs through all of them (a slab of a small bed holds a few contacts, too few to
-  // fill the vector lanes), its statistics in the first slab's entry. The record keeps the
-  // per-slab batches (its samples are ordered by slab).
-  const bool threaded = n > kThreadedParticles;
-  if (!threaded && !recording) {
-    ContactStats local;
-    Batch batch;
-    for (int phase = 0; phase < 2; ++phase)
-      for (int sl = phase; sl < nslab; sl += 2)
-        for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
-          gather_row.template operator()<false>(nl.slab_particles[k], batch, local, nullptr);
-    flush(batch, kPairs, local, nullptr);
-    if (nslab > 0) slab_stats[0] = local;
-  } else {
-    // Each thread runs a fixed, contiguous run of slabs holding about its share of the
-    // particles (the particles are sorted by slab): the same particles as in the integrator's
-    // and the packing's static loops, so their view and accumulator lines stay in the one
-    // core's cache from step to step instead of moving between the cores (with the slabs
-    // handed out dynamically, the packing's share of the time tripled with two threads and the
-    // spin-wait took 7-17%). Both phases in one parallel region, a barrier between them.
-    // One thread (or a recording below the threshold): the same slabs in the same order,
-    // outside any OpenMP region (core/parallel.hpp).
-    auto run_slabs = [&](int nt, int t) {
-      auto first_slab = [&](int thread) {
-        const std::size_t share = n * static_cast<std::size_t>(thread) / nt;
-        return static_cast<int>(
-            std::lower_bound(nl.slab_start.begin(), nl.slab_start.begin() + nslab, share) -
-            nl.slab_start.begin());
-      };
-      const int sl_begin = first_slab(t), sl_end = t + 1 == nt ? nslab : first_slab(t + 1);
-      for (int phase = 0; phase < 2; ++phase) {
-        for (int sl = sl_begin + ((sl_begin + phase) & 1); sl < sl_end; sl += 2) {
-          std::vector<ContactSample>* buf = recording ? &slab_samples[sl] : nullptr;
-          // Summed on this thread's stack, stored once: the slabs' entries of slab_stats share
-          // cache lines, and updating them per contact from two threads made the lines bounce
-          // between the cores (false sharing).
-          ContactStats local;
-          Batch batch;
-          for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
-            gather_row.template operator()<true>(nl.slab_particles[k], batch, local, buf);
-          flush(batch, kPairs, local, buf);
-          slab_stats[sl] = local;
-        }
-        if (nt > 1) {
-#pragma omp barrier
-        }
-      }
-    };
-    if (go_parallel(threaded)) {
-#pragma omp parallel
-      run_slabs(omp_get_num_threads(), omp_get_thread_num());
-    } else {
-      run_slabs(1, 0);
-    }
-  }
-  if (recording) {
-    std::size_t total = 0;
-    for (const auto& b : slab_samples) total += b.size();
-    rec->samples.reserve(total + nl.wall_particle.size());
-    for (const auto& b : slab_samples) rec->samples.insert(rec->samples.end(), b.begin(), b.end());
-  }
-  for (const auto& ss : slab_stats) add_stats(st, ss);
   // Particle-wall contacts: wall of infinite mass, its own material. The entries are cut into
   // chunks of about kWallChunk that never split one particle's entries (they are sorted by
   // particle), so the chunks run in parallel without races; each keeps its own statistics and
@@ -566,18 +498,95 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   auto& wall_stats = nc.wall_stats;
   wall_stats.assign(nchunk, ContactStats{});
   std::vector<std::vector<ContactSample>> chunk_samples(recording ? nchunk : 0);
-  // Threaded when the pairs are (by particle count, not by wall entries: in a bed one particle
-  // deep every particle has two, and the worker thread's writes into the accumulators of a bed
-  // whose pairs ran on the main thread made two threads 25% slower than one in the contacts).
-  parallel_for(nchunk, go_parallel(threaded), [&](std::size_t k) {
-    std::vector<ContactSample>* buf = recording ? &chunk_samples[k] : nullptr;
-    const std::size_t end = chunk_start(k + 1);
-    ContactStats local; // on the stack, as the slabs' (no false sharing)
+  // The wall chunks [k_begin, k_end): each thread of the pairs' region runs its share after the
+  // pairs, in the same region (one fork and join per step fewer). So they are threaded when the
+  // pairs are, by particle count, not by wall entries: in a bed one particle deep every
+  // particle has two, and the worker thread's writes into the accumulators of a bed whose pairs
+  // ran on the main thread made two threads 25% slower than one in the contacts.
+  auto run_wall_chunks = [&](std::size_t k_begin, std::size_t k_end) {
+    for (std::size_t k = k_begin; k < k_end; ++k) {
+      std::vector<ContactSample>* buf = recording ? &chunk_samples[k] : nullptr;
+      const std::size_t end = chunk_start(k + 1);
+      ContactStats local; // on the stack, as the slabs' (no false sharing)
+      Batch batch;
+      gather_walls(chunk_start(k), end, batch, local, buf);
+      flush(batch, kWalls, local, buf);
+      wall_stats[k] = local;
+    }
+  };
+  const int nslab = nl.slab_count();
+  auto& slab_stats = nc.slab_stats; // kept between steps: no allocation per step
+  slab_stats.assign(nslab, ContactStats{});
+  // Recording: one buffer per slab (a slab runs on one thread), concatenated in slab order.
+  std::vector<std::vector<ContactSample>> slab_samples(recording ? nslab : 0);
+  // Below the threading threshold the slabs run on one thread whatever the thread count: then
+  // one batch runs through all of them (a slab of a small bed holds a few contacts, too few to
+  // fill the vector lanes), its statistics in the first slab's entry. The record keeps the
+  // per-slab batches (its samples are ordered by slab).
+  const bool threaded = n > kThreadedParticles;
+  if (!threaded && !recording) {
+    ContactStats local;
     Batch batch;
-    gather_walls(chunk_start(k), end, batch, local, buf);
-    flush(batch, kWalls, local, buf);
-    wall_stats[k] = local;
-  });
+    for (int phase = 0; phase < 2; ++phase)
+      for (int sl = phase; sl < nslab; sl += 2)
+        for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
+          gather_row.template operator()<false>(nl.slab_particles[k], batch, local, nullptr);
+    flush(batch, kPairs, local, nullptr);
+    if (nslab > 0) slab_stats[0] = local;
+    run_wall_chunks(0, nchunk);
+  } else {
+    // Each thread runs a fixed, contiguous run of slabs holding about its share of the
+    // particles (the particles are sorted by slab): the same particles as in the integrator's
+    // and the packing's static loops, so their view and accumulator lines stay in the one
+    // core's cache from step to step instead of moving between the cores (with the slabs
+    // handed out dynamically, the packing's share of the time tripled with two threads and the
+    // spin-wait took 7-17%). Both phases in one parallel region, a barrier between them.
+    // Then, after the barrier that ends the pairs, in the same region, the thread's share of
+    // the wall chunks (a chunk writes only to its own particles' sums).
+    // One thread (or a recording below the threshold): the same slabs in the same order,
+    // outside any OpenMP region (core/parallel.hpp).
+    auto run_slabs = [&](int nt, int t) {
+      auto first_slab = [&](int thread) {
+        const std::size_t share = n * static_cast<std::size_t>(thread) / nt;
+        return static_cast<int>(
+            std::lower_bound(nl.slab_start.begin(), nl.slab_start.begin() + nslab, share) -
+            nl.slab_start.begin());
+      };
+      const int sl_begin = first_slab(t), sl_end = t + 1 == nt ? nslab : first_slab(t + 1);
+      for (int phase = 0; phase < 2; ++phase) {
+        for (int sl = sl_begin + ((sl_begin + phase) & 1); sl < sl_end; sl += 2) {
+          std::vector<ContactSample>* buf = recording ? &slab_samples[sl] : nullptr;
+          // Summed on this thread's stack, stored once: the slabs' entries of slab_stats share
+          // cache lines, and updating them per contact from two threads made the lines bounce
+          // between the cores (false sharing).
+          ContactStats local;
+          Batch batch;
+          for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
+            gather_row.template operator()<true>(nl.slab_particles[k], batch, local, buf);
+          flush(batch, kPairs, local, buf);
+          slab_stats[sl] = local;
+        }
+        if (nt > 1) {
+#pragma omp barrier
+        }
+      }
+      run_wall_chunks(nchunk * static_cast<std::size_t>(t) / nt,
+                      nchunk * static_cast<std::size_t>(t + 1) / nt);
+    };
+    if (go_parallel(threaded)) {
+#pragma omp parallel
+      run_slabs(omp_get_num_threads(), omp_get_thread_num());
+    } else {
+      run_slabs(1, 0);
+    }
+  }
+  if (recording) {
+    std::size_t total = 0;
+    for (const auto& b : slab_samples) total += b.size();
+    rec->samples.reserve(total + nl.wall_particle.size());
+    for (const auto& b : slab_samples) rec->samples.insert(rec->samples.end(), b.begin(), b.end());
+  }
+  for (const auto& ss : slab_stats) add_stats(st, ss);
   for (std::size_t k = 0; k < nchunk; ++k) {
     add_stats(st, wall_stats[k]);
     if (recording)
@@ -615,36 +624,7 @@ ContactStats dispatch_tangential(const ParticleStore& p, NeighbourList& nl, cons
 void ContactScratch::reset(const ParticleStore& p) {
   const std::size_t n = p.size();
   resize(n);
-  double* v = view.data();
-  double* a = acc.data();
-  parallel_for(n, threaded_particles(n), [&](std::size_t i) {
-    double* vi = v + kView * i;
-    vi[0] = p.x[i], vi[1] = p.y[i], vi[2] = p.z[i], vi[3] = p.radius[i];
-    vi[4] = p.vx[i], vi[5] = p.vy[i], vi[6] = p.vz[i], vi[7] = p.mass[i];
-    vi[8] = p.wx[i], vi[9] = p.wy[i], vi[10] = p.wz[i], vi[11] = p.inv_inertia[i];
-    std::fill_n(a + kAcc * i, kAcc, 0.0);
-  });
-}
-
-double ContactScratch::dissipated(const ParticleStore& p, double dt) {
-  // Fixed chunks of particles, each summed in particle order, the chunks in chunk order: the
-  // same sum with any number of threads; small enough to share out evenly between the threads.
-  constexpr std::size_t kChunk = 512;
-  const std::size_t n = p.size();
-  const std::size_t nchunk = (n + kChunk - 1) / kChunk;
-  chunk_sums.resize(nchunk); // kept between steps
-  parallel_for(nchunk, threaded_particles(n), [&](std::size_t c) {
-    double w = 0.0;
-    for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
-      const double* nci = acc.data() + kAcc * i + 6;
-      w += nci[0] * p.vx[i] + nci[1] * p.vy[i] + nci[2] * p.vz[i];
-      w += nci[3] * p.wx[i] + nci[4] * p.wy[i] + nci[5] * p.wz[i];
-    }
-    chunk_sums[c] = w;
-  });
-  double w = 0.0;
-  for (const double c : chunk_sums) w += c;
-  return -w * dt;
+  parallel_for(n, threaded_particles(n), [&](std::size_t i) { pack(p, i); });
 }
 
 std::size_t ContactScratch::bytes() const {
@@ -653,8 +633,14 @@ std::size_t ContactScratch::bytes() const {
 
 ContactStats compute_contact_forces(const ParticleStore& p, NeighbourList& nl,
                                     const ContactTable& t, double dt, ContactScratch& nc,
-                                    ContactRecord* rec) {
-  nc.reset(p);
+                                    ContactRecord* rec, ScratchState state) {
+  if (state == ScratchState::Packed) {
+    if (nc.view.size() != ContactScratch::kView * p.size() ||
+        nc.acc.size() != ContactScratch::kAcc * p.size())
+      throw std::logic_error("compute_contact_forces: the packed view is not the particles'");
+  } else {
+    nc.reset(p);
+  }
   if (rec && rec->enabled) rec->samples.clear(); // also for a model that computes nothing
   switch (t.normal()) {
   case NormalModel::Linear:

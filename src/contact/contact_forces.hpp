@@ -4,6 +4,7 @@
 #pragma once
 #include "contact/contact_record.hpp"
 #include "contact/contact_table.hpp"
+#include "core/parallel.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "particles/particle_store.hpp"
 
@@ -35,6 +36,21 @@ struct ContactScratch {
   std::vector<double> chunk_sums;                   ///< dissipated(): per chunk of particles
   /// Pack the view from p and zero the sums.
   void reset(const ParticleStore& p);
+  /// reset() for particle i alone (the view and sums must be sized for p): the integrator packs
+  /// each particle right after its drift, while its data are in the cache, instead of in a
+  /// second pass over all of them.
+  void pack(const ParticleStore& p, std::size_t i) {
+    double* vi = view.data() + kView * i;
+    vi[0] = p.x[i], vi[1] = p.y[i], vi[2] = p.z[i], vi[3] = p.radius[i];
+    vi[4] = p.vx[i], vi[5] = p.vy[i], vi[6] = p.vz[i], vi[7] = p.mass[i];
+    vi[8] = p.wx[i], vi[9] = p.wy[i], vi[10] = p.wz[i], vi[11] = p.inv_inertia[i];
+    double* ai = acc.data() + kAcc * i;
+    // Twelve stores of a double, not a loop: GCC turns a zeroing loop into memset, which may
+    // alias anything, and the integrator's loop then reloads every array pointer per particle.
+    ai[0] = 0.0, ai[1] = 0.0, ai[2] = 0.0, ai[3] = 0.0, ai[4] = 0.0, ai[5] = 0.0;
+    ai[6] = 0.0, ai[7] = 0.0, ai[8] = 0.0, ai[9] = 0.0, ai[10] = 0.0, ai[11] = 0.0;
+    static_assert(kAcc == 12);
+  }
   /// Size the view and the sums for n particles (keeps what they hold where the sizes agree).
   void resize(std::size_t n) {
     view.resize(kView * n);
@@ -50,7 +66,38 @@ struct ContactScratch {
     return {a[3], a[4], a[5]};
   }
   /// -sum (F_nc.v + T_nc.w) dt: energy dissipated over a step of length dt, J.
-  double dissipated(const ParticleStore& p, double dt);
+  double dissipated(const ParticleStore& p, double dt) {
+    return dissipated_after(p, dt, [](std::size_t) {});
+  }
+  /// before(i) for every particle i (e.g. the integrator's last half kick), each followed by
+  /// its term of dissipated() with the velocities before(i) left: one pass over the particles.
+  /// Fixed chunks of particles, each summed in particle order, the chunks in chunk order: the
+  /// same sum with any number of threads; small enough to share out evenly between the threads.
+  template <class Before>
+  double dissipated_after(const ParticleStore& p, double dt, Before&& before) {
+    constexpr std::size_t kChunk = 512;
+    const std::size_t n = p.size();
+    const std::size_t nchunk = (n + kChunk - 1) / kChunk;
+    chunk_sums.resize(nchunk); // kept between steps
+    const double* a = acc.data();
+    const double *vx = p.vx.data(), *vy = p.vy.data(), *vz = p.vz.data();
+    const double *wx = p.wx.data(), *wy = p.wy.data(), *wz = p.wz.data();
+    double* sums = chunk_sums.data();
+    parallel_for(nchunk, threaded_particles(n), [&](std::size_t c) {
+      double w = 0.0;
+      const std::size_t end = std::min(n, (c + 1) * kChunk);
+      for (std::size_t i = c * kChunk; i < end; ++i) {
+        before(i);
+        const double* nci = a + kAcc * i + 6;
+        w += nci[0] * vx[i] + nci[1] * vy[i] + nci[2] * vz[i];
+        w += nci[3] * wx[i] + nci[4] * wy[i] + nci[5] * wz[i];
+      }
+      sums[c] = w;
+    });
+    double w = 0.0;
+    for (std::size_t c = 0; c < nchunk; ++c) w += sums[c];
+    return -w * dt;
+  }
   std::size_t bytes() const;
 };
 
@@ -65,8 +112,13 @@ int contact_history_width(const ContactTable& table);
 /// the pairs slab by slab in slab order (rows in the slab's order, partners in list order), then
 /// the wall contacts in wall-list order, so the record does not depend on the thread count.
 /// Without a record (or disabled) nothing is recorded and nothing is allocated.
+/// `state`: Packed when nc's view already holds p's current positions and velocities and its
+/// sums are zero (ContactScratch::pack of every particle since they last changed); Stale (the
+/// default) packs them here.
+enum class ScratchState { Stale, Packed };
 ContactStats compute_contact_forces(const ParticleStore& p, NeighbourList& nl,
                                     const ContactTable& table, double dt, ContactScratch& nc,
-                                    ContactRecord* record = nullptr);
+                                    ContactRecord* record = nullptr,
+                                    ScratchState state = ScratchState::Stale);
 
 } // namespace fluidem

@@ -41,6 +41,20 @@ void parallel_for(Index n, bool parallel, Body&& body) {
   }
 }
 
+/// As parallel_for for a body that returns a bool: whether it returned true for any index
+/// (every index is run; the OR does not depend on the order).
+template <class Index, class Body>
+bool parallel_any(Index n, bool parallel, Body&& body) {
+  bool any = false;
+  if (parallel) {
+#pragma omp parallel for schedule(static) reduction(|| : any)
+    for (Index i = 0; i < n; ++i) any = body(i) || any;
+  } else {
+    for (Index i = 0; i < n; ++i) any = body(i) || any;
+  }
+  return any;
+}
+
 /// As parallel_for with per-thread scratch: make() builds one per thread (one in all when the
 /// loop runs serially), body(scratch, i).
 template <class Index, class Make, class Body>

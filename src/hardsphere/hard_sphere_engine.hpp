@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/case_spec.hpp"
+#include "core/nearest_integer.hpp"
 #include "hardsphere/collision_operator.hpp"
 #include "neighbour/neighbour_list.hpp" // BoxGeometry, NeighbourList::State (checkpoints)
 #include "particles/particle_store.hpp"
@@ -92,14 +93,11 @@ private:
   /// R_i + R_j + skin_ at the positions of `p`.
   void build_list(const ParticleStore& p);
   void update_neighbour_list(const ParticleStore& p, double time, double dt);
-  /// Minimum-image separation along axis a (round to nearest even, as std::nearbyint in the
-  /// default rounding mode, without the library call: exact for |d / l| < 2^51).
+  /// Minimum-image separation along axis a.
   double min_image(double d, int a) const {
     if (!box_.periodic[a]) return d;
-    constexpr double magic = 6755399441055744.0; // 1.5 * 2^52
     const double l = box_.length(a);
-    const double k = (d / l + magic) - magic;
-    return d - l * k;
+    return d - l * nearest_integer(d / l);
   }
   /// Kinematics of the hot loops, one cache line per particle: position and velocity at the
   /// particle's clock t (its lazy time, [Deen07 §4]), radius.

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "analysis/bed_height.hpp"
+#include "core/nearest_integer.hpp"
 #include "core/parallel.hpp"
 #include "fluidem_version.hpp"
 #include "io/case_writer.hpp"
@@ -247,12 +248,12 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
 
 Simulation::~Simulation() = default;
 
-void Simulation::compute_forces() {
+void Simulation::compute_forces(ScratchState scratch) {
   const auto t0 = Clock::now();
   // The contacts are recorded when an analysis uses them: the collision statistics every step,
   // the continuum averages on their sampled steps (Simulation::step sets record_.enabled).
   stats_ = compute_contact_forces(p_, *nl_, *table_, dt_, nc_,
-                                  collisions_ || continuum_ ? &record_ : nullptr);
+                                  collisions_ || continuum_ ? &record_ : nullptr, scratch);
   t_contacts_ += seconds_since(t0);
   e_dsp_ += stats_.spring_losses;
 }
@@ -330,63 +331,81 @@ void Simulation::step() {
     wz[i] += h * fc[5] * ii;
   };
   const bool any_periodic = box.periodic[0] || box.periodic[1] || box.periodic[2];
-  // First half kick and drift; Wrap: periodic axes (centres kept inside [lo, hi)).
+  // First half kick and drift; Wrap: periodic axes (centres kept inside [lo, hi)). In the same
+  // pass, while the particle is in the cache: the contact loop's view of it is packed and its
+  // sums zeroed (the kick has read the last forces), and its displacement since the last list
+  // build tested (one parallel loop per step instead of three).
   const bool threaded = threaded_particles(n);
+  const NeighbourList& list = *nl_;
+  const bool tracked = list.built_for(n);
+  // Returns whether a particle moved more than skin/2 since the last list build.
   const auto kick_drift = [&]<bool Gas, bool Field, bool Wrap>() {
-    parallel_for(n, threaded, [&](std::size_t i) {
+    return parallel_any(n, threaded, [&](std::size_t i) {
       kick.template operator()<Gas, Field>(i);
       x[i] += dt * vx[i];
       y[i] += dt * vy[i];
       z[i] += dt * vz[i];
       if constexpr (Wrap) {
-        if (box.periodic[0]) x[i] -= box.length(0) * std::floor((x[i] - box.lo[0]) / box.length(0));
-        if (box.periodic[1]) y[i] -= box.length(1) * std::floor((y[i] - box.lo[1]) / box.length(1));
-        if (box.periodic[2]) z[i] -= box.length(2) * std::floor((z[i] - box.lo[2]) / box.length(2));
+        auto wrap = [&box](double& c, int a) {
+          c -= box.length(a) * floor_integer((c - box.lo[a]) / box.length(a));
+        };
+        if (box.periodic[0]) wrap(x[i], 0);
+        if (box.periodic[1]) wrap(y[i], 1);
+        if (box.periodic[2]) wrap(z[i], 2);
       }
+      nc_.pack(p_, i);
+      return tracked && list.moved_far(i, x[i], y[i], z[i]);
     });
   };
-  // The second half kick, after the forces.
+  // The second half kick, after the forces, and in the same pass the work of the
+  // non-conservative contact forces with the full-step velocities: with velocity Verlet the
+  // force computed at t+dt acts with mean velocity v(t+dt) over [t+dt/2, t+3dt/2].
   const auto second_kick = [&]<bool Gas, bool Field>() {
-    parallel_for(n, threaded, [&](std::size_t i) { kick.template operator()<Gas, Field>(i); });
+    return nc_.dissipated_after(
+        p_, dt, [&](std::size_t i) __attribute__((always_inline)) {
+          kick.template operator()<Gas, Field>(i);
+        });
   };
   const bool with_gas = gfx != nullptr, with_field = body != nullptr;
   auto t0 = Clock::now();
+  bool moved_far;
   if (with_gas && !with_field && !any_periodic)
-    kick_drift.template operator()<true, false, false>();
+    moved_far = kick_drift.template operator()<true, false, false>();
   else if (!with_gas && !with_field && !any_periodic)
-    kick_drift.template operator()<false, false, false>();
+    moved_far = kick_drift.template operator()<false, false, false>();
   else if (with_gas)
-    kick_drift.template operator()<true, true, true>();
+    moved_far = kick_drift.template operator()<true, true, true>();
   else
-    kick_drift.template operator()<false, true, true>();
+    moved_far = kick_drift.template operator()<false, true, true>();
   t_integration_ += seconds_since(t0);
 
   t0 = Clock::now();
-  if (nl_->needs_rebuild(p_)) {
+  // The view stays packed unless the particles are reordered.
+  ScratchState scratch = ScratchState::Packed;
+  if (!tracked || moved_far) {
     const int every = spec_.neighbour.sort_interval;
-    if (every > 0 && nl_->builds() % every == 0)
+    if (every > 0 && nl_->builds() % every == 0) {
       sort_and_rebuild();
-    else
+      scratch = ScratchState::Stale;
+    } else {
       nl_->build(p_);
+    }
   }
   t_neighbour_ += seconds_since(t0);
 
   // The contacts are recorded on the steps whose contacts an analysis uses.
   record_.enabled = collisions_ != nullptr || continuum_samples_next_step();
-  compute_forces();
+  compute_forces(scratch);
 
   t0 = Clock::now();
   if (with_gas && !with_field)
-    second_kick.template operator()<true, false>();
+    e_dsp_ += second_kick.template operator()<true, false>();
   else if (!with_gas && !with_field)
-    second_kick.template operator()<false, false>();
+    e_dsp_ += second_kick.template operator()<false, false>();
   else if (with_gas)
-    second_kick.template operator()<true, true>();
+    e_dsp_ += second_kick.template operator()<true, true>();
   else
-    second_kick.template operator()<false, true>();
-  // Work of the non-conservative contact forces with the full-step velocities: with velocity
-  // Verlet the force computed at t+dt acts with mean velocity v(t+dt) over [t+dt/2, t+3dt/2].
-  e_dsp_ += nc_.dissipated(p_, dt_);
+    e_dsp_ += second_kick.template operator()<false, true>();
   t_integration_ += seconds_since(t0);
   if (continuum_ && continuum_samples_next_step()) // positions and contacts of this step,
     continuum_->accumulate(p_, record_.samples);   // full-step velocities

@@ -151,7 +151,7 @@ public:
 
 private:
   Simulation(CaseSpec spec, const ParticleStore* initial);
-  void compute_forces();
+  void compute_forces(ScratchState scratch = ScratchState::Stale);
   /// v += h a(x) for every particle: the `[body_force]` field at its position (none: no-op).
   void body_force_kick(double h);
   void step();

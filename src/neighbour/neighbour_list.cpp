@@ -23,15 +23,9 @@ NeighbourList::NeighbourList(const BoxGeometry& box, double skin, int history_wi
 
 bool NeighbourList::needs_rebuild(const ParticleStore& p) const {
   const std::size_t n = p.size();
-  if (builds_ == 0 || x0_.size() != n) return true;
-  const double limit2 = 0.25 * skin_ * skin_;
+  if (!built_for(n)) return true;
   int moved = 0;
-  const auto far = [&](std::size_t i) {
-    const double dx = min_image(p.x[i] - x0_[i], 0);
-    const double dy = min_image(p.y[i] - y0_[i], 1);
-    const double dz = min_image(p.z[i] - z0_[i], 2);
-    return dx * dx + dy * dy + dz * dz > limit2;
-  };
+  const auto far = [&](std::size_t i) { return moved_far(i, p.x[i], p.y[i], p.z[i]); };
   if (threaded_particles(n)) {
 #pragma omp parallel for schedule(static) reduction(max : moved)
     for (std::size_t i = 0; i < n; ++i)

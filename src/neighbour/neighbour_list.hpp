@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/nearest_integer.hpp"
 #include "particles/particle_store.hpp"
 
 namespace fluidem {
@@ -31,6 +32,16 @@ public:
 
   /// True if some particle moved more than skin/2 since the last build (or never built).
   bool needs_rebuild(const ParticleStore& p) const;
+  /// Whether the list was built for a store of n particles: then needs_rebuild is the OR of
+  /// moved_far over the particles (which the integrator tests right after each drift).
+  bool built_for(std::size_t n) const { return builds_ > 0 && x0_.size() == n; }
+  /// Whether particle i, now at (x, y, z), moved more than skin/2 since the last build.
+  bool moved_far(std::size_t i, double x, double y, double z) const {
+    const double dx = min_image(x - x0_[i], 0);
+    const double dy = min_image(y - y0_[i], 1);
+    const double dz = min_image(z - z0_[i], 2);
+    return dx * dx + dy * dy + dz * dz > 0.25 * skin_ * skin_;
+  }
   /// Rebuild pair and wall lists; history of surviving contacts is kept. `new_to_old`: the
   /// store was reordered since the last build (new index k holds the particle that was at
   /// new_to_old[k], ParticleStore::permute); the previous list is renumbered through it before
@@ -65,7 +76,7 @@ public:
   double min_image(double d, int a) const {
     if (!box_.periodic[a]) return d;
     const double l = box_.length(a);
-    return d - l * std::nearbyint(d / l);
+    return d - l * nearest_integer(d / l);
   }
   const BoxGeometry& box() const { return box_; }
 
