@@ -194,13 +194,19 @@ FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* p
     for (int m = 0; m < HW; ++m) hist[m] = b.hist[m][k];
     const auto out = evaluate<Normal, Tangential, Rolling>(c, params[b.params[k]], hist, dt);
     for (int m = 0; m < HW; ++m) b.hist[m][k] = hist[m];
+    // Only the columns the model fills: without tangential or rolling forces their torques
+    // are zero, and the last pass does not read them (fewer stores and loads per contact).
     for (int a = 0; a < 3; ++a) {
       b.force[a][k] = out.force[a];
-      b.torque_unit[a][k] = out.torque_unit[a];
-      b.torque_roll[a][k] = out.torque_roll[a];
       b.nc_force[a][k] = out.nc_force[a];
-      b.nc_torque_unit[a][k] = out.nc_torque_unit[a];
-      b.nc_torque_roll[a][k] = out.nc_torque_roll[a];
+      if constexpr (Tangential) {
+        b.torque_unit[a][k] = out.torque_unit[a];
+        b.nc_torque_unit[a][k] = out.nc_torque_unit[a];
+      }
+      if constexpr (Rolling != RollingModel::None) {
+        b.torque_roll[a][k] = out.torque_roll[a];
+        b.nc_torque_roll[a][k] = out.nc_torque_roll[a];
+      }
       if constexpr (!Wall) b.normal[a][k] = c.n[a];
     }
     b.elastic[k] = out.elastic;
@@ -317,24 +323,36 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       const std::uint32_t i = b.i[k];
       const double ri = b.ri[k];
       const Vec3 f = b.get(b.force, k), ncf = b.get(b.nc_force, k);
-      const Vec3 tu = b.get(b.torque_unit, k), nctu = b.get(b.nc_torque_unit, k);
-      const Vec3 tr = b.get(b.torque_roll, k), nctr = b.get(b.nc_torque_roll, k);
+      // The torques: r (n x F_t) from the tangential force and the rolling torque, each only
+      // when the model has it (a zero torque adds nothing: the sums are bitwise the same).
+      Vec3 ti{}, nti{}, tj{}, ntj{}, tr{};
+      if constexpr (Tangential) {
+        const Vec3 tu = b.get(b.torque_unit, k), nctu = b.get(b.nc_torque_unit, k);
+        ti = tu * ri, nti = nctu * ri;
+        if constexpr (!wall) tj = tu * b.rj[k], ntj = nctu * b.rj[k];
+      }
+      if constexpr (Rolling != RollingModel::None) {
+        tr = b.get(b.torque_roll, k);
+        const Vec3 nctr = b.get(b.nc_torque_roll, k);
+        ti += tr, nti += nctr;
+        if constexpr (!wall) tj -= tr, ntj -= nctr;
+      }
       if constexpr (!wall) {
         double* aj = acc_f + ContactScratch::kAcc * b.j[k];
-        const Vec3 tj = tu * b.rj[k] - tr;
-        const Vec3 ntj = nctu * b.rj[k] - nctr;
         aj[0] -= f.x, aj[1] -= f.y, aj[2] -= f.z;
-        aj[3] += tj.x, aj[4] += tj.y, aj[5] += tj.z;
         aj[6] -= ncf.x, aj[7] -= ncf.y, aj[8] -= ncf.z;
-        aj[9] += ntj.x, aj[10] += ntj.y, aj[11] += ntj.z;
+        if constexpr (Tangential || Rolling != RollingModel::None) {
+          aj[3] += tj.x, aj[4] += tj.y, aj[5] += tj.z;
+          aj[9] += ntj.x, aj[10] += ntj.y, aj[11] += ntj.z;
+        }
       }
       double* ai = acc_f + ContactScratch::kAcc * i;
-      const Vec3 ti = tu * ri + tr;
-      const Vec3 nti = nctu * ri + nctr;
       ai[0] += f.x, ai[1] += f.y, ai[2] += f.z;
-      ai[3] += ti.x, ai[4] += ti.y, ai[5] += ti.z;
       ai[6] += ncf.x, ai[7] += ncf.y, ai[8] += ncf.z;
-      ai[9] += nti.x, ai[10] += nti.y, ai[11] += nti.z;
+      if constexpr (Tangential || Rolling != RollingModel::None) {
+        ai[3] += ti.x, ai[4] += ti.y, ai[5] += ti.z;
+        ai[9] += nti.x, ai[10] += nti.y, ai[11] += nti.z;
+      }
       double* hist = history + static_cast<std::size_t>(b.e[k]) * Batch::kHistory;
       for (int m = 0; m < Batch::kHistory; ++m) hist[m] = b.hist[m][k];
       elastic += b.elastic[k];
