@@ -164,7 +164,7 @@ FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* p
     const Vec3 dv{b.dv[0][k], b.dv[1][k], b.dv[2][k]};
     const Vec3 wi{b.wi[0][k], b.wi[1][k], b.wi[2][k]};
     ContactInput c;
-    c.inv_inertia_sum = b.inv_inertia_sum[k];
+    c.inv_inertia_sum = Rolling != RollingModel::None ? b.inv_inertia_sum[k] : 0.0; // rolling only
     if constexpr (Wall) {
       c.n = b.get(b.normal, k);
       c.fixed_normal = true;
@@ -300,7 +300,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       for (int a = 0; a < 3; ++a) b.wi[a][k] = pi[8 + a];
       if constexpr (wall) {
         for (int a = 0; a < 3; ++a) b.dv[a][k] = pi[4 + a];
-        b.inv_inertia_sum[k] = pi[11];
+        if constexpr (Rolling != RollingModel::None) b.inv_inertia_sum[k] = pi[11];
       } else {
         const double* pj = view + ContactScratch::kView * b.j[k];
         b.rj[k] = pj[3], b.mj[k] = pj[7];
@@ -308,7 +308,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
           b.dv[a][k] = pi[4 + a] - pj[4 + a];
           b.wj[a][k] = pj[8 + a];
         }
-        b.inv_inertia_sum[k] = pi[11] + pj[11];
+        if constexpr (Rolling != RollingModel::None) b.inv_inertia_sum[k] = pi[11] + pj[11];
       }
       const double* hist = history + static_cast<std::size_t>(b.e[k]) * Batch::kHistory;
       for (int m = 0; m < Batch::kHistory; ++m) b.hist[m][k] = hist[m];
