@@ -202,51 +202,66 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
 
   offset.assign(n + 1, 0);
   const bool threaded = threaded_particles(n);
-  const auto count_row = [&](std::size_t i) {
-    std::uint32_t count = 0;
-    for_each_partner(i, [&](std::uint32_t) { ++count; });
-    offset[i + 1] = count;
-  };
-  if (threaded) {
-#pragma omp parallel for schedule(dynamic, 256)
-    for (std::size_t i = 0; i < n; ++i) count_row(i);
-  } else {
-    for (std::size_t i = 0; i < n; ++i) count_row(i);
-  }
-  for (std::size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
-  partner.resize(offset[n]);
-  history.assign(static_cast<std::size_t>(offset[n]) * hw_, 0.0);
-  const auto fill_row = [&](std::size_t i) {
-    std::uint32_t k = offset[i];
-    for_each_partner(i, [&](std::uint32_t j) { partner[k++] = j; });
-    // Deterministic order within a row: ascending partner index.
-    std::sort(partner.begin() + offset[i], partner.begin() + offset[i + 1]);
-    if (carry && hw_ > 0) {
-      // The pair may have been owned by either particle: the history is antisymmetric (it is
-      // seen from the owner), so a pair found under its partner's old row is negated.
-      for (std::uint32_t e = offset[i]; e < offset[i + 1]; ++e) {
-        const std::uint32_t j = partner[e];
-        double* dst = &history[static_cast<std::size_t>(e) * hw_];
-        bool found = false;
-        for (std::uint32_t o = old_offset_[i]; o < old_offset_[i + 1] && !found; ++o) {
-          if (old_partner_[o] != j) continue;
-          std::copy_n(&old_history_[static_cast<std::size_t>(o) * hw_], hw_, dst);
-          found = true;
-        }
-        for (std::uint32_t o = old_offset_[j]; o < old_offset_[j + 1] && !found; ++o) {
-          if (old_partner_[o] != i) continue;
-          const double* src = &old_history_[static_cast<std::size_t>(o) * hw_];
-          for (int h = 0; h < hw_; ++h) dst[h] = -src[h];
-          found = true;
-        }
+  // The history of row i's pairs from the previous list.
+  const auto carry_row = [&](std::size_t i) {
+    if (!carry || hw_ == 0) return;
+    // The pair may have been owned by either particle: the history is antisymmetric (it is
+    // seen from the owner), so a pair found under its partner's old row is negated.
+    for (std::uint32_t e = offset[i]; e < offset[i + 1]; ++e) {
+      const std::uint32_t j = partner[e];
+      double* dst = &history[static_cast<std::size_t>(e) * hw_];
+      bool found = false;
+      for (std::uint32_t o = old_offset_[i]; o < old_offset_[i + 1] && !found; ++o) {
+        if (old_partner_[o] != j) continue;
+        std::copy_n(&old_history_[static_cast<std::size_t>(o) * hw_], hw_, dst);
+        found = true;
+      }
+      for (std::uint32_t o = old_offset_[j]; o < old_offset_[j + 1] && !found; ++o) {
+        if (old_partner_[o] != i) continue;
+        const double* src = &old_history_[static_cast<std::size_t>(o) * hw_];
+        for (int h = 0; h < hw_; ++h) dst[h] = -src[h];
+        found = true;
       }
     }
   };
+  // Deterministic order within a row: ascending partner index.
+  const auto sort_row = [&](std::size_t i) {
+    std::sort(partner.begin() + offset[i], partner.begin() + offset[i + 1]);
+  };
   if (threaded) {
+    // Rows counted, then filled, each in parallel.
+    const auto count_row = [&](std::size_t i) {
+      std::uint32_t count = 0;
+      for_each_partner(i, [&](std::uint32_t) { ++count; });
+      offset[i + 1] = count;
+    };
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) count_row(i);
+    for (std::size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
+    partner.resize(offset[n]);
+    history.assign(static_cast<std::size_t>(offset[n]) * hw_, 0.0);
+    const auto fill_row = [&](std::size_t i) {
+      std::uint32_t k = offset[i];
+      for_each_partner(i, [&](std::uint32_t j) { partner[k++] = j; });
+      sort_row(i);
+      carry_row(i);
+    };
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) fill_row(i);
   } else {
-    for (std::size_t i = 0; i < n; ++i) fill_row(i);
+    // One thread: one walk over the cells, the rows appended in order (the same list).
+    partner.clear();
+    partner.reserve(old_partner_.size() + old_partner_.size() / 8 + 64);
+    for (std::size_t i = 0; i < n; ++i) {
+      offset[i] = static_cast<std::uint32_t>(partner.size());
+      for_each_partner(i, [&](std::uint32_t j) { partner.push_back(j); });
+    }
+    offset[n] = static_cast<std::uint32_t>(partner.size());
+    history.assign(static_cast<std::size_t>(offset[n]) * hw_, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      sort_row(i);
+      carry_row(i);
+    }
   }
 
   // Wall entries: counted, then filled (the arrays get their exact size).
