@@ -33,7 +33,7 @@ struct ContactScratch {
   static constexpr std::size_t kAcc = 12;  ///< f | t | f_nc | t_nc
   std::vector<double> view, acc;
   std::vector<ContactStats> slab_stats, wall_stats; ///< per slab / wall chunk, summed in order
-  std::vector<double> chunk_sums;                   ///< dissipated(): per chunk of particles
+  std::vector<double> chunk_sums;                   ///< dissipated_after(): per chunk of particles
   /// Pack the view from p and zero the sums.
   void reset(const ParticleStore& p);
   /// reset() for particle i alone (the view and sums must be sized for p): the integrator packs
@@ -65,12 +65,9 @@ struct ContactScratch {
     const double* a = acc.data() + kAcc * i;
     return {a[3], a[4], a[5]};
   }
-  /// -sum (F_nc.v + T_nc.w) dt: energy dissipated over a step of length dt, J.
-  double dissipated(const ParticleStore& p, double dt) {
-    return dissipated_after(p, dt, [](std::size_t) {});
-  }
-  /// before(i) for every particle i (e.g. the integrator's last half kick), each followed by
-  /// its term of dissipated() with the velocities before(i) left: one pass over the particles.
+  /// before(i) for every particle i (the integrator's last half kick), each followed by its
+  /// term of -sum (F_nc.v + T_nc.w) dt with the velocities before(i) left: the energy the
+  /// contacts dissipated over a step of length dt, J, in one pass over the particles.
   /// Fixed chunks of particles, each summed in particle order, the chunks in chunk order: the
   /// same sum with any number of threads; small enough to share out evenly between the threads.
   template <class Before>
