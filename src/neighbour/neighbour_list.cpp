@@ -24,17 +24,8 @@ NeighbourList::NeighbourList(const BoxGeometry& box, double skin, int history_wi
 bool NeighbourList::needs_rebuild(const ParticleStore& p) const {
   const std::size_t n = p.size();
   if (!built_for(n)) return true;
-  int moved = 0;
-  const auto far = [&](std::size_t i) { return moved_far(i, p.x[i], p.y[i], p.z[i]); };
-  if (threaded_particles(n)) {
-#pragma omp parallel for schedule(static) reduction(max : moved)
-    for (std::size_t i = 0; i < n; ++i)
-      if (far(i)) moved = 1;
-  } else {
-    for (std::size_t i = 0; i < n; ++i)
-      if (far(i)) moved = 1;
-  }
-  return moved != 0;
+  return parallel_any(n, threaded_particles(n),
+                      [&](std::size_t i) { return moved_far(i, p.x[i], p.y[i], p.z[i]); });
 }
 
 void NeighbourList::build_cells(const ParticleStore& p, double cell_size) {
