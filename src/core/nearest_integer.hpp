@@ -20,4 +20,9 @@ inline double floor_integer(double q) {
   return r > q ? r - 1.0 : r;
 }
 
+/// Coordinate c moved by a whole number of periods l into [lo, lo + l) (a periodic axis).
+inline double wrapped(double c, double lo, double l) {
+  return c - l * floor_integer((c - lo) / l);
+}
+
 } // namespace fluidem

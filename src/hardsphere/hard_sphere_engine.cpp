@@ -445,8 +445,7 @@ void HardSphereEngine::finish_step(ParticleStore& p) {
       advance_particle(k, t_end_ - k.t);
       double* q[3] = {&k.x, &k.y, &k.z};
       for (int ax = 0; ax < 3; ++ax)
-        if (box.periodic[ax])
-          *q[ax] -= box.length(ax) * std::floor((*q[ax] - box.lo[ax]) / box.length(ax));
+        if (box.periodic[ax]) *q[ax] = wrapped(*q[ax], box.lo[ax], box.length(ax));
       p.x[i] = k.x, p.y[i] = k.y, p.z[i] = k.z;
       p.vx[i] = k.vx, p.vy[i] = k.vy, p.vz[i] = k.vz;
     }

@@ -346,12 +346,9 @@ void Simulation::step() {
       y[i] += dt * vy[i];
       z[i] += dt * vz[i];
       if constexpr (Wrap) {
-        auto wrap = [&box](double& c, int a) {
-          c -= box.length(a) * floor_integer((c - box.lo[a]) / box.length(a));
-        };
-        if (box.periodic[0]) wrap(x[i], 0);
-        if (box.periodic[1]) wrap(y[i], 1);
-        if (box.periodic[2]) wrap(z[i], 2);
+        if (box.periodic[0]) x[i] = wrapped(x[i], box.lo[0], box.length(0));
+        if (box.periodic[1]) y[i] = wrapped(y[i], box.lo[1], box.length(1));
+        if (box.periodic[2]) z[i] = wrapped(z[i], box.lo[2], box.length(2));
       }
       nc_.pack(p_, i);
       return tracked && list.moved_far(i, x[i], y[i], z[i]);

@@ -55,5 +55,14 @@ TEST(NearestInteger, FloorIntegerIsFloor) {
   for (const double q : samples()) ASSERT_EQ(floor_integer(q), std::floor(q)) << q;
 }
 
+// wrapped() is the periodic wrap c - l floor((c - lo) / l) of the integrators, bit for bit.
+TEST(NearestInteger, WrappedIsTheFloorWrap) {
+  const double lo = -0.013, l = 0.15;
+  for (const double q : samples()) {
+    const double c = lo + q * l;
+    ASSERT_EQ(wrapped(c, lo, l), c - l * std::floor((c - lo) / l)) << c;
+  }
+}
+
 } // namespace
 } // namespace fluidem
