@@ -288,6 +288,11 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // accumulator, the statistics, the history back into the list, the samples.
   // `wall` is a std::bool_constant: each kind of contact gets its own copy, without a branch
   // per contact on the kind.
+  const auto& box = nl.box();
+  const double wall_lo[3] = {box.lo[0], box.lo[1], box.lo[2]};
+  const double wall_hi[3] = {box.hi[0], box.hi[1], box.hi[2]};
+  const std::uint8_t* const wall_face_of = nl.wall_face.data();
+  const int* const species_of = p.species.data();
   auto flush = [&, view, acc_f](Batch& b, auto wall_kind, ContactStats& acc,
                                 std::vector<ContactSample>* buf) {
     constexpr bool wall = decltype(wall_kind)::value;
@@ -303,6 +308,17 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       if constexpr (wall) {
         for (int a = 0; a < 3; ++a) b.dv[a][k] = pi[4 + a];
         if constexpr (Rolling != RollingModel::None) b.inv_inertia_sum[k] = pi[11];
+        // The wall's normal, overlap and gap, here for the touching entries only (the walk
+        // tests the gap of every entry).
+        const int f = wall_face_of[b.e[k]];
+        const int a = f / 2;
+        const bool lo_face = (f % 2 == 0);
+        const double gap = lo_face ? pi[a] - wall_lo[a] : wall_hi[a] - pi[a];
+        b.params[k] = species_of[b.i[k]] * 6 + f;
+        for (int c = 0; c < 3; ++c) b.normal[c][k] = 0.0;
+        b.normal[a][k] = lo_face ? -1.0 : 1.0; // from the particle towards the wall
+        b.overlap[k] = pi[3] - gap;
+        b.wall_gap[k] = gap;
       } else {
         const double* pj = view + ContactScratch::kView * b.j[k];
         b.rj[k] = pj[3], b.mj[k] = pj[7];
@@ -470,7 +486,6 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // particle), so the chunks run in parallel without races; each keeps its own statistics and
   // samples, joined in chunk order: the result does not depend on the number of threads. The
   // chunks are small enough to share out evenly (2048 entries gave one thread 3 of 5 chunks).
-  const auto& box = nl.box();
   // Pass 1 for the wall entries [e_begin, e_end), as for a row of pairs.
   auto gather_walls = [&](std::size_t e_begin, std::size_t e_end, Batch& b, ContactStats& acc,
                           std::vector<ContactSample>* buf) {
@@ -480,8 +495,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     const int* const spec = p.species.data();
     double* const hist_base = nl.wall_history.data();
     const double* const v = view;
-    const double lo[3] = {box.lo[0], box.lo[1], box.lo[2]};
-    const double hi[3] = {box.hi[0], box.hi[1], box.hi[2]};
+    const double lo[3] = {wall_lo[0], wall_lo[1], wall_lo[2]};
+    const double hi[3] = {wall_hi[0], wall_hi[1], wall_hi[2]};
     int k = b.n;
     for (std::size_t e = e_begin; e < e_end; ++e) {
       const std::uint32_t i = wall_particle[e];
@@ -492,16 +507,12 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       const double ri = pi[3];
       const double gap = lo_face ? pi[a] - lo[a] : hi[a] - pi[a];
       const bool touching = gap < ri;
+      // The entry and its particle (the flush gathers the rest for the touching ones).
       b.i[k] = i, b.e[k] = static_cast<std::uint32_t>(e);
-      b.params[k] = spec[i] * 6 + f;
-      for (int c = 0; c < 3; ++c) b.normal[c][k] = 0.0;
-      b.normal[a][k] = lo_face ? -1.0 : 1.0; // from the particle towards the wall
-      b.overlap[k] = ri - gap;
-      b.wall_gap[k] = gap;
       if constexpr (hw > 0) {
         double* hist = hist_base + e * hw;
         if (just_ended(hist, touching)) [[unlikely]]
-          release(acc, hist, wall_params[b.params[k]], ri);
+          release(acc, hist, wall_params[spec[i] * 6 + f], ri);
       }
       keep(b, k, touching, kWalls, acc, buf);
     }
