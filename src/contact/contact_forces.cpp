@@ -321,6 +321,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
         b.wall_gap[k] = gap;
       } else {
         const double* pj = view + ContactScratch::kView * b.j[k];
+        b.params[k] = species_of[b.i[k]] * n_species + species_of[b.j[k]];
         b.rj[k] = pj[3], b.mj[k] = pj[7];
         for (int a = 0; a < 3; ++a) {
           b.dv[a][k] = pi[4 + a] - pj[4 + a];
@@ -469,13 +470,13 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       const double rj = pj[3];
       const double rsum = ri + rj;
       const bool touching = dx * dx + dy * dy + dz * dz < rsum * rsum;
+      // The pair, its entry and separation (the flush gathers the rest for the touching ones).
       b.i[k] = static_cast<std::uint32_t>(i), b.j[k] = j, b.e[k] = e;
-      b.params[k] = si_row + spec[j];
       b.d[0][k] = dx, b.d[1][k] = dy, b.d[2][k] = dz;
       if constexpr (hw > 0) {
         double* hist = hist_base + static_cast<std::size_t>(e) * hw;
         if (just_ended(hist, touching)) [[unlikely]]
-          release(acc, hist, pair_params[b.params[k]], ri * rj / rsum);
+          release(acc, hist, pair_params[si_row + spec[j]], ri * rj / rsum);
       }
       keep(b, k, touching, kPairs, acc, buf);
     }
