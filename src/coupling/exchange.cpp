@@ -139,6 +139,7 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const bool model_a = gs.settings().model == gas::PressureModel::A;
   const Vec3 grav = gs.settings().gravity;
   const bool stencils = c.porosity.method != PorosityMethod::porous_cube;
+  const std::array<bool, 3> periodic = periodic_axes(gs);
   out.face_stencils.resize(stencils ? 3 * n : 0);
   if (stencils) face_pressure_differences(gs, out.face_dp);
   drag::with_drag_closure(c.drag, [&](auto closure) {
@@ -154,12 +155,15 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
           Vec3 u, gp;
           if (stencils) { // [Hoomans96 eq. 40-41], the stencils kept for the rest of the step
             Stencil* st = &out.face_stencils[3 * i];
-            face_stencils(gs.grid(), x, st);
+            Stencil cell; // the cell centres' (ParticleMapping::porosity_and_density's)
+            face_and_cell_stencils(gs.grid(), x, periodic, st, cell);
             velocity_and_pressure_gradient_on(gs, out.face_dp, st, u, gp);
+            in.eps = interpolate(cell, gs.porosity());
+            in.rho = interpolate(cell, gs.density());
           } else {
             map.velocity_and_pressure_gradient(x, in.d, u, gp);
+            map.porosity_and_density(x, in.d, in.eps, in.rho);
           }
-          map.porosity_and_density(x, in.d, in.eps, in.rho);
           in.mu = mu;
           in.d_mean = c.d_mean;
           const Vec3 v = p.velocity(i);

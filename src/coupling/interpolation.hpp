@@ -33,6 +33,10 @@ void face_stencils(const gas::GasGrid& g, const Vec3& x, Stencil* out);
 /// Stencil of the cell centres at point x: interior centres along walled axes (clamped, zero
 /// gradient at the boundary), ghost centres (periodic images) included along periodic axes.
 Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool, 3>& periodic);
+/// face_stencils(g, x, faces) and cell_stencil(g, x, periodic) into cell, bitwise the same,
+/// the axis positions shared between them.
+void face_and_cell_stencils(const gas::GasGrid& g, const Vec3& x,
+                            const std::array<bool, 3>& periodic, Stencil* faces, Stencil& cell);
 
 /// The node a periodic ghost or copy node stands for: grid index q of component d (faces normal
 /// to d; -1: cell centres) with every index along a periodic axis wrapped into the unknowns
