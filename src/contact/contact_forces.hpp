@@ -2,6 +2,8 @@
 // contacts, composed from the sub-models named in the case (normal x tangential x rolling).
 // The model choice is resolved once into a template instantiation: no virtual call per contact.
 #pragma once
+#include <array>
+
 #include "contact/contact_record.hpp"
 #include "contact/contact_table.hpp"
 #include "core/parallel.hpp"
@@ -40,10 +42,14 @@ struct ContactScratch {
   /// each particle right after its drift, while its data are in the cache, instead of in a
   /// second pass over all of them.
   void pack(const ParticleStore& p, std::size_t i) {
+    pack(i, {p.x[i], p.y[i], p.z[i], p.radius[i], p.vx[i], p.vy[i], p.vz[i], p.mass[i], p.wx[i],
+             p.wy[i], p.wz[i], p.inv_inertia[i]});
+  }
+  /// pack() with particle i's values given (x y z r | vx vy vz m | wx wy wz 1/I), as the
+  /// integrator has them in registers after its kick and drift.
+  [[gnu::always_inline]] void pack(std::size_t i, const std::array<double, kView>& v) {
     double* vi = view.data() + kView * i;
-    vi[0] = p.x[i], vi[1] = p.y[i], vi[2] = p.z[i], vi[3] = p.radius[i];
-    vi[4] = p.vx[i], vi[5] = p.vy[i], vi[6] = p.vz[i], vi[7] = p.mass[i];
-    vi[8] = p.wx[i], vi[9] = p.wy[i], vi[10] = p.wz[i], vi[11] = p.inv_inertia[i];
+    for (std::size_t k = 0; k < kView; ++k) vi[k] = v[k];
     double* ai = acc.data() + kAcc * i;
     // Twelve stores of a double, not a loop: GCC turns a zeroing loop into memset, which may
     // alias anything, and the integrator's loop then reloads every array pointer per particle.

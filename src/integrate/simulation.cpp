@@ -309,6 +309,7 @@ void Simulation::step() {
   double *const vx = p_.vx.data(), *const vy = p_.vy.data(), *const vz = p_.vz.data();
   double *const wx = p_.wx.data(), *const wy = p_.wy.data(), *const wz = p_.wz.data();
   const double *const inv_m = p_.inv_mass.data(), *const inv_i = p_.inv_inertia.data();
+  const double *const radius = p_.radius.data(), *const mass = p_.mass.data();
   const double dt = dt_;
   // Gas: with gas forces; Field: a body force field may be there (tested per particle).
   const auto kick = [&]<bool Gas, bool Field>(std::size_t i) __attribute__((always_inline)) {
@@ -323,12 +324,13 @@ void Simulation::step() {
         a[0] += b[0], a[1] += b[1], a[2] += b[2];
       }
     }
-    vx[i] += h * (fx * im + a[0]);
-    vy[i] += h * (fy * im + a[1]);
-    vz[i] += h * (fz * im + a[2]);
-    wx[i] += h * fc[3] * ii;
-    wy[i] += h * fc[4] * ii;
-    wz[i] += h * fc[5] * ii;
+    // The new velocities also returned (the drift and the packing use them from registers).
+    const std::array<double, 6> v{vx[i] + h * (fx * im + a[0]), vy[i] + h * (fy * im + a[1]),
+                                  vz[i] + h * (fz * im + a[2]), wx[i] + h * fc[3] * ii,
+                                  wy[i] + h * fc[4] * ii,       wz[i] + h * fc[5] * ii};
+    vx[i] = v[0], vy[i] = v[1], vz[i] = v[2];
+    wx[i] = v[3], wy[i] = v[4], wz[i] = v[5];
+    return v;
   };
   const bool any_periodic = box.periodic[0] || box.periodic[1] || box.periodic[2];
   // First half kick and drift; Wrap: periodic axes (centres kept inside [lo, hi)). In the same
@@ -341,17 +343,16 @@ void Simulation::step() {
   // Returns whether a particle moved more than skin/2 since the last list build.
   const auto kick_drift = [&]<bool Gas, bool Field, bool Wrap>() {
     return parallel_any(n, threaded, [&](std::size_t i) {
-      kick.template operator()<Gas, Field>(i);
-      x[i] += dt * vx[i];
-      y[i] += dt * vy[i];
-      z[i] += dt * vz[i];
+      const std::array<double, 6> v = kick.template operator()<Gas, Field>(i);
+      double xi = x[i] + dt * v[0], yi = y[i] + dt * v[1], zi = z[i] + dt * v[2];
       if constexpr (Wrap) {
-        if (box.periodic[0]) x[i] = wrapped(x[i], box.lo[0], box.length(0));
-        if (box.periodic[1]) y[i] = wrapped(y[i], box.lo[1], box.length(1));
-        if (box.periodic[2]) z[i] = wrapped(z[i], box.lo[2], box.length(2));
+        if (box.periodic[0]) xi = wrapped(xi, box.lo[0], box.length(0));
+        if (box.periodic[1]) yi = wrapped(yi, box.lo[1], box.length(1));
+        if (box.periodic[2]) zi = wrapped(zi, box.lo[2], box.length(2));
       }
-      nc_.pack(p_, i);
-      return tracked && list.moved_far(i, x[i], y[i], z[i]);
+      x[i] = xi, y[i] = yi, z[i] = zi;
+      nc_.pack(i, {xi, yi, zi, radius[i], v[0], v[1], v[2], mass[i], v[3], v[4], v[5], inv_i[i]});
+      return tracked && list.moved_far(i, xi, yi, zi);
     });
   };
   // The second half kick, after the forces, and in the same pass the work of the
