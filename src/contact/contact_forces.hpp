@@ -71,9 +71,10 @@ struct ContactScratch {
     const double* a = acc.data() + kAcc * i;
     return {a[3], a[4], a[5]};
   }
-  /// before(i) for every particle i (the integrator's last half kick), each followed by its
-  /// term of -sum (F_nc.v + T_nc.w) dt with the velocities before(i) left: the energy the
-  /// contacts dissipated over a step of length dt, J, in one pass over the particles.
+  /// before(i) for every particle i (the integrator's last half kick, returning the particle's
+  /// new velocity and angular velocity), each followed by its term of -sum (F_nc.v + T_nc.w) dt
+  /// with those velocities: the energy the contacts dissipated over a step of length dt, J, in
+  /// one pass over the particles.
   /// Fixed chunks of particles, each summed in particle order, the chunks in chunk order: the
   /// same sum with any number of threads; small enough to share out evenly between the threads.
   template <class Before>
@@ -83,17 +84,15 @@ struct ContactScratch {
     const std::size_t nchunk = (n + kChunk - 1) / kChunk;
     chunk_sums.resize(nchunk); // kept between steps
     const double* a = acc.data();
-    const double *vx = p.vx.data(), *vy = p.vy.data(), *vz = p.vz.data();
-    const double *wx = p.wx.data(), *wy = p.wy.data(), *wz = p.wz.data();
     double* sums = chunk_sums.data();
     parallel_for(nchunk, threaded_particles(n), [&](std::size_t c) {
       double w = 0.0;
       const std::size_t end = std::min(n, (c + 1) * kChunk);
       for (std::size_t i = c * kChunk; i < end; ++i) {
-        before(i);
+        const std::array<double, 6> v = before(i); // vx vy vz wx wy wz
         const double* nci = a + kAcc * i + 6;
-        w += nci[0] * vx[i] + nci[1] * vy[i] + nci[2] * vz[i];
-        w += nci[3] * wx[i] + nci[4] * wy[i] + nci[5] * wz[i];
+        w += nci[0] * v[0] + nci[1] * v[1] + nci[2] * v[2];
+        w += nci[3] * v[3] + nci[4] * v[4] + nci[5] * v[5];
       }
       sums[c] = w;
     });

@@ -361,7 +361,7 @@ void Simulation::step() {
   const auto second_kick = [&]<bool Gas, bool Field>() {
     return nc_.dissipated_after(
         p_, dt, [&](std::size_t i) __attribute__((always_inline)) {
-          kick.template operator()<Gas, Field>(i);
+          return kick.template operator()<Gas, Field>(i);
         });
   };
   const bool with_gas = gfx != nullptr, with_field = body != nullptr;
