@@ -35,7 +35,8 @@ struct ContactScratch {
   static constexpr std::size_t kAcc = 12;  ///< f | t | f_nc | t_nc
   std::vector<double> view, acc;
   std::vector<ContactStats> slab_stats, wall_stats; ///< per slab / wall chunk, summed in order
-  std::vector<double> chunk_sums;                   ///< dissipated_after(): per chunk of particles
+  std::vector<double> chunk_sums;                   ///< dissipation_sum(): per chunk of particles
+  std::vector<unsigned char> chunk_flags;           ///< dissipation_sum(): per chunk
   /// Pack the view from p and zero the sums.
   void reset(const ParticleStore& p);
   /// reset() for particle i alone (the view and sums must be sized for p): the integrator packs
@@ -75,29 +76,59 @@ struct ContactScratch {
   /// new velocity and angular velocity), each followed by its term of -sum (F_nc.v + T_nc.w) dt
   /// with those velocities: the energy the contacts dissipated over a step of length dt, J, in
   /// one pass over the particles.
-  /// Fixed chunks of particles, each summed in particle order, the chunks in chunk order: the
-  /// same sum with any number of threads; small enough to share out evenly between the threads.
   template <class Before>
   double dissipated_after(const ParticleStore& p, double dt, Before&& before) {
+    bool any = false;
+    return dissipation_sum(
+        p.size(), dt,
+        [&](std::size_t i) __attribute__((always_inline)) {
+          const std::array<double, 6> v = before(i); // vx vy vz wx wy wz
+          const std::array<double, 2> t = dissipation_terms(i, v);
+          return DissipationTerms{t[0], t[1], false};
+        },
+        any);
+  }
+  /// F_nc.v and T_nc.w of particle i with velocities v (vx vy vz wx wy wz).
+  [[gnu::always_inline]] std::array<double, 2>
+  dissipation_terms(std::size_t i, const std::array<double, 6>& v) const {
+    const double* nci = acc.data() + kAcc * i + 6;
+    return {nci[0] * v[0] + nci[1] * v[1] + nci[2] * v[2],
+            nci[3] * v[3] + nci[4] * v[4] + nci[5] * v[5]};
+  }
+  /// A particle's two dissipation terms, and a flag (dissipation_sum).
+  struct DissipationTerms {
+    double force, torque;
+    bool flag;
+  };
+  /// -dt sum over the particles i < n of term(i).force + term(i).torque: term(i) may do more
+  /// for particle i in the same pass (the integrator's kicks and drift) and report a flag, ORed
+  /// into `any`. Fixed chunks of particles, each summed in particle order, the chunks in chunk
+  /// order: the same sum with any number of threads; small enough to share out evenly between
+  /// the threads.
+  template <class Term>
+  double dissipation_sum(std::size_t n, double dt, Term&& term, bool& any) {
     constexpr std::size_t kChunk = 512;
-    const std::size_t n = p.size();
     const std::size_t nchunk = (n + kChunk - 1) / kChunk;
     chunk_sums.resize(nchunk); // kept between steps
-    const double* a = acc.data();
+    chunk_flags.resize(nchunk);
     double* sums = chunk_sums.data();
+    unsigned char* flags = chunk_flags.data();
     parallel_for(nchunk, threaded_particles(n), [&](std::size_t c) {
       double w = 0.0;
+      bool flag = false;
       const std::size_t end = std::min(n, (c + 1) * kChunk);
       for (std::size_t i = c * kChunk; i < end; ++i) {
-        const std::array<double, 6> v = before(i); // vx vy vz wx wy wz
-        const double* nci = a + kAcc * i + 6;
-        w += nci[0] * v[0] + nci[1] * v[1] + nci[2] * v[2];
-        w += nci[3] * v[3] + nci[4] * v[4] + nci[5] * v[5];
+        const DissipationTerms t = term(i);
+        w += t.force;
+        w += t.torque;
+        flag = t.flag || flag;
       }
       sums[c] = w;
+      flags[c] = flag;
     });
     double w = 0.0;
     for (std::size_t c = 0; c < nchunk; ++c) w += sums[c];
+    for (std::size_t c = 0; c < nchunk; ++c) any = any || flags[c] != 0;
     return -w * dt;
   }
   std::size_t bytes() const;

@@ -258,7 +258,49 @@ void Simulation::compute_forces(ScratchState scratch) {
   e_dsp_ += stats_.spring_losses;
 }
 
-void Simulation::step() {
+/// The half kick of a particle with the last force evaluation, dv = ((F + F_gas)/m + g + a(x))
+/// dt/2, dw = T/I dt/2; a(x) is the body force field at the particle's current position
+/// (velocity Verlet with a position-dependent force: x^n in the first half kick, x^{n+1} in the
+/// second). The contact forces and torques are in nc_ (ContactScratch): a step's first kick
+/// reads the previous step's, the second this step's.
+struct Simulation::Kick {
+  explicit Kick(const Simulation& s)
+      : contact(s.nc_.acc.data()), gfx(s.gas_ ? s.gas_->force(0).data() : nullptr),
+        gfy(s.gas_ ? s.gas_->force(1).data() : nullptr),
+        gfz(s.gas_ ? s.gas_->force(2).data() : nullptr),
+        body(s.spec_.body_force ? &*s.spec_.body_force : nullptr), x(s.p_.x.data()),
+        y(s.p_.y.data()), z(s.p_.z.data()), inv_m(s.p_.inv_mass.data()),
+        inv_i(s.p_.inv_inertia.data()), h(0.5 * s.dt_), gx(s.spec_.simulation.gravity[0]),
+        gy(s.spec_.simulation.gravity[1]), gz(s.spec_.simulation.gravity[2]) {}
+  bool with_gas() const { return gfx != nullptr; }
+  bool with_field() const { return body != nullptr; }
+  /// dv and dw of particle i (vx vy vz wx wy wz). Gas: with gas forces; Field: a body force
+  /// field may be there (tested per particle).
+  template <bool Gas, bool Field>
+  [[gnu::always_inline]] std::array<double, 6> increment(std::size_t i) const {
+    const double im = inv_m[i], ii = inv_i[i];
+    const double* fc = contact + ContactScratch::kAcc * i; // force | torque | ...
+    double fx = fc[0], fy = fc[1], fz = fc[2];
+    if constexpr (Gas) fx = fc[0] + gfx[i], fy = fc[1] + gfy[i], fz = fc[2] + gfz[i];
+    std::array<double, 3> a{gx, gy, gz};
+    if constexpr (Field) {
+      if (body) {
+        const auto b = body_acceleration(*body, x[i], y[i], z[i]);
+        a[0] += b[0], a[1] += b[1], a[2] += b[2];
+      }
+    }
+    return {h * (fx * im + a[0]), h * (fy * im + a[1]), h * (fz * im + a[2]),
+            h * fc[3] * ii,       h * fc[4] * ii,       h * fc[5] * ii};
+  }
+  const double* contact;
+  const double *gfx, *gfy, *gfz;
+  const BodyForceSpec* body;
+  const double *x, *y, *z;
+  const double *inv_m, *inv_i;
+  double h, gx, gy, gz;
+};
+
+void Simulation::step(bool defer_second_kick) {
   if (hard_) {
     if (gas_) { // [Hoomans96 Fig. 7]: flow step, then drag kick, then the collision sequence
       const auto tg = Clock::now();
@@ -281,57 +323,25 @@ void Simulation::step() {
     record_collisions();
     return;
   }
-  const std::size_t n = p_.size();
-  const double h = 0.5 * dt_;
-  const double gx = spec_.simulation.gravity[0], gy = spec_.simulation.gravity[1],
-               gz = spec_.simulation.gravity[2];
-  const auto& box = nl_->box();
   if (gas_ && step_ % steps_per_flow_ == 0) { // a flow step; its forces act over the next DT
+    finish_kick(); // the gas step reads the particles' full-step velocities
     const auto tg = Clock::now();
     gas_->step(p_, time_, dt_ * static_cast<double>(steps_per_flow_));
     t_gas_ += seconds_since(tg);
   }
-  const double* gfx = gas_ ? gas_->force(0).data() : nullptr;
-  const double* gfy = gas_ ? gas_->force(1).data() : nullptr;
-  const double* gfz = gas_ ? gas_->force(2).data() : nullptr;
-  const BodyForceSpec* body = spec_.body_force ? &*spec_.body_force : nullptr;
-  // Half kick of particle i: v += ((F + F_gas)/m + g + a(x)) dt/2, w += T/I dt/2; a(x) is the
-  // body force field at the particle's current position (velocity Verlet with a position-
-  // dependent force: x^n in the first half kick, x^{n+1} in the second).
-  // The contact forces and torques of the last force evaluation are in nc_ (ContactScratch):
-  // the step's first kick reads the previous step's, the second this step's.
+  const std::size_t n = p_.size();
+  const auto& box = nl_->box();
   if (nc_.acc.size() != ContactScratch::kAcc * n)
     throw std::logic_error("Simulation::step: the contact forces are not those of the particles");
-  const double* contact = nc_.acc.data();
+  const Kick kick(*this);
   // The particle arrays in locals (the stores below would otherwise make the compiler reload
   // dt_ and the array pointers of p_ for every particle).
   double *const x = p_.x.data(), *const y = p_.y.data(), *const z = p_.z.data();
   double *const vx = p_.vx.data(), *const vy = p_.vy.data(), *const vz = p_.vz.data();
   double *const wx = p_.wx.data(), *const wy = p_.wy.data(), *const wz = p_.wz.data();
-  const double *const inv_m = p_.inv_mass.data(), *const inv_i = p_.inv_inertia.data();
+  const double* const inv_i = p_.inv_inertia.data();
   const double *const radius = p_.radius.data(), *const mass = p_.mass.data();
   const double dt = dt_;
-  // Gas: with gas forces; Field: a body force field may be there (tested per particle).
-  const auto kick = [&]<bool Gas, bool Field>(std::size_t i) __attribute__((always_inline)) {
-    const double im = inv_m[i], ii = inv_i[i];
-    const double* fc = contact + ContactScratch::kAcc * i; // force | torque | ...
-    double fx = fc[0], fy = fc[1], fz = fc[2];
-    if constexpr (Gas) fx = fc[0] + gfx[i], fy = fc[1] + gfy[i], fz = fc[2] + gfz[i];
-    std::array<double, 3> a{gx, gy, gz};
-    if constexpr (Field) {
-      if (body) {
-        const auto b = body_acceleration(*body, x[i], y[i], z[i]);
-        a[0] += b[0], a[1] += b[1], a[2] += b[2];
-      }
-    }
-    // The new velocities also returned (the drift and the packing use them from registers).
-    const std::array<double, 6> v{vx[i] + h * (fx * im + a[0]), vy[i] + h * (fy * im + a[1]),
-                                  vz[i] + h * (fz * im + a[2]), wx[i] + h * fc[3] * ii,
-                                  wy[i] + h * fc[4] * ii,       wz[i] + h * fc[5] * ii};
-    vx[i] = v[0], vy[i] = v[1], vz[i] = v[2];
-    wx[i] = v[3], wy[i] = v[4], wz[i] = v[5];
-    return v;
-  };
   const bool any_periodic = box.periodic[0] || box.periodic[1] || box.periodic[2];
   // First half kick and drift; Wrap: periodic axes (centres kept inside [lo, hi)). In the same
   // pass, while the particle is in the cache: the contact loop's view of it is packed and its
@@ -340,31 +350,52 @@ void Simulation::step() {
   const bool threaded = threaded_particles(n);
   const NeighbourList& list = *nl_;
   const bool tracked = list.built_for(n);
-  // Returns whether a particle moved more than skin/2 since the last list build.
+  // Drift particle i with its new velocities v, store them, pack its view; returns whether it
+  // moved more than skin/2 since the last list build.
+  const auto drift = [&]<bool Wrap>(std::size_t i, const std::array<double, 6>& v)
+      __attribute__((always_inline)) {
+    vx[i] = v[0], vy[i] = v[1], vz[i] = v[2];
+    wx[i] = v[3], wy[i] = v[4], wz[i] = v[5];
+    double xi = x[i] + dt * v[0], yi = y[i] + dt * v[1], zi = z[i] + dt * v[2];
+    if constexpr (Wrap) {
+      if (box.periodic[0]) xi = wrapped(xi, box.lo[0], box.length(0));
+      if (box.periodic[1]) yi = wrapped(yi, box.lo[1], box.length(1));
+      if (box.periodic[2]) zi = wrapped(zi, box.lo[2], box.length(2));
+    }
+    x[i] = xi, y[i] = yi, z[i] = zi;
+    nc_.pack(i, {xi, yi, zi, radius[i], v[0], v[1], v[2], mass[i], v[3], v[4], v[5], inv_i[i]});
+    return tracked && list.moved_far(i, xi, yi, zi);
+  };
+  // A second half kick left pending by the last step (velocity Verlet: it and this step's
+  // first kick both apply the last force evaluation, so they are the same increment) runs in
+  // the same pass: v + dv, its dissipation term, + dv, drift; bitwise the operations of two
+  // passes, one pass over the particles fewer.
+  const bool fused = kick_pending_;
+  kick_pending_ = false;
   const auto kick_drift = [&]<bool Gas, bool Field, bool Wrap>() {
-    return parallel_any(n, threaded, [&](std::size_t i) {
-      const std::array<double, 6> v = kick.template operator()<Gas, Field>(i);
-      double xi = x[i] + dt * v[0], yi = y[i] + dt * v[1], zi = z[i] + dt * v[2];
-      if constexpr (Wrap) {
-        if (box.periodic[0]) xi = wrapped(xi, box.lo[0], box.length(0));
-        if (box.periodic[1]) yi = wrapped(yi, box.lo[1], box.length(1));
-        if (box.periodic[2]) zi = wrapped(zi, box.lo[2], box.length(2));
-      }
-      x[i] = xi, y[i] = yi, z[i] = zi;
-      nc_.pack(i, {xi, yi, zi, radius[i], v[0], v[1], v[2], mass[i], v[3], v[4], v[5], inv_i[i]});
-      return tracked && list.moved_far(i, xi, yi, zi);
-    });
+    if (!fused)
+      return parallel_any(n, threaded, [&](std::size_t i) {
+        const std::array<double, 6> dv = kick.increment<Gas, Field>(i);
+        return drift.template operator()<Wrap>(i, {vx[i] + dv[0], vy[i] + dv[1], vz[i] + dv[2],
+                                                   wx[i] + dv[3], wy[i] + dv[4], wz[i] + dv[5]});
+      });
+    bool any = false;
+    e_dsp_ += nc_.dissipation_sum(
+        n, dt,
+        [&](std::size_t i) __attribute__((always_inline)) {
+          const std::array<double, 6> dv = kick.increment<Gas, Field>(i);
+          const std::array<double, 6> v{vx[i] + dv[0], vy[i] + dv[1], vz[i] + dv[2],
+                                        wx[i] + dv[3], wy[i] + dv[4], wz[i] + dv[5]};
+          const std::array<double, 2> t = nc_.dissipation_terms(i, v); // before the packing
+          const bool far =
+              drift.template operator()<Wrap>(i, {v[0] + dv[0], v[1] + dv[1], v[2] + dv[2],
+                                                  v[3] + dv[3], v[4] + dv[4], v[5] + dv[5]});
+          return ContactScratch::DissipationTerms{t[0], t[1], far};
+        },
+        any);
+    return any;
   };
-  // The second half kick, after the forces, and in the same pass the work of the
-  // non-conservative contact forces with the full-step velocities: with velocity Verlet the
-  // force computed at t+dt acts with mean velocity v(t+dt) over [t+dt/2, t+3dt/2].
-  const auto second_kick = [&]<bool Gas, bool Field>() {
-    return nc_.dissipated_after(
-        p_, dt, [&](std::size_t i) __attribute__((always_inline)) {
-          return kick.template operator()<Gas, Field>(i);
-        });
-  };
-  const bool with_gas = gfx != nullptr, with_field = body != nullptr;
+  const bool with_gas = kick.with_gas(), with_field = kick.with_field();
   auto t0 = Clock::now();
   bool moved_far;
   if (with_gas && !with_field && !any_periodic)
@@ -392,10 +423,44 @@ void Simulation::step() {
   t_neighbour_ += seconds_since(t0);
 
   // The contacts are recorded on the steps whose contacts an analysis uses.
-  record_.enabled = collisions_ != nullptr || continuum_samples_next_step();
+  const bool sample_continuum = continuum_ && continuum_samples_next_step();
+  record_.enabled = collisions_ != nullptr || sample_continuum;
   compute_forces(scratch);
 
-  t0 = Clock::now();
+  // The second half kick, after the forces: left for the next step when the caller asks (it
+  // then reads no velocity before finish_kick()), else now. The continuum averages of this
+  // step take the full-step velocities.
+  kick_pending_ = true;
+  if (!defer_second_kick || sample_continuum) finish_kick();
+  if (sample_continuum) // positions and contacts of this step, full-step velocities
+    continuum_->accumulate(p_, record_.samples);
+  ++step_;
+  time_ = static_cast<double>(step_) * dt_;
+  record_collisions();
+}
+
+void Simulation::finish_kick() {
+  if (!kick_pending_) return;
+  kick_pending_ = false;
+  const auto t0 = Clock::now();
+  // The second half kick, and in the same pass the work of the non-conservative contact forces
+  // with the full-step velocities: with velocity Verlet the force computed at t+dt acts with
+  // mean velocity v(t+dt) over [t+dt/2, t+3dt/2].
+  const Kick kick(*this);
+  double *const vx = p_.vx.data(), *const vy = p_.vy.data(), *const vz = p_.vz.data();
+  double *const wx = p_.wx.data(), *const wy = p_.wy.data(), *const wz = p_.wz.data();
+  const auto second_kick = [&]<bool Gas, bool Field>() {
+    return nc_.dissipated_after(
+        p_, dt_, [&](std::size_t i) __attribute__((always_inline)) {
+          const std::array<double, 6> dv = kick.increment<Gas, Field>(i);
+          const std::array<double, 6> v{vx[i] + dv[0], vy[i] + dv[1], vz[i] + dv[2],
+                                        wx[i] + dv[3], wy[i] + dv[4], wz[i] + dv[5]};
+          vx[i] = v[0], vy[i] = v[1], vz[i] = v[2];
+          wx[i] = v[3], wy[i] = v[4], wz[i] = v[5];
+          return v;
+        });
+  };
+  const bool with_gas = kick.with_gas(), with_field = kick.with_field();
   if (with_gas && !with_field)
     e_dsp_ += second_kick.template operator()<true, false>();
   else if (!with_gas && !with_field)
@@ -405,11 +470,6 @@ void Simulation::step() {
   else
     e_dsp_ += second_kick.template operator()<false, true>();
   t_integration_ += seconds_since(t0);
-  if (continuum_ && continuum_samples_next_step()) // positions and contacts of this step,
-    continuum_->accumulate(p_, record_.samples);   // full-step velocities
-  ++step_;
-  time_ = static_cast<double>(step_) * dt_;
-  record_collisions();
 }
 
 void Simulation::sort_and_rebuild() {
@@ -461,7 +521,8 @@ double Simulation::bed_height() const {
   return fluidem::bed_height(p_, axis, floor, upward, spec_.simulation.dimension == 2);
 }
 
-void Simulation::check_stability() const {
+void Simulation::check_stability() {
+  finish_kick();
   const auto where = fmt::format("at t = {:.6g} s (step {})", time_, step_);
   const auto& box = nl_->box();
   for (std::size_t i = 0; i < p_.size(); ++i) {
@@ -496,7 +557,7 @@ void Simulation::check_stability() const {
 
 void Simulation::advance(long n) {
   for (long k = 0; k < n; ++k) {
-    step();
+    step(k + 1 < n); // the last step's second kick not deferred
     if (stats_.max_overlap_ratio > spec_.contact.max_overlap) check_stability();
   }
 }
@@ -646,12 +707,14 @@ RunSummary Simulation::run(const std::string& out_dir,
   double seconds_output = 0.0;
 
   auto write_outputs = [&]() {
-    const auto t0 = Clock::now();
-    // Nothing unstable reaches the files: check before any row or frame is written.
+    // Nothing unstable reaches the files: check before any row or frame is written (which also
+    // finishes a pending half kick: its time counted as integration, not output).
     const bool continuum_due = cont && time_ >= clock_.next_continuum - eps;
-    if (time_ >= clock_.next_series - eps || time_ >= clock_.next_frame - eps || step_ == total ||
-        continuum_due)
-      check_stability();
+    const bool due = time_ >= clock_.next_series - eps || time_ >= clock_.next_frame - eps ||
+                     step_ == total || continuum_due;
+    if (due) finish_kick();
+    const auto t0 = Clock::now();
+    if (due) check_stability();
     if (time_ >= clock_.next_series - eps || step_ == total) {
       while (clock_.next_series <= time_ + eps) clock_.next_series += series_dt;
       const Energies e = energies();
@@ -757,6 +820,7 @@ RunSummary Simulation::run(const std::string& out_dir,
   RunSummary s;
   // A checkpoint holds a state that passed the stability checks, with its outputs on disk.
   auto checkpoint = [&]() {
+    finish_kick(); // (integration time, not output)
     const auto t0 = Clock::now();
     check_stability();
     flush_outputs();
@@ -772,7 +836,7 @@ RunSummary Simulation::run(const std::string& out_dir,
   try {
     check_stability();
     while (step_ < total) {
-      step();
+      step(true); // its second half kick done by the next step, or by check_stability()
       if (step_ % check_every == 0 || stats_.max_overlap_ratio > spec_.contact.max_overlap)
         check_stability();
       write_outputs();

@@ -154,11 +154,19 @@ private:
   void compute_forces(ScratchState scratch = ScratchState::Stale);
   /// v += h a(x) for every particle: the `[body_force]` field at its position (none: no-op).
   void body_force_kick(double h);
-  void step();
+  /// One step. defer_second_kick: the step's second half kick is left for the next step to do
+  /// in its first pass over the particles (bitwise the same), or for finish_kick(); the caller
+  /// then reads no velocity, energy or dissipated energy before either.
+  void step(bool defer_second_kick = false);
+  /// The second half kick a step left pending (none: nothing to do).
+  void finish_kick();
+  struct Kick;
   /// Sort the particles in space (neighbour/spatial_order.hpp) and rebuild the neighbour list
   /// in the new order, keeping the contact histories and the gas forces with their particles.
   void sort_and_rebuild();
-  void check_stability() const;
+  /// Finishes a pending half kick, then stops the run (InstabilityError) on a non-finite
+  /// state, a particle outside the domain or an overlap beyond contact.max_overlap.
+  void check_stability();
   void record_collisions();
   /// True when the step about to be taken (number step_ + 1) is averaged by [output.continuum].
   bool continuum_samples_next_step() const;
@@ -174,6 +182,7 @@ private:
   ContactStats stats_;
   ContactScratch nc_;
   double dt_ = 0.0, time_ = 0.0, e_dsp_ = 0.0;
+  bool kick_pending_ = false; ///< the last step's second half kick is still to do (step())
   long step_ = 0;
   OutputClock clock_;
   std::unique_ptr<CollisionStatistics> collisions_; ///< set when output.collisions = true

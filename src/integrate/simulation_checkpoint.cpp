@@ -86,6 +86,7 @@ const char* const kGasForce[3] = {"gas/force_x", "gas/force_y", "gas/force_z"};
 } // namespace
 
 void Simulation::write_checkpoint(const std::string& path) {
+  finish_kick(); // the full-step velocities (and their dissipated energy) are the state
   CheckpointWriter w(path);
   w.put_string("meta/fluidem_version", kVersion);
   w.put_string("case/resolved", write_case_toml(spec_));
