@@ -248,6 +248,9 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
       for_each_partner(i, [&](std::uint32_t j) { partner.push_back(j); });
     }
     offset[n] = static_cast<std::uint32_t>(partner.size());
+    // Without a previous list (the first build) the appends doubled the capacity up to twice
+    // the size: trimmed to it (later builds reserve from the previous size).
+    if (partner.capacity() > partner.size() + partner.size() / 8 + 64) partner.shrink_to_fit();
     history.assign(static_cast<std::size_t>(offset[n]) * hw_, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
       sort_row(i);
