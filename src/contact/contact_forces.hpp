@@ -58,6 +58,17 @@ struct ContactScratch {
     ai[6] = 0.0, ai[7] = 0.0, ai[8] = 0.0, ai[9] = 0.0, ai[10] = 0.0, ai[11] = 0.0;
     static_assert(kAcc == 12);
   }
+  /// pack() of the positions and velocities alone (x y z | vx vy vz | wx wy wz), radius, mass
+  /// and 1/I being in the view already.
+  [[gnu::always_inline]] void pack_state(std::size_t i, const std::array<double, 9>& s) {
+    double* vi = view.data() + kView * i;
+    vi[0] = s[0], vi[1] = s[1], vi[2] = s[2];
+    vi[4] = s[3], vi[5] = s[4], vi[6] = s[5];
+    vi[8] = s[6], vi[9] = s[7], vi[10] = s[8];
+    double* ai = acc.data() + kAcc * i;
+    ai[0] = 0.0, ai[1] = 0.0, ai[2] = 0.0, ai[3] = 0.0, ai[4] = 0.0, ai[5] = 0.0;
+    ai[6] = 0.0, ai[7] = 0.0, ai[8] = 0.0, ai[9] = 0.0, ai[10] = 0.0, ai[11] = 0.0;
+  }
   /// Size the view and the sums for n particles (keeps what they hold where the sizes agree).
   void resize(std::size_t n) {
     view.resize(kView * n);

@@ -268,16 +268,16 @@ struct Simulation::Kick {
       : contact(s.nc_.acc.data()), gfx(s.gas_ ? s.gas_->force(0).data() : nullptr),
         gfy(s.gas_ ? s.gas_->force(1).data() : nullptr),
         gfz(s.gas_ ? s.gas_->force(2).data() : nullptr),
-        body(s.spec_.body_force ? &*s.spec_.body_force : nullptr), x(s.p_.x.data()),
-        y(s.p_.y.data()), z(s.p_.z.data()), inv_m(s.p_.inv_mass.data()),
+        body(s.spec_.body_force ? &*s.spec_.body_force : nullptr), inv_m(s.p_.inv_mass.data()),
         inv_i(s.p_.inv_inertia.data()), h(0.5 * s.dt_), gx(s.spec_.simulation.gravity[0]),
         gy(s.spec_.simulation.gravity[1]), gz(s.spec_.simulation.gravity[2]) {}
   bool with_gas() const { return gfx != nullptr; }
   bool with_field() const { return body != nullptr; }
-  /// dv and dw of particle i (vx vy vz wx wy wz). Gas: with gas forces; Field: a body force
-  /// field may be there (tested per particle).
+  /// dv and dw of particle i at position (x, y, z) (vx vy vz wx wy wz). Gas: with gas forces;
+  /// Field: a body force field may be there (tested per particle).
   template <bool Gas, bool Field>
-  [[gnu::always_inline]] std::array<double, 6> increment(std::size_t i) const {
+  [[gnu::always_inline]] std::array<double, 6> increment(std::size_t i, double x, double y,
+                                                         double z) const {
     const double im = inv_m[i], ii = inv_i[i];
     const double* fc = contact + ContactScratch::kAcc * i; // force | torque | ...
     double fx = fc[0], fy = fc[1], fz = fc[2];
@@ -285,7 +285,7 @@ struct Simulation::Kick {
     std::array<double, 3> a{gx, gy, gz};
     if constexpr (Field) {
       if (body) {
-        const auto b = body_acceleration(*body, x[i], y[i], z[i]);
+        const auto b = body_acceleration(*body, x, y, z);
         a[0] += b[0], a[1] += b[1], a[2] += b[2];
       }
     }
@@ -295,7 +295,6 @@ struct Simulation::Kick {
   const double* contact;
   const double *gfx, *gfy, *gfz;
   const BodyForceSpec* body;
-  const double *x, *y, *z;
   const double *inv_m, *inv_i;
   double h, gx, gy, gz;
 };
@@ -336,34 +335,49 @@ void Simulation::step(bool defer_second_kick) {
   const Kick kick(*this);
   // The particle arrays in locals (the stores below would otherwise make the compiler reload
   // dt_ and the array pointers of p_ for every particle).
-  double *const x = p_.x.data(), *const y = p_.y.data(), *const z = p_.z.data();
-  double *const vx = p_.vx.data(), *const vy = p_.vy.data(), *const vz = p_.vz.data();
-  double *const wx = p_.wx.data(), *const wy = p_.wy.data(), *const wz = p_.wz.data();
+  const double *const x = p_.x.data(), *const y = p_.y.data(), *const z = p_.z.data();
+  const double *const vx = p_.vx.data(), *const vy = p_.vy.data(), *const vz = p_.vz.data();
+  const double *const wx = p_.wx.data(), *const wy = p_.wy.data(), *const wz = p_.wz.data();
   const double* const inv_i = p_.inv_inertia.data();
   const double *const radius = p_.radius.data(), *const mass = p_.mass.data();
+  double* const view = nc_.view.data();
   const double dt = dt_;
   const bool any_periodic = box.periodic[0] || box.periodic[1] || box.periodic[2];
   // First half kick and drift; Wrap: periodic axes (centres kept inside [lo, hi)). In the same
   // pass, while the particle is in the cache: the contact loop's view of it is packed and its
   // sums zeroed (the kick has read the last forces), and its displacement since the last list
   // build tested (one parallel loop per step instead of three).
+  // The pass writes the new positions and velocities to the view alone, which holds the state
+  // from then on (p_'s arrays are brought up to date by sync_particles() when read). It reads
+  // them from the view after a step that left its second kick pending (FromView: nothing has
+  // read or changed p_ since, else the kick would have been finished), else from p_.
   const bool threaded = threaded_particles(n);
   const NeighbourList& list = *nl_;
   const bool tracked = list.built_for(n);
-  // Drift particle i with its new velocities v, store them, pack its view; returns whether it
-  // moved more than skin/2 since the last list build.
-  const auto drift = [&]<bool Wrap>(std::size_t i, const std::array<double, 6>& v)
+  // The state of particle i before the kicks: x y z | vx vy vz wx wy wz.
+  const auto state = [&]<bool FromView>(std::size_t i) __attribute__((always_inline)) {
+    if constexpr (FromView) {
+      const double* vi = view + ContactScratch::kView * i;
+      return std::array<double, 9>{vi[0], vi[1], vi[2], vi[4], vi[5], vi[6], vi[8], vi[9], vi[10]};
+    } else {
+      return std::array<double, 9>{x[i], y[i], z[i], vx[i], vy[i], vz[i], wx[i], wy[i], wz[i]};
+    }
+  };
+  // Drift particle i from position q with its new velocities v and pack its view; returns
+  // whether it moved more than skin/2 since the last list build.
+  const auto drift = [&]<bool FromView, bool Wrap>(std::size_t i, const std::array<double, 9>& q,
+                                                   const std::array<double, 6>& v)
       __attribute__((always_inline)) {
-    vx[i] = v[0], vy[i] = v[1], vz[i] = v[2];
-    wx[i] = v[3], wy[i] = v[4], wz[i] = v[5];
-    double xi = x[i] + dt * v[0], yi = y[i] + dt * v[1], zi = z[i] + dt * v[2];
+    double xi = q[0] + dt * v[0], yi = q[1] + dt * v[1], zi = q[2] + dt * v[2];
     if constexpr (Wrap) {
       if (box.periodic[0]) xi = wrapped(xi, box.lo[0], box.length(0));
       if (box.periodic[1]) yi = wrapped(yi, box.lo[1], box.length(1));
       if (box.periodic[2]) zi = wrapped(zi, box.lo[2], box.length(2));
     }
-    x[i] = xi, y[i] = yi, z[i] = zi;
-    nc_.pack(i, {xi, yi, zi, radius[i], v[0], v[1], v[2], mass[i], v[3], v[4], v[5], inv_i[i]});
+    if constexpr (FromView) // radius, mass and 1/I are in the view already
+      nc_.pack_state(i, {xi, yi, zi, v[0], v[1], v[2], v[3], v[4], v[5]});
+    else
+      nc_.pack(i, {xi, yi, zi, radius[i], v[0], v[1], v[2], mass[i], v[3], v[4], v[5], inv_i[i]});
     return tracked && list.moved_far(i, xi, yi, zi);
   };
   // A second half kick left pending by the last step (velocity Verlet: it and this step's
@@ -375,21 +389,24 @@ void Simulation::step(bool defer_second_kick) {
   const auto kick_drift = [&]<bool Gas, bool Field, bool Wrap>() {
     if (!fused)
       return parallel_any(n, threaded, [&](std::size_t i) {
-        const std::array<double, 6> dv = kick.increment<Gas, Field>(i);
-        return drift.template operator()<Wrap>(i, {vx[i] + dv[0], vy[i] + dv[1], vz[i] + dv[2],
-                                                   wx[i] + dv[3], wy[i] + dv[4], wz[i] + dv[5]});
+        const std::array<double, 9> q = state.template operator()<false>(i);
+        const std::array<double, 6> dv = kick.increment<Gas, Field>(i, q[0], q[1], q[2]);
+        return drift.template operator()<false, Wrap>(
+            i, q,
+            {q[3] + dv[0], q[4] + dv[1], q[5] + dv[2], q[6] + dv[3], q[7] + dv[4], q[8] + dv[5]});
       });
     bool any = false;
     e_dsp_ += nc_.dissipation_sum(
         n, dt,
         [&](std::size_t i) __attribute__((always_inline)) {
-          const std::array<double, 6> dv = kick.increment<Gas, Field>(i);
-          const std::array<double, 6> v{vx[i] + dv[0], vy[i] + dv[1], vz[i] + dv[2],
-                                        wx[i] + dv[3], wy[i] + dv[4], wz[i] + dv[5]};
+          const std::array<double, 9> q = state.template operator()<true>(i);
+          const std::array<double, 6> dv = kick.increment<Gas, Field>(i, q[0], q[1], q[2]);
+          const std::array<double, 6> v{q[3] + dv[0], q[4] + dv[1], q[5] + dv[2],
+                                        q[6] + dv[3], q[7] + dv[4], q[8] + dv[5]};
           const std::array<double, 2> t = nc_.dissipation_terms(i, v); // before the packing
-          const bool far =
-              drift.template operator()<Wrap>(i, {v[0] + dv[0], v[1] + dv[1], v[2] + dv[2],
-                                                  v[3] + dv[3], v[4] + dv[4], v[5] + dv[5]});
+          const bool far = drift.template operator()<true, Wrap>(
+              i, q,
+              {v[0] + dv[0], v[1] + dv[1], v[2] + dv[2], v[3] + dv[3], v[4] + dv[4], v[5] + dv[5]});
           return ContactScratch::DissipationTerms{t[0], t[1], far};
         },
         any);
@@ -406,12 +423,14 @@ void Simulation::step(bool defer_second_kick) {
     moved_far = kick_drift.template operator()<true, true, true>();
   else
     moved_far = kick_drift.template operator()<false, true, true>();
+  particles_current_ = false;
   t_integration_ += seconds_since(t0);
 
   t0 = Clock::now();
   // The view stays packed unless the particles are reordered.
   ScratchState scratch = ScratchState::Packed;
   if (!tracked || moved_far) {
+    sync_particles(); // the build reads the positions from p_
     const int every = spec_.neighbour.sort_interval;
     if (every > 0 && nl_->builds() % every == 0) {
       sort_and_rebuild();
@@ -439,7 +458,23 @@ void Simulation::step(bool defer_second_kick) {
   record_collisions();
 }
 
+void Simulation::sync_particles() {
+  if (particles_current_) return;
+  const auto t0 = Clock::now();
+  const std::size_t n = p_.size();
+  const double* view = nc_.view.data();
+  parallel_for(n, threaded_particles(n), [&](std::size_t i) {
+    const double* vi = view + ContactScratch::kView * i;
+    p_.x[i] = vi[0], p_.y[i] = vi[1], p_.z[i] = vi[2];
+    p_.vx[i] = vi[4], p_.vy[i] = vi[5], p_.vz[i] = vi[6];
+    p_.wx[i] = vi[8], p_.wy[i] = vi[9], p_.wz[i] = vi[10];
+  });
+  particles_current_ = true;
+  t_integration_ += seconds_since(t0);
+}
+
 void Simulation::finish_kick() {
+  sync_particles(); // the callers read p_ (and the kick below works on it)
   if (!kick_pending_) return;
   kick_pending_ = false;
   const auto t0 = Clock::now();
@@ -452,7 +487,7 @@ void Simulation::finish_kick() {
   const auto second_kick = [&]<bool Gas, bool Field>() {
     return nc_.dissipated_after(
         p_, dt_, [&](std::size_t i) __attribute__((always_inline)) {
-          const std::array<double, 6> dv = kick.increment<Gas, Field>(i);
+          const std::array<double, 6> dv = kick.increment<Gas, Field>(i, p_.x[i], p_.y[i], p_.z[i]);
           const std::array<double, 6> v{vx[i] + dv[0], vy[i] + dv[1], vz[i] + dv[2],
                                         wx[i] + dv[3], wy[i] + dv[4], wz[i] + dv[5]};
           vx[i] = v[0], vy[i] = v[1], vz[i] = v[2];
@@ -475,7 +510,7 @@ void Simulation::finish_kick() {
 void Simulation::sort_and_rebuild() {
   // The list's own cells, so that the slabs of the sort are the list's.
   const std::vector<std::uint32_t> order = spatial_order(p_, nl_->box(), nl_->cell_size(p_));
-  p_.permute(order);
+  p_.permute(order); // (p_ is current: the callers synchronise it first)
   if (gas_) gas_->permute(order);
   nl_->build(p_, &order);
   output_order_valid_ = false;

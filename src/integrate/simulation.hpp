@@ -158,8 +158,11 @@ private:
   /// in its first pass over the particles (bitwise the same), or for finish_kick(); the caller
   /// then reads no velocity, energy or dissipated energy before either.
   void step(bool defer_second_kick = false);
-  /// The second half kick a step left pending (none: nothing to do).
+  /// The second half kick a step left pending (none: nothing to do), after sync_particles().
   void finish_kick();
+  /// Brings p_'s positions and velocities up to date from the contact view, which holds them
+  /// after a step's first pass (particles_current_ false), for whatever reads p_.
+  void sync_particles();
   struct Kick;
   /// Sort the particles in space (neighbour/spatial_order.hpp) and rebuild the neighbour list
   /// in the new order, keeping the contact histories and the gas forces with their particles.
@@ -183,6 +186,9 @@ private:
   ContactScratch nc_;
   double dt_ = 0.0, time_ = 0.0, e_dsp_ = 0.0;
   bool kick_pending_ = false; ///< the last step's second half kick is still to do (step())
+  /// p_'s positions and velocities are current (else the contact view, ContactScratch::view,
+  /// holds them: after a step's first pass, until sync_particles()).
+  bool particles_current_ = true;
   long step_ = 0;
   OutputClock clock_;
   std::unique_ptr<CollisionStatistics> collisions_; ///< set when output.collisions = true

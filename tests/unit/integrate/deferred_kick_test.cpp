@@ -12,6 +12,11 @@
 //      must be done: the gas step reads the full-step velocities);
 //  (d) continuum averages sampled every 3rd step (those steps are not deferred: the averager
 //      takes their full-step velocities).
+// Inside advance(N) the positions and velocities live in the contact loop's view between steps
+// (p_'s arrays are brought up to date before anything reads them); advance(1) starts each step
+// from p_, so the same comparisons cover both sources of a step. And (e): a velocity changed
+// through particles() between two advance() calls is taken by the next step (the run differs
+// from one without the change, and equals the change followed by single steps).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -143,6 +148,26 @@ TEST(DeferredKick, BodyForceFieldIsBitwiseTheUndeferredOne) {
 
 TEST(DeferredKick, CoupledBedIsBitwiseTheUndeferredOne) {
   expect_same(kCoupled, 101);
+}
+
+std::vector<double> velocities_after_a_push(bool push, bool one_at_a_time) {
+  Simulation sim(read_case_string(kBed, "deferred.toml"));
+  sim.advance(50);
+  if (push) sim.particles().vx[7] += 0.5; // m/s, between two advance() calls
+  if (one_at_a_time)
+    for (int k = 0; k < 50; ++k) sim.advance(1);
+  else
+    sim.advance(50);
+  const ParticleStore& p = sim.particles();
+  std::vector<double> v(p.vx.begin(), p.vx.end());
+  v.insert(v.end(), p.x.begin(), p.x.end());
+  return v;
+}
+
+TEST(DeferredKick, ParticlesChangedBetweenAdvancesAreTaken) {
+  const std::vector<double> pushed = velocities_after_a_push(true, false);
+  EXPECT_FALSE(pushed == velocities_after_a_push(false, false)); // the push was not lost
+  EXPECT_TRUE(pushed == velocities_after_a_push(true, true));
 }
 
 TEST(DeferredKick, ContinuumSampledStepsAreBitwiseTheUndeferredOnes) {
