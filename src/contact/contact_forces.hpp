@@ -29,7 +29,8 @@ struct ContactStats {
 /// velocity Verlet this is exactly the kinetic energy they remove, so the energy balance
 /// measures only the integration error. After compute_contact_forces `acc` holds the step's
 /// contact forces and torques (force(i), torque(i)), which the integrator's kicks read: they are
-/// kept nowhere else.
+/// kept nowhere else. Between a run's steps the view is also where the particles' positions and
+/// velocities live (Simulation::sync_particles copies them into the particle store when read).
 struct ContactScratch {
   static constexpr std::size_t kView = 12; ///< x y z r | vx vy vz m | wx wy wz 1/I
   static constexpr std::size_t kAcc = 12;  ///< f | t | f_nc | t_nc

@@ -333,8 +333,8 @@ void Simulation::step(bool defer_second_kick) {
   if (nc_.acc.size() != ContactScratch::kAcc * n)
     throw std::logic_error("Simulation::step: the contact forces are not those of the particles");
   const Kick kick(*this);
-  // The particle arrays in locals (the stores below would otherwise make the compiler reload
-  // dt_ and the array pointers of p_ for every particle).
+  // The arrays in locals (the stores below would otherwise make the compiler reload dt_ and
+  // the array pointers for every particle).
   const double *const x = p_.x.data(), *const y = p_.y.data(), *const z = p_.z.data();
   const double *const vx = p_.vx.data(), *const vy = p_.vy.data(), *const vz = p_.vz.data();
   const double *const wx = p_.wx.data(), *const wy = p_.wy.data(), *const wz = p_.wz.data();
@@ -426,11 +426,12 @@ void Simulation::step(bool defer_second_kick) {
   particles_current_ = false;
   t_integration_ += seconds_since(t0);
 
-  t0 = Clock::now();
   // The view stays packed unless the particles are reordered.
   ScratchState scratch = ScratchState::Packed;
-  if (!tracked || moved_far) {
-    sync_particles(); // the build reads the positions from p_
+  const bool rebuild = !tracked || moved_far;
+  if (rebuild) sync_particles(); // the build reads the positions from p_
+  t0 = Clock::now();
+  if (rebuild) {
     const int every = spec_.neighbour.sort_interval;
     if (every > 0 && nl_->builds() % every == 0) {
       sort_and_rebuild();
