@@ -52,12 +52,7 @@ struct ContactScratch {
   [[gnu::always_inline]] void pack(std::size_t i, const std::array<double, kView>& v) {
     double* vi = view.data() + kView * i;
     for (std::size_t k = 0; k < kView; ++k) vi[k] = v[k];
-    double* ai = acc.data() + kAcc * i;
-    // Twelve stores of a double, not a loop: GCC turns a zeroing loop into memset, which may
-    // alias anything, and the integrator's loop then reloads every array pointer per particle.
-    ai[0] = 0.0, ai[1] = 0.0, ai[2] = 0.0, ai[3] = 0.0, ai[4] = 0.0, ai[5] = 0.0;
-    ai[6] = 0.0, ai[7] = 0.0, ai[8] = 0.0, ai[9] = 0.0, ai[10] = 0.0, ai[11] = 0.0;
-    static_assert(kAcc == 12);
+    zero_sums(i);
   }
   /// pack() of the positions and velocities alone (x y z | vx vy vz | wx wy wz), radius, mass
   /// and 1/I being in the view already.
@@ -66,9 +61,16 @@ struct ContactScratch {
     vi[0] = s[0], vi[1] = s[1], vi[2] = s[2];
     vi[4] = s[3], vi[5] = s[4], vi[6] = s[5];
     vi[8] = s[6], vi[9] = s[7], vi[10] = s[8];
+    zero_sums(i);
+  }
+  /// Zero particle i's sums in acc.
+  [[gnu::always_inline]] void zero_sums(std::size_t i) {
     double* ai = acc.data() + kAcc * i;
+    // Twelve stores of a double, not a loop: GCC turns a zeroing loop into memset, which may
+    // alias anything, and the integrator's loop then reloads every array pointer per particle.
     ai[0] = 0.0, ai[1] = 0.0, ai[2] = 0.0, ai[3] = 0.0, ai[4] = 0.0, ai[5] = 0.0;
     ai[6] = 0.0, ai[7] = 0.0, ai[8] = 0.0, ai[9] = 0.0, ai[10] = 0.0, ai[11] = 0.0;
+    static_assert(kAcc == 12);
   }
   /// Size the view and the sums for n particles (keeps what they hold where the sizes agree).
   void resize(std::size_t n) {
