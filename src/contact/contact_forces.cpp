@@ -55,10 +55,9 @@ template <NormalModel Normal, bool Tangential, RollingModel Rolling>
     k_tangent_ref = pp.kn;
     k_t = pp.kt;
   } else {
-    const double sr = std::sqrt(c.r_eff);
-    nr = kernels::hertz_normal(pp.kn * sr, pp.normal_damping, c.m_eff, c.overlap);
+    nr = kernels::hertz_normal(pp.kn, c.r_eff, pp.normal_damping, c.m_eff, c.overlap);
     k_tangent_ref = nr.stiffness;
-    k_t = pp.kt * sr * nr.sqrt_overlap; // kt sqrt(R* delta)
+    k_t = pp.kt * nr.contact_radius; // kt sqrt(R* delta)
   }
   const double vn = dot(c.v_rel, c.n); // > 0 when approaching
   const double fn = nr.elastic + nr.damping_coeff * vn;
@@ -178,16 +177,18 @@ FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* p
     } else {
       const Vec3 dvec{b.d[0][k], b.d[1][k], b.d[2][k]};
       const double rj = b.rj[k], mj = b.mj[k];
-      const double rsum = ri + rj;
+      const double rsum = ri + rj, msum = mi + mj, rm = rsum * msum;
       const double d = std::sqrt(norm2(dvec));
-      const double inv_d = 1.0 / d;
+      // 1/d and 1/(rsum msum) from one division (the divider bounds this loop).
+      const double inv_drm = 1.0 / (d * rm);
+      const double inv_d = rm * inv_drm;
       c.n = Vec3{dvec.x * inv_d, dvec.y * inv_d, dvec.z * inv_d};
       c.overlap = rsum - d;
       const Vec3 wj{b.wj[0][k], b.wj[1][k], b.wj[2][k]};
       c.v_rel = dv + cross(wi * ri + wj * rj, c.n);
       c.w_rel = wi - wj;
-      const double inv = 1.0 / (rsum * (mi + mj)); // r* = ri rj / rsum, m* = mi mj / (mi + mj)
-      c.r_eff = ri * rj * (mi + mj) * inv;
+      const double inv = d * inv_drm; // r* = ri rj / rsum, m* = mi mj / (mi + mj)
+      c.r_eff = ri * rj * msum * inv;
       c.m_eff = mi * mj * rsum * inv;
       // Separation one step earlier: positions moved by v dt with the current velocities.
       c.d_prev = dvec + dv * dt;

@@ -6,6 +6,10 @@
 //   F_n = -K delta^{3/2} n - alpha sqrt(m* K) delta^{1/4} v_n,   K = 4/3 E* sqrt(R*)
 //   where alpha(e) is calibrated once per run (contact/hertz_damping.hpp) so that a head-on
 //   impact rebounds with exactly the requested e, independent of the impact velocity.
+//   Written with the Hertz contact radius a = sqrt(R* delta) (delta = a^2 / R*): K delta^{3/2} =
+//   k_n a delta, sqrt(m* K) delta^{1/4} = sqrt(m* k_n a), dF/d(delta) = 3/2 k_n a (k_n = 4/3 E*):
+//   two square roots per contact instead of four (sqrt R*, sqrt delta, its root, sqrt(m* K));
+//   the contact loop is bound by the divider (square roots and divisions) on wide vectors.
 #pragma once
 #include <cmath>
 #include <numbers>
@@ -21,7 +25,9 @@ struct NormalResponse {
   /// sqrt(m* K) delta^{1/4} (Hertz) or sqrt(m* k_n) (linear): the dashpots scale with it, the
   /// tangential one as eta_t = factor sqrt(2 k_t / (7 k_n)) damping_scale [Deen07 eq. 30].
   double damping_scale;
-  double sqrt_overlap; ///< delta^{1/2} (Hertz; 0 for the linear spring, which does not need it)
+  /// Hertz contact radius sqrt(R* delta), m (Mindlin's k_t scales with it; 0 for the linear
+  /// spring, which does not need it).
+  double contact_radius;
 };
 
 /// Damping factor -2 ln e / sqrt(pi^2 + ln^2 e) (2 for e = 0) [Deen07 eq. 27, 30].
@@ -37,13 +43,14 @@ inline NormalResponse linear_normal(double k, double damping_factor, double m_ef
   return {k * delta, damping_factor * scale, k, 0.5 * k * delta * delta, scale, 0.0};
 }
 
-/// Hertz spring with Tsuji damping [Chang08 eq. 2.15, 2.22]. `k_hertz` = 4/3 E* sqrt(R*).
-inline NormalResponse hertz_normal(double k_hertz, double alpha, double m_eff, double delta) {
-  const double sd = std::sqrt(delta);
-  const double qd = std::sqrt(sd); // delta^{1/4}
-  const double elastic = k_hertz * delta * sd;
-  const double scale = std::sqrt(m_eff * k_hertz) * qd;
-  return {elastic, alpha * scale, 1.5 * k_hertz * sd, 0.4 * elastic * delta, scale, sd};
+/// Hertz spring with Tsuji damping [Chang08 eq. 2.15, 2.22]. `k_n` = 4/3 E* (K = k_n sqrt(R*)),
+/// `r_eff` = R*.
+inline NormalResponse hertz_normal(double k_n, double r_eff, double alpha, double m_eff,
+                                   double delta) {
+  const double a = std::sqrt(r_eff * delta);       // contact radius
+  const double elastic = k_n * a * delta;          // K delta^{3/2}
+  const double scale = std::sqrt(m_eff * k_n * a); // sqrt(m* K) delta^{1/4}
+  return {elastic, alpha * scale, 1.5 * k_n * a, 0.4 * elastic * delta, scale, a};
 }
 
 } // namespace fluidem::kernels

@@ -38,9 +38,14 @@ inline TangentialResult tangential_spring(Vec3& delta_t, const Vec3& v_t, double
   if (f2 <= fmax * fmax) {
     return {f, -eta_t * v_t, 0.0, 0.5 * k_t * norm2(delta_t), false};
   }
-  f *= fmax / std::sqrt(f2);
+  // fmax / |f| and fmax / |f_spring| from one division (the contact loop is bound by the
+  // divider); |f_spring| only counts when the spring alone exceeds the limit (so > 0 then).
   const double fs2 = norm2(f_spring);
-  if (fs2 > fmax * fmax) delta_t *= fmax / std::sqrt(fs2);
+  const bool spring_over = fs2 > fmax * fmax;
+  const double root_f = std::sqrt(f2), root_s = std::sqrt(spring_over ? fs2 : 1.0);
+  const double inv = fmax / (root_f * root_s);
+  f *= root_s * inv;
+  if (spring_over) delta_t *= root_f * inv;
   const double e_new = 0.5 * k_t * norm2(delta_t);
   // While sliding the whole force is non-conservative (its work is taken with the full-step
   // velocities by the integrator) and the spring's change of stored energy is booked against the

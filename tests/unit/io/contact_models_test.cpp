@@ -126,9 +126,9 @@ const std::map<std::string, Kernel>& kernel_table() {
        }},
       {"hertz_normal",
        [](Inputs& in) {
-         const double k = in.num("k_hertz"), alpha = in.num("alpha"), m = in.num("m_eff"),
-                      delta = in.num("delta");
-         return normal_outputs(kernels::hertz_normal(k, alpha, m, delta), in.num("v_n"));
+         const double k = in.num("k_n"), r = in.num("r_eff"), alpha = in.num("alpha"),
+                      m = in.num("m_eff"), delta = in.num("delta");
+         return normal_outputs(kernels::hertz_normal(k, r, alpha, m, delta), in.num("v_n"));
        }},
       {"tangential_spring",
        [](Inputs& in) {
