@@ -3,9 +3,10 @@
 # 10^5 and 10^6 spheres (bench/cases/bed10k.toml, bed100k.toml, bed1m.toml: the beds of
 # ../shared/bench/dem, the largest being bed100k repeated ten times along y), with 1 and 2 threads
 # (pinned to cores 0 and 0-1). Reported per run: particle-steps per second, nanoseconds per
-# particle-step, relative to the smallest bed, the neighbour-list entries per particle (the work
-# per particle: the 10^4 bed is only 2.5 diameters deep, so it has fewer contacts per particle),
-# fluidem's own bytes per particle and the peak RSS.
+# particle-step, relative to the smallest bed, the neighbour-list pair and wall entries per
+# particle and the nanoseconds per list entry (the work per particle differs between the beds:
+# the 10^4 bed is only 2.5 diameters deep, so a particle has fewer partners and more wall
+# entries), fluidem's own bytes per particle and the peak RSS.
 #
 # usage: bench/scaling.sh [SIZE ...]     SIZE: 10k, 100k, 1m (default: all three)
 # env:   FLUIDEM  fluidem binary (default: build/fluidem; built in Release if missing)
@@ -25,7 +26,7 @@ mkdir -p "$WORK"
 ensure_fluidem
 
 CSV=$WORK/results.csv
-[ -f "$CSV" ] || echo "date,commit,threads,N,steps,seconds,particle_steps_per_s,ns_per_particle_step,pairs_per_particle,peak_rss_mb,bytes_per_particle" >"$CSV"
+[ -f "$CSV" ] || echo "date,commit,threads,N,steps,seconds,particle_steps_per_s,ns_per_particle_step,pairs_per_particle,peak_rss_mb,bytes_per_particle,walls_per_particle,ns_per_list_entry" >"$CSV"
 ROWS=()
 declare -A BASE=()
 for n in "${SIZES[@]}"; do
@@ -35,19 +36,22 @@ for n in "${SIZES[@]}"; do
     log=$WORK/fluidem_${n}_t$t.log
     read -r np steps secs rate bpp rss < <(run_fluidem "$log" "$t" "$ROOT/bench/cases/bed$n.toml" \
       --set "insert[0].file=$data" --out "$WORK/fluidem_${n}_t$t")
-    pairs=$(sed -nE 's/^neighbour pairs +([0-9.]+) per particle.*/\1/p' "$log")
+    pairs=$(sed -nE 's/^neighbour pairs +([0-9.]+) and wall entries.*/\1/p' "$log")
+    walls=$(sed -nE 's/^neighbour pairs .* and wall entries +([0-9.]+) per particle.*/\1/p' "$log")
     ns=$(awk -v r="$rate" -v t="$t" 'BEGIN {printf "%.1f", 1e9 / r}')
+    ns_entry=$(awk -v ns="$ns" -v p="${pairs:-0}" -v w="${walls:-0}" \
+      'BEGIN {printf "%.1f", (p + w > 0) ? ns / (p + w) : 0}')
     [ -n "${BASE[$t]:-}" ] || BASE[$t]=$ns
     rel=$(awk -v a="$ns" -v b="${BASE[$t]}" 'BEGIN {printf "%.2f", a / b}')
-    echo "$STAMP,$COMMIT,$t,$np,$steps,$secs,$rate,$ns,${pairs:-},$rss,$bpp" >>"$CSV"
-    ROWS+=("| $np | $t | $steps | $rate | $ns | $rel | ${pairs:--} | $bpp | $rss |")
+    echo "$STAMP,$COMMIT,$t,$np,$steps,$secs,$rate,$ns,${pairs:-},$rss,$bpp,${walls:-},$ns_entry" >>"$CSV"
+    ROWS+=("| $np | $t | $steps | $rate | $ns | $rel | ${pairs:--} | ${walls:--} | $ns_entry | $bpp | $rss |")
     echo "N=$np threads=$t: $rate particle-steps/s, $ns ns per particle-step (x$rel of the smallest)" >&2
   done
 done
 
 echo
 echo "commit $COMMIT, $STAMP, $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), load $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "| N | threads | steps | particle-steps/s | ns per particle-step | vs smallest N | pair entries per particle | bytes/particle (own count) | peak RSS MB |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| N | threads | steps | particle-steps/s | ns per particle-step | vs smallest N | pair entries per particle | wall entries per particle | ns per list entry | bytes/particle (own count) | peak RSS MB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 printf '%s\n' "${ROWS[@]}"
 echo "(all rows appended to $CSV)"

@@ -277,8 +277,9 @@ int run_cli(int argc, char** argv) {
                                        s.seconds_gas, s.seconds_gas_solver)
                          : "");
     if (s.collisions == 0 && s.pairs_per_particle > 0.0)
-      fmt::print("neighbour pairs {:.2f} per particle, {} contacts (pairs and walls) at the end\n",
-                 s.pairs_per_particle, s.contacts);
+      fmt::print("neighbour pairs {:.2f} and wall entries {:.2f} per particle, {} contacts (pairs "
+                 "and walls) at the end\n",
+                 s.pairs_per_particle, s.walls_per_particle, s.contacts);
     if (s.collisions > 0)
       fmt::print("{} collisions, {:.4g} collisions per second of wall time\n", s.collisions,
                  static_cast<double>(s.collisions) / std::max(s.wall_seconds, 1e-9));

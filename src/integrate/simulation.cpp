@@ -923,8 +923,9 @@ RunSummary Simulation::run(const std::string& out_dir,
     s.collisions = hard_->stats().collisions;
     s.neighbour_builds = hard_->list_builds();
   } else {
-    s.pairs_per_particle =
-        p_.size() ? static_cast<double>(nl_->partner.size()) / static_cast<double>(p_.size()) : 0.0;
+    const double n = static_cast<double>(p_.size());
+    s.pairs_per_particle = n > 0 ? static_cast<double>(nl_->partner.size()) / n : 0.0;
+    s.walls_per_particle = n > 0 ? static_cast<double>(nl_->wall_particle.size()) / n : 0.0;
     s.contacts = stats_.n_contacts;
   }
   const Energies e = energies();

@@ -61,6 +61,7 @@ struct RunSummary {
   double energy_drift = 0.0;       ///< (E_total(end) - E_total(0)) / E_scale
   long collisions = 0;             ///< hard-sphere engine: collisions processed
   double pairs_per_particle = 0.0; ///< soft spheres: neighbour-list pair entries per particle
+  double walls_per_particle = 0.0; ///< soft spheres: neighbour-list wall entries per particle
   long contacts = 0;               ///< soft spheres: touching pairs and walls after the last step
   int stopped_by_signal = 0; ///< SIGINT/SIGTERM that stopped the run early (0: ran to the end)
   std::string checkpoint;    ///< the last checkpoint written
