@@ -143,8 +143,10 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
     }
     slab_axis_ = n > 0 ? slab_axis(cmin, cmax) : 0; // the rule spatial_order follows too
     nslab_ = ncell_[slab_axis_];
-    // A periodic axis needs an even number of slabs (the last slab neighbours slab 0): the last
-    // cell then joins the slab before it.
+    // A periodic axis gets an even number of slabs (the last slab neighbours slab 0): the last
+    // cell then joins the slab before it. (The contact loop's even/odd slab phases needed it;
+    // its groups of two or more slabs do not, but the slabs decide which particle owns a pair,
+    // and a checkpoint's list is verified against the pairs rebuilt from it.)
     if (box_.periodic[slab_axis_] && nslab_ > 1 && nslab_ % 2 == 1) --nslab_;
     particle_slab_.resize(n);
     const std::uint32_t stride =

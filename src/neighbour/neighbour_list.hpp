@@ -3,7 +3,8 @@
 // under its owner, in CSR form. For race-free, thread-count-independent parallel force loops the
 // domain is cut into slabs one cell thick along one axis: a pair is owned by the particle in the
 // lower slab (by the lower index within a slab), so the rows of slab s touch only particles of
-// slabs s and s+1, and all even slabs (then all odd slabs) can be processed at once; each entry
+// slabs s and s+1, and slabs that are not neighbours can be processed at once (the contact loop
+// runs them in two phases over groups of consecutive slabs, contact_forces.cpp); each entry
 // carries the contact history (tangential displacement, rolling rotation), which is carried over to
 // the rebuilt list for pairs that are in both. Particles near a closed wall get wall entries with
 // their own history. No physics here: the contact module interprets the history.
