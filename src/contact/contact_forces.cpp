@@ -219,14 +219,34 @@ FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* p
   }
 }
 
-/// How many groups of consecutive slabs the contact loop's phases run over (compute()): about
-/// 16 groups of at least two slabs (the group sizes differ by one at most). Fixed by the slab
-/// count alone, so that the order of the force additions does not depend on the threads; 16
-/// groups share out between two threads within a few percent, and groups of several slabs read
-/// most slabs once per step.
-int slab_groups(int nslab) {
+/// The groups of consecutive slabs the contact loop's phases run over (compute()): group g is
+/// slabs [starts[g], starts[g + 1]), each of at least two slabs (one when there is a single
+/// slab). Beds of up to kCachedParticles: pairs of slabs (the last group two or three), which
+/// is all even slabs, then all odd ones: their data stay in the cache anyway, and a thread's
+/// share is cut at any even slab. Larger beds: about 16 groups of about equal particle counts
+/// (the first slab at or after each sixteenth of the particles), which read most slabs once per
+/// step and share out evenly between the threads. Fixed by the slabs alone, so that the order
+/// of the force additions does not depend on the threads.
+void slab_group_starts(const std::vector<std::uint32_t>& slab_start, int nslab,
+                       std::vector<int>& starts) {
   constexpr int kGroups = 16;
-  return nslab < 1 ? 0 : std::max(1, std::min(nslab / 2, kGroups));
+  constexpr std::size_t kCachedParticles = 32768; // ~16 MB of particle and list data
+  starts.clear();
+  if (nslab < 1) return;
+  starts.push_back(0);
+  const std::size_t n = slab_start[nslab];
+  if (n <= kCachedParticles) {
+    for (int sl = 2; sl <= nslab - 2; sl += 2) starts.push_back(sl);
+  } else {
+    for (int g = 1; g < kGroups; ++g) {
+      const std::size_t share = n * static_cast<std::size_t>(g) / kGroups;
+      const int sl =
+          static_cast<int>(std::lower_bound(slab_start.begin(), slab_start.begin() + nslab, share) -
+                           slab_start.begin());
+      if (sl >= starts.back() + 2 && sl <= nslab - 2) starts.push_back(sl);
+    }
+  }
+  starts.push_back(nslab);
 }
 
 /// Add a slab's or wall chunk's statistics to the total (the deepest overlap: the first one
@@ -559,8 +579,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     }
   };
   const int nslab = nl.slab_count();
-  // The slabs run in two phases over fixed groups of consecutive slabs (slab_groups(), at least
-  // two slabs each): first each group's slabs but its last, in order (their rows write to the
+  // The slabs run in two phases over fixed groups of consecutive slabs (slab_group_starts(), at
+  // least two slabs each): first each group's slabs but its last, in order (their rows write to the
   // group's own slabs only), then each group's last slab (whose rows write to it and to the
   // next group's first slab). Within a phase the groups write to disjoint particles, so they
   // run in parallel; the order of the additions into a particle depends on the slabs alone,
@@ -568,10 +588,10 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // slab's, which in the first phase run one after the other: the data are still in the cache
   // (with all even slabs, then all odd ones, every slab was read twice per step from memory in
   // beds larger than the cache: bed100k ran 13% slower).
-  const int ngroup = slab_groups(nslab);
-  auto group_begin = [nslab, ngroup](int g) {
-    return static_cast<int>(static_cast<long>(nslab) * g / ngroup);
-  };
+  slab_group_starts(nl.slab_start, nslab, nc.slab_group_start); // kept: no allocation per step
+  const int* const group_start = nc.slab_group_start.data();
+  const int ngroup = std::max(0, static_cast<int>(nc.slab_group_start.size()) - 1);
+  auto group_begin = [group_start](int g) { return group_start[g]; };
   // The slabs [first, second) of group g in phase 0 or 1.
   auto phase_slabs = [&](int g, int phase) {
     const int last_slab = group_begin(g + 1) - 1;
@@ -615,7 +635,9 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
             std::lower_bound(nl.slab_start.begin(), nl.slab_start.begin() + nslab, share) -
             nl.slab_start.begin());
       };
-      // The first group starting at or after the thread's first slab.
+      // The first group starting at or after the thread's first slab (the groups hold about
+      // equal particle counts: so the threads about the same work and the same particles as
+      // in the integrator's static loops).
       auto first_group = [&](int thread) {
         const int sl = first_slab(thread);
         int g = 0;

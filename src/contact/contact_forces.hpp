@@ -36,6 +36,7 @@ struct ContactScratch {
   static constexpr std::size_t kAcc = 12;  ///< f | t | f_nc | t_nc
   std::vector<double> view, acc;
   std::vector<ContactStats> slab_stats, wall_stats; ///< per slab / wall chunk, summed in order
+  std::vector<int> slab_group_start;                ///< the contact loop's groups of slabs
   std::vector<double> chunk_sums;                   ///< dissipation_sum(): per chunk of particles
   std::vector<unsigned char> chunk_flags;           ///< dissipation_sum(): per chunk
   /// Pack the view from p and zero the sums.
