@@ -20,6 +20,10 @@
 #        THREADS  fluidem thread counts (default: "1 2")
 #        PEERS    which peers (default: "lammps liggghts"; empty: fluidem only)
 #        NWARM    peer warm-up steps before the timed run (default: 100)
+#        REPEAT   rounds per size (default: 1): each round runs fluidem and the peers once, one
+#                 after the other; the table gives each code's median rate and the median of the
+#                 rounds' own ratios (with their range), taken on a machine whose speed drifts
+#                 (a shared VM: +-15% within minutes) from runs seconds apart
 # The step counts are the cases' own (bench/cases/bed10k.toml: 2000, bed100k.toml: 500); the
 # peers run the same number of timed steps.
 set -euo pipefail
@@ -28,6 +32,7 @@ WORK=${WORK:-${TMPDIR:-/tmp}/fluidem-compare-dem}
 read -r -a THREADS <<<"${THREADS:-1 2}"
 read -r -a PEERS <<<"${PEERS-lammps liggghts}"
 NWARM=${NWARM:-100}
+REPEAT=${REPEAT:-1}
 SIZES=("$@")
 [ ${#SIZES[@]} -gt 0 ] || SIZES=(10k 100k)
 # shellcheck source=bench/bench_lib.sh
@@ -71,46 +76,64 @@ peer_run() {
   echo "$(awk -v a="$atoms" -v s="$steps" -v t="$secs" 'BEGIN {printf "%.4g", a * s / t}') $(rss_mb "$log.time") $secs"
 }
 
+# median of the numbers given; "median (min-max)" with more than one
+stats() {
+  printf '%s\n' "$@" | sort -g | awk '{v[NR] = $1} END {
+    m = NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2
+    if (NR == 1) printf "%.4g", m; else printf "%.4g (%.4g-%.4g)", m, v[1], v[NR]}'
+}
+
 for n in "${SIZES[@]}"; do
   case_file=$ROOT/bench/cases/bed$n.toml
   [ -f "$case_file" ] || die "no case $case_file"
   data=$(bed_data "$n" "$WORK")
-  declare -A RATE=()
-  for t in "${THREADS[@]}"; do
-    echo "== fluidem, bed$n, $t thread(s)" >&2
-    read -r np steps secs rate bpp rss < <(run_fluidem "$WORK/fluidem_${n}_t$t.log" "$t" "$case_file" \
-      --set "insert[0].file=$data" --out "$WORK/fluidem_${n}_t$t")
-    grep -E '^(time in|memory)' "$WORK/fluidem_${n}_t$t.log" >&2
-    echo "$STAMP,$COMMIT,fluidem,$t,$np,$steps,$secs,$rate,$rss,$bpp" >>"$CSV"
-    RATE[fluidem_$t]=$rate
-    ROWS+=("| $n | fluidem | $t | $rate | @fluidem_$t@ | $rss | $bpp |")
+  declare -A RATES=() RATIOS=() RSS=() BPP=()
+  keys=()
+  for t in "${THREADS[@]}"; do keys+=("fluidem_$t"); done
+  for pr in "${PEERS[@]}"; do [ -n "${PEER_BIN[$pr]}" ] && keys+=("$pr"); done
+  for ((round = 1; round <= REPEAT; round++)); do
+    declare -A RATE=()
+    for t in "${THREADS[@]}"; do
+      echo "== fluidem, bed$n, $t thread(s) (round $round of $REPEAT)" >&2
+      read -r np steps secs rate bpp rss < <(run_fluidem "$WORK/fluidem_${n}_t$t.log" "$t" "$case_file" \
+        --set "insert[0].file=$data" --out "$WORK/fluidem_${n}_t$t")
+      grep -E '^(time in|memory)' "$WORK/fluidem_${n}_t$t.log" >&2
+      echo "$STAMP,$COMMIT,fluidem,$t,$np,$steps,$secs,$rate,$rss,$bpp" >>"$CSV"
+      RATE[fluidem_$t]=$rate RSS[fluidem_$t]=$rss BPP[fluidem_$t]=$bpp
+    done
+    for pr in "${PEERS[@]}"; do
+      [ -n "${PEER_BIN[$pr]}" ] || continue
+      echo "== $pr, bed$n, 1 core, $NWARM warm-up + $steps timed steps (round $round of $REPEAT)" >&2
+      read -r rate rss secs < <(peer_run "$pr" "$n" "$steps" "$data")
+      echo "$STAMP,$COMMIT,$pr,1,$np,$steps,$secs,$rate,$rss," >>"$CSV"
+      RATE[$pr]=$rate RSS[$pr]=$rss BPP[$pr]=-
+    done
+    # This round's ratios against LAMMPS (or, without it, the one-thread fluidem run).
+    ref=${RATE[lammps]:-${RATE[fluidem_1]:-}}
+    for key in "${keys[@]}"; do
+      RATES[$key]+=" ${RATE[$key]}"
+      [ -n "$ref" ] && RATIOS[$key]+=" $(awk -v a="${RATE[$key]}" -v b="$ref" 'BEGIN {printf "%.4f", a / b}')"
+    done
+    if [ -n "${RATE[fluidem_1]:-}" ] && [ -n "${RATE[fluidem_2]:-}" ]; then
+      RATIOS[two_over_one]+=" $(awk -v a="${RATE[fluidem_2]}" -v b="${RATE[fluidem_1]}" 'BEGIN {printf "%.4f", a / b}')"
+    fi
+    unset RATE
   done
-  for pr in "${PEERS[@]}"; do
-    [ -n "${PEER_BIN[$pr]}" ] || continue
-    echo "== $pr, bed$n, 1 core, $NWARM warm-up + $steps timed steps" >&2
-    read -r rate rss secs < <(peer_run "$pr" "$n" "$steps" "$data")
-    echo "$STAMP,$COMMIT,$pr,1,$np,$steps,$secs,$rate,$rss," >>"$CSV"
-    RATE[$pr]=$rate
-    ROWS+=("| $n | $pr | 1 | $rate | @$pr@ | $rss | - |")
+  for key in "${keys[@]}"; do
+    code=${key%%_*}
+    t=1
+    [[ $key == fluidem_* ]] && t=${key#fluidem_}
+    # shellcheck disable=SC2086
+    ROWS+=("| $n | $code | $t | $(stats ${RATES[$key]}) | $(stats ${RATIOS[$key]:-}) | ${RSS[$key]} | ${BPP[$key]} |")
   done
-  # Ratios against LAMMPS (or, without it, the one-thread fluidem run) for this size.
-  ref=${RATE[lammps]:-${RATE[fluidem_1]}}
-  for k in "${!ROWS[@]}"; do
-    row=${ROWS[$k]}
-    [[ $row == "| $n |"* ]] || continue
-    key=$(echo "$row" | sed -nE 's/.*@([a-z_0-9]+)@.*/\1/p')
-    [ -n "$key" ] || continue
-    ratio=$(awk -v a="${RATE[$key]}" -v b="$ref" 'BEGIN {printf "%.2f", a / b}')
-    ROWS[$k]=${row/@$key@/$ratio}
-  done
-  if [ -n "${RATE[fluidem_1]:-}" ] && [ -n "${RATE[fluidem_2]:-}" ]; then
-    echo "bed$n: fluidem 2 threads / 1 thread = $(awk -v a="${RATE[fluidem_2]}" -v b="${RATE[fluidem_1]}" 'BEGIN {printf "%.2f", a / b}')" >&2
-  fi
-  unset RATE
+  # shellcheck disable=SC2086
+  [ -n "${RATIOS[two_over_one]:-}" ] && echo "bed$n: fluidem 2 threads / 1 thread = $(stats ${RATIOS[two_over_one]})" >&2
+  unset RATES RATIOS RSS BPP
 done
 
 echo
 echo "commit $COMMIT, $STAMP, $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "rounds per size: $REPEAT (with more than one: median (min-max) over the rounds; ratios per round)"
 echo "| N | code | threads | particle-steps/s | ratio to LAMMPS (1 core) | peak RSS MB | bytes/particle (own count) |"
 echo "|---|---|---|---|---|---|---|"
 printf '%s\n' "${ROWS[@]}"
