@@ -76,8 +76,10 @@ peer_run() {
   echo "$(awk -v a="$atoms" -v s="$steps" -v t="$secs" 'BEGIN {printf "%.4g", a * s / t}') $(rss_mb "$log.time") $secs"
 }
 
-# median of the numbers given; "median (min-max)" with more than one
+# median of the numbers given; "median (min-max)" with more than one; "-" with none (no
+# reference run for a ratio)
 stats() {
+  [ $# -gt 0 ] || { echo -; return; }
   printf '%s\n' "$@" | sort -g | awk '{v[NR] = $1} END {
     m = NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2
     if (NR == 1) printf "%.4g", m; else printf "%.4g (%.4g-%.4g)", m, v[1], v[NR]}'
