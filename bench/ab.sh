@@ -34,17 +34,16 @@ done
 source "$ROOT/bench/bench_lib.sh"
 mkdir -p "$WORK"
 data=$(bed_data "$SIZE" "$WORK")
-pin=("${PIN1[@]}")
-[ "$THREADS" -ge 2 ] && pin=("${PIN2[@]}")
 end=$(awk -v s="$STEPS" 'BEGIN { printf "%.10g", s * 1e-5 }')
 
-# rate BINARY TAG: particle-steps per second of one run (its own "done:" line)
+# rate BINARY TAG: particle-steps per second of one run (bench_lib.sh's run_fluidem: pinned, its
+# own "done:" line)
 rate() {
-  "${pin[@]}" "$1" run "$ROOT/bench/cases/bed$SIZE.toml" --threads "$THREADS" --force \
-    --set "insert[0].file=$data" --set "simulation.end_time=$end" \
-    --set "output.frame_interval=$end" --out "$WORK/run_$2" >"$WORK/run_$2.log" 2>&1 ||
-    die "run of $1 failed: $WORK/run_$2.log"
-  sed -nE 's/^done: .* ([0-9.e+]+) particle-steps.*/\1/p' "$WORK/run_$2.log"
+  local np steps secs r bpp rss
+  read -r np steps secs r bpp rss < <(FLUIDEM=$1 run_fluidem "$WORK/run_$2.log" "$THREADS" \
+    "$ROOT/bench/cases/bed$SIZE.toml" --set "insert[0].file=$data" \
+    --set "simulation.end_time=$end" --set "output.frame_interval=$end" --out "$WORK/run_$2")
+  echo "$r"
 }
 
 echo "A: $A"
