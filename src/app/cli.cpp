@@ -276,6 +276,10 @@ int run_cli(int argc, char** argv) {
                sim.gas() ? fmt::format(", gas and coupling {:.3f} s (gas solver {:.3f} s)",
                                        s.seconds_gas, s.seconds_gas_solver)
                          : "");
+    if (s.folded_steps > 0)
+      fmt::print("integration folded into the contact loop on {} of {} steps (its time counted "
+                 "in contacts)\n",
+                 s.folded_steps, s.steps);
     if (s.collisions == 0 && s.pairs_per_particle > 0.0)
       fmt::print("neighbour pairs {:.2f} and wall entries {:.2f} per particle, {} contacts (pairs "
                  "and walls) at the end\n",

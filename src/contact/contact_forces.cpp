@@ -255,6 +255,7 @@ void add_stats(ContactStats& total, const ContactStats& part) {
   total.n_contacts += part.n_contacts;
   total.elastic_energy += part.elastic_energy;
   total.spring_losses += part.spring_losses;
+  total.max_force2 = std::max(total.max_force2, part.max_force2);
   if (part.max_overlap_ratio > total.max_overlap_ratio) {
     total.max_overlap_ratio = part.max_overlap_ratio;
     total.max_overlap_particle = part.max_overlap_particle;
@@ -263,7 +264,7 @@ void add_stats(ContactStats& total, const ContactStats& part) {
 
 template <NormalModel Normal, bool Tangential, RollingModel Rolling>
 ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTable& table,
-                     double dt, ContactScratch& nc, ContactRecord* rec) {
+                     double dt, ContactScratch& nc, ContactRecord* rec, const SlabHook* hook) {
   ContactStats st;
   const bool recording = rec != nullptr && rec->enabled;
   constexpr int hw = kHistoryWidth<Tangential, Rolling>;
@@ -368,7 +369,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     // The sums and the deepest overlap in registers (the accumulator's stores could alias
     // them), in the same order.
     double elastic = acc.elastic_energy, spring_losses = acc.spring_losses;
-    double max_ratio = acc.max_overlap_ratio;
+    double max_ratio = acc.max_overlap_ratio, max_force2 = acc.max_force2;
     std::size_t deepest = n; // the particle of the deepest overlap, when this batch has it
     for (int k = 0; k < b.n; ++k) {
       const std::uint32_t i = b.i[k];
@@ -408,6 +409,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       for (int m = 0; m < Batch::kHistory; ++m) hist[m] = b.hist[m][k];
       elastic += b.elastic[k];
       spring_losses += b.spring_loss[k];
+      const double f2 = f.x * f.x + f.y * f.y + f.z * f.z;
+      max_force2 = f2 > max_force2 ? f2 : max_force2;
       const double dmin = wall ? 2.0 * ri : 2.0 * std::min(ri, b.rj[k]);
       if (b.overlap[k] > max_ratio * dmin) [[unlikely]] {
         const double ratio = b.overlap[k] / dmin;
@@ -433,6 +436,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     acc.n_contacts += b.n;
     acc.elastic_energy = elastic;
     acc.spring_losses = spring_losses;
+    acc.max_force2 = max_force2;
     if (deepest < n) acc.max_overlap_ratio = max_ratio, acc.max_overlap_particle = p.id[deepest];
     b.n = 0;
   };
@@ -607,14 +611,25 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // fill the vector lanes), its statistics in the first slab's entry. The record keeps the
   // per-slab batches (its samples are ordered by slab).
   const bool threaded = n > kThreadedParticles;
+  // The hook (before_slab of compute_contact_forces): in phase 0, for a group's first slab, then
+  // for each next slab of the group just before the rows that read it (a group's last slab is
+  // read by its own rows in phase 1 and by the slab before it in phase 0; the next group's
+  // first slab is prepared by that group's phase 0, before the barrier).
+  const auto prepare = [hook](int slab) {
+    if (hook) (*hook)(slab);
+  };
   if (!threaded && !recording) {
     ContactStats local;
     Batch batch;
     for (int phase = 0; phase < 2; ++phase)
-      for (int g = 0; g < ngroup; ++g)
-        for (auto [sl, sl_end] = phase_slabs(g, phase); sl < sl_end; ++sl)
+      for (int g = 0; g < ngroup; ++g) {
+        if (phase == 0) prepare(group_begin(g));
+        for (auto [sl, sl_end] = phase_slabs(g, phase); sl < sl_end; ++sl) {
+          if (phase == 0) prepare(sl + 1);
           for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
             gather_row.template operator()<false>(nl.slab_particles[k], batch, local, nullptr);
+        }
+      }
     flush(batch, kPairs, local, nullptr);
     if (nslab > 0) slab_stats[0] = local;
     run_wall_chunks(0, nchunk);
@@ -648,7 +663,9 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       const int g_begin = first_group(t), g_end = t + 1 == nt ? ngroup : first_group(t + 1);
       for (int phase = 0; phase < 2; ++phase) {
         for (int g = g_begin; g < g_end; ++g) {
+          if (phase == 0) prepare(group_begin(g));
           for (auto [sl, sl_end] = phase_slabs(g, phase); sl < sl_end; ++sl) {
+            if (phase == 0) prepare(sl + 1);
             std::vector<ContactSample>* buf = recording ? &slab_samples[sl] : nullptr;
             // Summed on this thread's stack, stored once: the slabs' entries of slab_stats
             // share cache lines, and updating them per contact from two threads made the lines
@@ -694,24 +711,26 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
 
 template <NormalModel Normal, bool Tangential>
 ContactStats dispatch_rolling(const ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                              double dt, ContactScratch& nc, ContactRecord* rec) {
+                              double dt, ContactScratch& nc, ContactRecord* rec,
+                              const SlabHook* hook) {
   switch (t.rolling()) {
   case RollingModel::None:
-    return compute<Normal, Tangential, RollingModel::None>(p, nl, t, dt, nc, rec);
+    return compute<Normal, Tangential, RollingModel::None>(p, nl, t, dt, nc, rec, hook);
   case RollingModel::ConstantTorque:
-    return compute<Normal, Tangential, RollingModel::ConstantTorque>(p, nl, t, dt, nc, rec);
+    return compute<Normal, Tangential, RollingModel::ConstantTorque>(p, nl, t, dt, nc, rec, hook);
   case RollingModel::SpringDashpot:
-    return compute<Normal, Tangential, RollingModel::SpringDashpot>(p, nl, t, dt, nc, rec);
+    return compute<Normal, Tangential, RollingModel::SpringDashpot>(p, nl, t, dt, nc, rec, hook);
   }
   return {};
 }
 
 template <NormalModel Normal>
 ContactStats dispatch_tangential(const ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                                 double dt, ContactScratch& nc, ContactRecord* rec) {
+                                 double dt, ContactScratch& nc, ContactRecord* rec,
+                                 const SlabHook* hook) {
   return t.tangential() == TangentialModel::History
-             ? dispatch_rolling<Normal, true>(p, nl, t, dt, nc, rec)
-             : dispatch_rolling<Normal, false>(p, nl, t, dt, nc, rec);
+             ? dispatch_rolling<Normal, true>(p, nl, t, dt, nc, rec, hook)
+             : dispatch_rolling<Normal, false>(p, nl, t, dt, nc, rec, hook);
 }
 
 } // namespace
@@ -728,7 +747,7 @@ std::size_t ContactScratch::bytes() const {
 
 ContactStats compute_contact_forces(const ParticleStore& p, NeighbourList& nl,
                                     const ContactTable& t, double dt, ContactScratch& nc,
-                                    ContactRecord* rec, ScratchState state) {
+                                    ContactRecord* rec, ScratchState state, const SlabHook* hook) {
   if (state == ScratchState::Packed) {
     if (nc.view.size() != ContactScratch::kView * p.size() ||
         nc.acc.size() != ContactScratch::kAcc * p.size())
@@ -739,9 +758,9 @@ ContactStats compute_contact_forces(const ParticleStore& p, NeighbourList& nl,
   if (rec && rec->enabled) rec->samples.clear(); // also for a model that computes nothing
   switch (t.normal()) {
   case NormalModel::Linear:
-    return dispatch_tangential<NormalModel::Linear>(p, nl, t, dt, nc, rec);
+    return dispatch_tangential<NormalModel::Linear>(p, nl, t, dt, nc, rec, hook);
   case NormalModel::Hertz:
-    return dispatch_tangential<NormalModel::Hertz>(p, nl, t, dt, nc, rec);
+    return dispatch_tangential<NormalModel::Hertz>(p, nl, t, dt, nc, rec, hook);
   case NormalModel::WaltonBraun:
     break; // rejected when the ContactTable was built
   }

@@ -3,6 +3,7 @@
 // The model choice is resolved once into a template instantiation: no virtual call per contact.
 #pragma once
 #include <array>
+#include <functional>
 
 #include "contact/contact_record.hpp"
 #include "contact/contact_table.hpp"
@@ -18,6 +19,10 @@ struct ContactStats {
   long max_overlap_particle = -1; ///< id of a particle in the deepest contact
   double elastic_energy = 0.0;    ///< J stored in all springs (normal, tangential, rolling)
   double spring_losses = 0.0;     ///< J removed from springs this step (Coulomb limit, release)
+  /// The largest |F|^2 of one contact (normal and tangential force on a particle), N^2: with the
+  /// list's most entries per particle it bounds every particle's contact force (the folded step
+  /// of Simulation::step).
+  double max_force2 = 0.0;
 };
 
 /// Working arrays of the contact loop, kept between steps (nothing is allocated per step).
@@ -163,10 +168,18 @@ int contact_history_width(const ContactTable& table);
 /// `state`: Packed when nc's view already holds p's current positions and velocities and its
 /// sums are zero (ContactScratch::pack of every particle since they last changed); Stale (the
 /// default) packs them here.
+/// `before_slab`, when given, is called once for every slab s of the list, before any row reads
+/// or adds into a particle of slab s (only s's own rows and the previous slab's do). Calls for
+/// different slabs may run at once on different threads, beside rows that touch none of s's
+/// particles. The integrator moves and packs slab s's particles there (the view entries and
+/// zeroed sums of nl.slab_particles[slab_start[s] .. slab_start[s+1])), while the contact loop
+/// is about to read them, instead of in a pass of its own over all particles before the loop.
 enum class ScratchState { Stale, Packed };
+using SlabHook = std::function<void(int slab)>;
 ContactStats compute_contact_forces(const ParticleStore& p, NeighbourList& nl,
                                     const ContactTable& table, double dt, ContactScratch& nc,
                                     ContactRecord* record = nullptr,
-                                    ScratchState state = ScratchState::Stale);
+                                    ScratchState state = ScratchState::Stale,
+                                    const SlabHook* before_slab = nullptr);
 
 } // namespace fluidem

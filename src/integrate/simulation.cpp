@@ -135,6 +135,7 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
     mass += p_.mass[i];
   }
   for (const auto& s : spec_.species) dmax = std::max(dmax, s.diameter);
+  for (const double im : p_.inv_mass) max_inv_mass_ = std::max(max_inv_mass_, im);
   const double skin = spec_.neighbour.skin ? *spec_.neighbour.skin : 0.2 * dmax;
 
   if (spec_.output.collisions) {
@@ -413,39 +414,65 @@ void Simulation::step(bool defer_second_kick) {
     return any;
   };
   const bool with_gas = kick.with_gas(), with_field = kick.with_field();
-  auto t0 = Clock::now();
-  bool moved_far;
-  if (with_gas && !with_field && !any_periodic)
-    moved_far = kick_drift.template operator()<true, false, false>();
-  else if (!with_gas && !with_field && !any_periodic)
-    moved_far = kick_drift.template operator()<false, false, false>();
-  else if (with_gas)
-    moved_far = kick_drift.template operator()<true, true, true>();
-  else
-    moved_far = kick_drift.template operator()<false, true, true>();
-  particles_current_ = false;
-  t_integration_ += seconds_since(t0);
+  const bool sample_continuum = continuum_ && continuum_samples_next_step();
+  // A folded step: when the second half kick is pending, the kick is plain (contact forces and
+  // gravity) and the last step bounds this one's drift within half the skin (DriftBound: no
+  // rebuild can be due after it), kick_drift's pass runs inside the contact loop, slab by slab,
+  // where the loop reads the particles anyway (one stream of the particles through the cache
+  // per step instead of two: +9-10% at 10^5 particles, bench/RESULTS.md). Bitwise the same
+  // particles as kick_drift's pass (the same operations on each particle); the dissipation is
+  // summed per slab (compute_forces_folded).
+  const bool plain = !with_gas && !with_field && !any_periodic;
+  const auto& g = spec_.simulation.gravity;
+  if (fold_enabled_ && plain && fused && tracked &&
+      drift_bound_.next_step_within(dt, 0.5 * list.skin(), stats_.max_force2,
+                                    list.max_entries_per_particle(), max_inv_mass_,
+                                    std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]))) {
+    particles_current_ = false;
+    record_.enabled = collisions_ != nullptr || sample_continuum;
+    compute_forces_folded(kick);
+    ++folded_steps_;
+  } else {
+    auto t0 = Clock::now();
+    bool moved_far;
+    if (with_gas && !with_field && !any_periodic)
+      moved_far = kick_drift.template operator()<true, false, false>();
+    else if (!with_gas && !with_field && !any_periodic)
+      moved_far = kick_drift.template operator()<false, false, false>();
+    else if (with_gas)
+      moved_far = kick_drift.template operator()<true, true, true>();
+    else
+      moved_far = kick_drift.template operator()<false, true, true>();
+    particles_current_ = false;
+    t_integration_ += seconds_since(t0);
 
-  // The view stays packed unless the particles are reordered.
-  ScratchState scratch = ScratchState::Packed;
-  const bool rebuild = !tracked || moved_far;
-  if (rebuild) sync_particles(); // the build reads the positions from p_
-  t0 = Clock::now();
-  if (rebuild) {
-    const int every = spec_.neighbour.sort_interval;
-    if (every > 0 && nl_->builds() % every == 0) {
-      sort_and_rebuild();
-      scratch = ScratchState::Stale;
-    } else {
-      nl_->build(p_);
+    // The view stays packed unless the particles are reordered.
+    ScratchState scratch = ScratchState::Packed;
+    const bool rebuild = !tracked || moved_far;
+    if (rebuild) sync_particles(); // the build reads the positions from p_
+    t0 = Clock::now();
+    if (rebuild) {
+      const int every = spec_.neighbour.sort_interval;
+      if (every > 0 && nl_->builds() % every == 0) {
+        sort_and_rebuild();
+        scratch = ScratchState::Stale;
+      } else {
+        nl_->build(p_);
+      }
+    }
+    t_neighbour_ += seconds_since(t0);
+
+    // The contacts are recorded on the steps whose contacts an analysis uses.
+    record_.enabled = collisions_ != nullptr || sample_continuum;
+    compute_forces(scratch);
+    // What the next step's fold decision needs of this step (a folded step finds it in its
+    // own pass; this is a pass of its own, on the steps that are not folded).
+    if (fold_enabled_ && plain) {
+      t0 = Clock::now();
+      drift_bound_.measure(nc_.view.data(), ContactScratch::kView, n, list);
+      t_integration_ += seconds_since(t0);
     }
   }
-  t_neighbour_ += seconds_since(t0);
-
-  // The contacts are recorded on the steps whose contacts an analysis uses.
-  const bool sample_continuum = continuum_ && continuum_samples_next_step();
-  record_.enabled = collisions_ != nullptr || sample_continuum;
-  compute_forces(scratch);
 
   // The second half kick, after the forces: left for the next step when the caller asks (it
   // then reads no velocity before finish_kick()), else now. The continuum averages of this
@@ -457,6 +484,56 @@ void Simulation::step(bool defer_second_kick) {
   ++step_;
   time_ = static_cast<double>(step_) * dt_;
   record_collisions();
+}
+
+void Simulation::compute_forces_folded(const Kick& kick) {
+  const auto t0 = Clock::now();
+  const NeighbourList& list = *nl_;
+  const int nslab = list.slab_count();
+  slab_sums_.resize(2 * static_cast<std::size_t>(nslab)); // kept between steps
+  double* const sums = slab_sums_.data();
+  double* const view = nc_.view.data();
+  const std::uint32_t* const slab_start = list.slab_start.data();
+  const std::uint32_t* const members = list.slab_particles.data();
+  const double dt = dt_;
+  // Slab sl's particles: the pending second half kick, its dissipation term (before the packing
+  // zeroes the sums), the first half kick, the drift and the packing, as kick_drift does for
+  // each particle; the slab's dissipation sum and largest squared drift speed.
+  const SlabHook hook = [&, sums, view, slab_start, members, dt](int sl) {
+    const Kick k = kick; // a local copy: the view's stores cannot change it (no reloads)
+    double w = 0.0, v2 = 0.0;
+    for (std::uint32_t m = slab_start[sl]; m < slab_start[sl + 1]; ++m) {
+      const std::size_t i = members[m];
+      const double* vi = view + ContactScratch::kView * i;
+      const std::array<double, 9> q{vi[0], vi[1], vi[2], vi[4], vi[5], vi[6], vi[8], vi[9], vi[10]};
+      const std::array<double, 6> dv = k.increment<false, false>(i, q[0], q[1], q[2]);
+      const std::array<double, 6> v{q[3] + dv[0], q[4] + dv[1], q[5] + dv[2],
+                                    q[6] + dv[3], q[7] + dv[4], q[8] + dv[5]};
+      const std::array<double, 2> t = nc_.dissipation_terms(i, v);
+      w += t[0];
+      w += t[1];
+      const std::array<double, 6> u{v[0] + dv[0], v[1] + dv[1], v[2] + dv[2],
+                                    v[3] + dv[3], v[4] + dv[4], v[5] + dv[5]};
+      nc_.pack_state(i, {q[0] + dt * u[0], q[1] + dt * u[1], q[2] + dt * u[2], u[0], u[1], u[2],
+                         u[3], u[4], u[5]});
+      const double s2 = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+      v2 = s2 > v2 ? s2 : v2;
+    }
+    sums[2 * sl] = w, sums[2 * sl + 1] = v2;
+  };
+  stats_ = compute_contact_forces(p_, *nl_, *table_, dt_, nc_,
+                                  collisions_ || continuum_ ? &record_ : nullptr,
+                                  ScratchState::Packed, &hook);
+  t_contacts_ += seconds_since(t0);
+  // The slabs' sums in slab order (the same with any number of threads).
+  double w = 0.0, v2 = 0.0;
+  for (int sl = 0; sl < nslab; ++sl) {
+    w += sums[2 * sl];
+    v2 = std::max(v2, sums[2 * sl + 1]);
+  }
+  e_dsp_ += -w * dt_;
+  e_dsp_ += stats_.spring_losses;
+  drift_bound_.folded_step(dt_, v2);
 }
 
 void Simulation::sync_particles() {
@@ -866,7 +943,7 @@ RunSummary Simulation::run(const std::string& out_dir,
   };
 
   const auto start = Clock::now();
-  const long step0 = step_;
+  const long step0 = step_, folded0 = folded_steps_;
   write_outputs();
   if (progress) progress({step_, total, time_, spec_.simulation.end_time, p_.size()});
   try {
@@ -909,6 +986,7 @@ RunSummary Simulation::run(const std::string& out_dir,
                                 std::max(s.wall_seconds, 1e-9);
   s.neighbour_builds = nl_->builds();
   s.spatial_sorts = sorts_;
+  s.folded_steps = folded_steps_ - folded0;
   s.seconds_contacts = t_contacts_;
   s.seconds_integration = t_integration_;
   s.seconds_neighbour = t_neighbour_;

@@ -19,6 +19,7 @@
 #include "contact/contact_table.hpp"
 #include "core/case_spec.hpp"
 #include "hardsphere/hard_sphere_engine.hpp"
+#include "integrate/drift_bound.hpp"
 #include "integrate/gas_coupling.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "particles/particle_store.hpp"
@@ -54,6 +55,9 @@ struct RunSummary {
   double particle_steps_per_second = 0.0;
   long neighbour_builds = 0;
   long spatial_sorts = 0; ///< soft spheres: sorts of the store in space by this process
+  /// Soft spheres: steps whose integration ran inside the contact loop (their integration time
+  /// is in seconds_contacts)
+  long folded_steps = 0;
   double seconds_contacts = 0.0, seconds_integration = 0.0, seconds_neighbour = 0.0,
          seconds_output = 0.0, seconds_gas = 0.0;
   double seconds_gas_solver = 0.0; ///< the part of seconds_gas in the gas solver's steps
@@ -147,6 +151,15 @@ public:
   const ContinuumAverager* continuum() const { return continuum_.get(); }
   /// Spatial sorts of the store done by this process (neighbour.sort_interval).
   long spatial_sorts() const { return sorts_; }
+  /// Builds of the soft-sphere neighbour list so far (checkpointed).
+  long neighbour_builds() const { return nl_->builds(); }
+  /// Steps whose integration pass ran inside the contact loop, slab by slab (step()), in this
+  /// process (not checkpointed: a log figure).
+  long folded_steps() const { return folded_steps_; }
+  /// Whether steps may be folded (default true). The folded and the separate pass give bitwise
+  /// the same particles; the dissipated energy is summed per slab instead of per chunk of
+  /// particles (the same round-off with any thread count). For tests and benchmarks.
+  void set_folded_integration(bool on) { fold_enabled_ = on; }
   /// The contacts of the last step, when that step recorded them (else empty).
   const ContactRecord& contact_record() const { return record_; }
 
@@ -165,6 +178,10 @@ private:
   /// after a step's first pass (particles_current_ false), for whatever reads p_.
   void sync_particles();
   struct Kick;
+  /// The contact forces of a folded step: the step's pass over the particles (the pending
+  /// second half kick, its dissipation, the first half kick, the drift, the packing) runs slab
+  /// by slab inside the contact loop (compute_contact_forces' before_slab).
+  void compute_forces_folded(const Kick& kick);
   /// Sort the particles in space (neighbour/spatial_order.hpp) and rebuild the neighbour list
   /// in the new order, keeping the contact histories and the gas forces with their particles.
   void sort_and_rebuild();
@@ -201,6 +218,14 @@ private:
   double continuum_interval_ = 0.0;              ///< s
   double t_contacts_ = 0.0, t_integration_ = 0.0, t_neighbour_ = 0.0, t_gas_ = 0.0;
   long sorts_ = 0; ///< spatial sorts in this process (not checkpointed: a log figure)
+  /// The folded step (step()): whether it may run, the bound that decides it from the last step,
+  /// the particles' largest 1/m, its per-slab sums (dissipation, largest squared speed) and the
+  /// steps it ran.
+  bool fold_enabled_ = true;
+  DriftBound drift_bound_;
+  double max_inv_mass_ = 0.0;
+  std::vector<double> slab_sums_;
+  long folded_steps_ = 0;
   /// The store's indices in ascending particle id, for output frames (empty: the store is in id
   /// order); stale after a sort, recomputed when a frame is written.
   std::vector<std::uint32_t> output_order_;

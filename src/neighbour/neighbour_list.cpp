@@ -295,6 +295,13 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
     }
   }
 
+  // Each particle's entries: its row, its appearances as a partner, its walls.
+  count_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) count_[i] = offset[i + 1] - offset[i];
+  for (const std::uint32_t j : partner) ++count_[j];
+  for (const std::uint32_t i : wall_particle) ++count_[i];
+  max_entries_ = n > 0 ? *std::max_element(count_.begin(), count_.end()) : 0;
+
   x0_ = p.x;
   y0_ = p.y;
   z0_ = p.z;

@@ -38,11 +38,20 @@ public:
   bool built_for(std::size_t n) const { return builds_ > 0 && x0_.size() == n; }
   /// Whether particle i, now at (x, y, z), moved more than skin/2 since the last build.
   bool moved_far(std::size_t i, double x, double y, double z) const {
+    return moved_far_by(displacement2(i, x, y, z));
+  }
+  /// Whether a squared displacement (displacement2) is beyond skin/2.
+  bool moved_far_by(double displacement2) const { return displacement2 > 0.25 * skin_ * skin_; }
+  /// The squared distance of particle i, now at (x, y, z), from where the last build saw it, m^2.
+  double displacement2(std::size_t i, double x, double y, double z) const {
     const double dx = min_image(x - x0_[i], 0);
     const double dy = min_image(y - y0_[i], 1);
     const double dz = min_image(z - z0_[i], 2);
-    return dx * dx + dy * dy + dz * dz > 0.25 * skin_ * skin_;
+    return dx * dx + dy * dy + dz * dz;
   }
+  /// The most entries (pairs, as owner or partner, and walls) any one particle has in the list
+  /// of the last build: no particle has more contacts than this until the next build.
+  std::uint32_t max_entries_per_particle() const { return max_entries_; }
   /// Rebuild pair and wall lists; history of surviving contacts is kept. `new_to_old`: the
   /// store was reordered since the last build (new index k holds the particle that was at
   /// new_to_old[k], ParticleStore::permute); the previous list is renumbered through it before
@@ -105,6 +114,7 @@ private:
   double skin_;
   int hw_;
   long builds_ = 0;
+  std::uint32_t max_entries_ = 0;
   std::vector<double> x0_, y0_, z0_; ///< positions at the last build
   // Cell grid (its arrays are scratch of build(), released at its end)
   std::array<int, 3> ncell_{1, 1, 1};
