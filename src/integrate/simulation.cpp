@@ -416,13 +416,13 @@ void Simulation::step(bool defer_second_kick) {
   const bool with_gas = kick.with_gas(), with_field = kick.with_field();
   const bool sample_continuum = continuum_ && continuum_samples_next_step();
   // A folded step: when the second half kick is pending, the kick is plain (contact forces and
-  // gravity) and the last step bounds this one's drift within half the skin (DriftBound: no
-  // rebuild can be due after it), kick_drift's pass runs inside the contact loop, slab by slab,
-  // where the loop reads the particles anyway (one stream of the particles through the cache
-  // per step instead of two: +9-10% at 10^5 particles, bench/RESULTS.md). Bitwise the same
-  // particles as kick_drift's pass (the same operations on each particle); the dissipation is
-  // summed per slab (compute_forces_folded).
-  const bool plain = !with_gas && !with_field && !any_periodic;
+  // gravity: no gas forces, no body-force field) and the last step bounds this one's drift within
+  // half the skin (DriftBound: no rebuild can be due after it), kick_drift's pass runs inside the
+  // contact loop, slab by slab, where the loop reads the particles anyway (one stream of the
+  // particles through the cache per step instead of two: +9-10% at 10^5 particles,
+  // bench/RESULTS.md). Bitwise the same particles as kick_drift's pass (the same operations on each
+  // particle); the dissipation is summed per slab (compute_forces_folded).
+  const bool plain = !with_gas && !with_field;
   const auto& g = spec_.simulation.gravity;
   if (fold_enabled_ && plain && fused && tracked &&
       drift_bound_.next_step_within(dt, 0.5 * list.skin(), stats_.max_force2,
@@ -496,10 +496,12 @@ void Simulation::compute_forces_folded(const Kick& kick) {
   const std::uint32_t* const slab_start = list.slab_start.data();
   const std::uint32_t* const members = list.slab_particles.data();
   const double dt = dt_;
+  const BoxGeometry& box = list.box();
   // Slab sl's particles: the pending second half kick, its dissipation term (before the packing
-  // zeroes the sums), the first half kick, the drift and the packing, as kick_drift does for
-  // each particle; the slab's dissipation sum and largest squared drift speed.
-  const SlabHook hook = [&, sums, view, slab_start, members, dt](int sl) {
+  // zeroes the sums), the first half kick, the drift (Wrap: periodic axes, the centres kept in
+  // [lo, hi)) and the packing, as kick_drift does for each particle; the slab's dissipation sum
+  // and largest squared drift speed.
+  const auto slab_pass = [&, sums, view, slab_start, members, dt]<bool Wrap>(int sl) {
     const Kick k = kick; // a local copy: the view's stores cannot change it (no reloads)
     double w = 0.0, v2 = 0.0;
     for (std::uint32_t m = slab_start[sl]; m < slab_start[sl + 1]; ++m) {
@@ -514,13 +516,21 @@ void Simulation::compute_forces_folded(const Kick& kick) {
       w += t[1];
       const std::array<double, 6> u{v[0] + dv[0], v[1] + dv[1], v[2] + dv[2],
                                     v[3] + dv[3], v[4] + dv[4], v[5] + dv[5]};
-      nc_.pack_state(i, {q[0] + dt * u[0], q[1] + dt * u[1], q[2] + dt * u[2], u[0], u[1], u[2],
-                         u[3], u[4], u[5]});
+      double x = q[0] + dt * u[0], y = q[1] + dt * u[1], z = q[2] + dt * u[2];
+      if constexpr (Wrap) {
+        if (box.periodic[0]) x = wrapped(x, box.lo[0], box.length(0));
+        if (box.periodic[1]) y = wrapped(y, box.lo[1], box.length(1));
+        if (box.periodic[2]) z = wrapped(z, box.lo[2], box.length(2));
+      }
+      nc_.pack_state(i, {x, y, z, u[0], u[1], u[2], u[3], u[4], u[5]});
       const double s2 = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
       v2 = s2 > v2 ? s2 : v2;
     }
     sums[2 * sl] = w, sums[2 * sl + 1] = v2;
   };
+  const bool any_periodic = box.periodic[0] || box.periodic[1] || box.periodic[2];
+  const SlabHook hook = any_periodic ? SlabHook([&](int sl) { slab_pass.operator()<true>(sl); })
+                                     : SlabHook([&](int sl) { slab_pass.operator()<false>(sl); });
   stats_ = compute_contact_forces(p_, *nl_, *table_, dt_, nc_,
                                   collisions_ || continuum_ ? &record_ : nullptr,
                                   ScratchState::Packed, &hook);
