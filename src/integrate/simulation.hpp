@@ -4,7 +4,11 @@
 // [Deen07 eq. 40]):
 //   v += F/m dt/2, w += T/I dt/2;  x += v dt;  [rebuild list];  F, T <- contacts + gravity;
 //   v += F/m dt/2, w += T/I dt/2.
-// Damping forces are evaluated with the half-step velocities.
+// Damping forces are evaluated with the half-step velocities. The last step's second half kick
+// is done with the next step's first (the same increment), in one pass over the particles with
+// the drift; on most steps of a run without gas forces or a body-force field that pass runs
+// slab by slab inside the contact loop (the folded step, integrate/drift_bound.hpp), bitwise the
+// same.
 #pragma once
 #include <atomic>
 #include <functional>
