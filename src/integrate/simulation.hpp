@@ -163,7 +163,10 @@ public:
   /// Whether steps may be folded (default true). The folded and the separate pass give bitwise
   /// the same particles; the dissipated energy is summed per slab instead of per chunk of
   /// particles (the same round-off with any thread count). For tests and benchmarks.
-  void set_folded_integration(bool on) { fold_enabled_ = on; }
+  void set_folded_integration(bool on) {
+    fold_enabled_ = on;
+    drift_bound_ = DriftBound{}; // not kept up to date while off: the next step measures it
+  }
   /// The contacts of the last step, when that step recorded them (else empty).
   const ContactRecord& contact_record() const { return record_; }
 
