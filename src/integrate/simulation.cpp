@@ -419,9 +419,10 @@ void Simulation::step(bool defer_second_kick) {
   // gravity: no gas forces, no body-force field) and the last step bounds this one's drift within
   // half the skin (DriftBound: no rebuild can be due after it), kick_drift's pass runs inside the
   // contact loop, slab by slab, where the loop reads the particles anyway (one stream of the
-  // particles through the cache per step instead of two: +9-10% at 10^5 particles,
-  // bench/RESULTS.md). Bitwise the same particles as kick_drift's pass (the same operations on each
-  // particle); the dissipation is summed per slab (compute_forces_folded).
+  // particles through the cache per step instead of two: +6-7% at 10^5 particles on one and two
+  // threads, none at 10^4, which fits in the cache; bench/RESULTS.md). Bitwise the same
+  // particles as kick_drift's pass (the same operations on each particle); the dissipation is
+  // summed per slab (compute_forces_folded).
   const bool plain = !with_gas && !with_field;
   const auto& g = spec_.simulation.gravity;
   if (fold_enabled_ && plain && fused && tracked &&
