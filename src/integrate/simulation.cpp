@@ -467,8 +467,9 @@ void Simulation::step(bool defer_second_kick) {
     record_.enabled = collisions_ != nullptr || sample_continuum;
     compute_forces(scratch);
     // What the next step's fold decision needs of this step (a folded step finds it in its
-    // own pass; this is a pass of its own, on the steps that are not folded).
-    if (fold_enabled_ && plain) {
+    // own pass; this is a pass of its own, on the steps that are not folded), when the next
+    // step may fold: this step leaves its second kick pending.
+    if (fold_enabled_ && plain && defer_second_kick && !sample_continuum) {
       t0 = Clock::now();
       drift_bound_.measure(nc_.view.data(), ContactScratch::kView, n, list);
       t_integration_ += seconds_since(t0);
