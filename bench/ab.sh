@@ -39,8 +39,9 @@ end=$(awk -v s="$STEPS" 'BEGIN { printf "%.10g", s * 1e-5 }')
 # rate BINARY TAG: particle-steps per second of one run (bench_lib.sh's run_fluidem: pinned, its
 # own "done:" line)
 rate() {
-  local np steps secs r bpp rss
-  read -r np steps secs r bpp rss < <(FLUIDEM=$1 run_fluidem "$WORK/run_$2.log" "$THREADS" \
+  local r
+  # (run_fluidem prints: particles, steps, seconds, rate, bytes per particle, peak RSS)
+  read -r _ _ _ r _ _ < <(FLUIDEM=$1 run_fluidem "$WORK/run_$2.log" "$THREADS" \
     "$ROOT/bench/cases/bed$SIZE.toml" --set "insert[0].file=$data" \
     --set "simulation.end_time=$end" --set "output.frame_interval=$end" --out "$WORK/run_$2")
   echo "$r"
