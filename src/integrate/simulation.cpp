@@ -365,9 +365,9 @@ void Simulation::step(bool defer_second_kick) {
     }
   };
   // Drift particle i from position q with its new velocities v and pack its view; returns
-  // whether it moved more than skin/2 since the last list build.
-  const auto drift = [&]<bool FromView, bool Wrap>(std::size_t i, const std::array<double, 9>& q,
-                                                   const std::array<double, 6>& v)
+  // whether it moved more than skin/2 since the last list build (Check; else false).
+  const auto drift = [&]<bool FromView, bool Wrap, bool Check = true>(
+      std::size_t i, const std::array<double, 9>& q, const std::array<double, 6>& v)
       __attribute__((always_inline)) {
     double xi = q[0] + dt * v[0], yi = q[1] + dt * v[1], zi = q[2] + dt * v[2];
     if constexpr (Wrap) {
@@ -379,7 +379,10 @@ void Simulation::step(bool defer_second_kick) {
       nc_.pack_state(i, {xi, yi, zi, v[0], v[1], v[2], v[3], v[4], v[5]});
     else
       nc_.pack(i, {xi, yi, zi, radius[i], v[0], v[1], v[2], mass[i], v[3], v[4], v[5], inv_i[i]});
-    return tracked && list.moved_far(i, xi, yi, zi);
+    if constexpr (Check)
+      return tracked && list.moved_far(i, xi, yi, zi);
+    else
+      return false;
   };
   // A second half kick left pending by the last step (velocity Verlet: it and this step's
   // first kick both apply the last force evaluation, so they are the same increment) runs in
@@ -387,6 +390,20 @@ void Simulation::step(bool defer_second_kick) {
   // passes, one pass over the particles fewer.
   const bool fused = kick_pending_;
   kick_pending_ = false;
+  // Particle i's pending second half kick, its dissipation terms, the first half kick and the
+  // drift (with the rebuild test: Check), from and into the view; the pass below and the folded
+  // step's slab pass (compute_forces_folded) both run it, so that they stay bitwise the same.
+  const auto kick_kick_drift = [&]<bool Gas, bool Field, bool Wrap, bool Check>(std::size_t i)
+      __attribute__((always_inline)) {
+    const std::array<double, 9> q = state.template operator()<true>(i);
+    const std::array<double, 6> dv = kick.increment<Gas, Field>(i, q[0], q[1], q[2]);
+    const std::array<double, 6> v{q[3] + dv[0], q[4] + dv[1], q[5] + dv[2],
+                                  q[6] + dv[3], q[7] + dv[4], q[8] + dv[5]};
+    const std::array<double, 2> t = nc_.dissipation_terms(i, v); // before the packing
+    const bool far = drift.template operator()<true, Wrap, Check>(
+        i, q, {v[0] + dv[0], v[1] + dv[1], v[2] + dv[2], v[3] + dv[3], v[4] + dv[4], v[5] + dv[5]});
+    return ContactScratch::DissipationTerms{t[0], t[1], far};
+  };
   const auto kick_drift = [&]<bool Gas, bool Field, bool Wrap>() {
     if (!fused)
       return parallel_any(n, threaded, [&](std::size_t i) {
@@ -400,15 +417,7 @@ void Simulation::step(bool defer_second_kick) {
     e_dsp_ += nc_.dissipation_sum(
         n, dt,
         [&](std::size_t i) __attribute__((always_inline)) {
-          const std::array<double, 9> q = state.template operator()<true>(i);
-          const std::array<double, 6> dv = kick.increment<Gas, Field>(i, q[0], q[1], q[2]);
-          const std::array<double, 6> v{q[3] + dv[0], q[4] + dv[1], q[5] + dv[2],
-                                        q[6] + dv[3], q[7] + dv[4], q[8] + dv[5]};
-          const std::array<double, 2> t = nc_.dissipation_terms(i, v); // before the packing
-          const bool far = drift.template operator()<true, Wrap>(
-              i, q,
-              {v[0] + dv[0], v[1] + dv[1], v[2] + dv[2], v[3] + dv[3], v[4] + dv[4], v[5] + dv[5]});
-          return ContactScratch::DissipationTerms{t[0], t[1], far};
+          return kick_kick_drift.template operator()<Gas, Field, Wrap, true>(i);
         },
         any);
     return any;
@@ -429,9 +438,32 @@ void Simulation::step(bool defer_second_kick) {
       drift_bound_.next_step_within(dt, 0.5 * list.skin(), stats_.max_force2,
                                     list.max_entries_per_particle(), max_inv_mass_,
                                     std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]))) {
+    // Slab sl's particles as in kick_drift's pass, without its rebuild test; the slab's
+    // dissipation sum and largest squared drift speed (read back from the view), for
+    // compute_forces_folded. Wrap: periodic axes.
+    slab_sums_.resize(2 * static_cast<std::size_t>(list.slab_count())); // kept between steps
+    double* const sums = slab_sums_.data();
+    const std::uint32_t* const slab_start = list.slab_start.data();
+    const std::uint32_t* const members = list.slab_particles.data();
+    const auto slab_pass = [&, sums, slab_start, members]<bool Wrap>(int sl) {
+      double w = 0.0, v2 = 0.0;
+      for (std::uint32_t m = slab_start[sl]; m < slab_start[sl + 1]; ++m) {
+        const std::size_t i = members[m];
+        const ContactScratch::DissipationTerms t =
+            kick_kick_drift.template operator()<false, false, Wrap, false>(i);
+        w += t.force;
+        w += t.torque;
+        const double* vi = view + ContactScratch::kView * i;
+        const double s2 = vi[4] * vi[4] + vi[5] * vi[5] + vi[6] * vi[6];
+        v2 = s2 > v2 ? s2 : v2;
+      }
+      sums[2 * sl] = w, sums[2 * sl + 1] = v2;
+    };
     particles_current_ = false;
     record_.enabled = collisions_ != nullptr || sample_continuum;
-    compute_forces_folded(kick);
+    compute_forces_folded(any_periodic
+                              ? SlabHook([&](int sl) { slab_pass.operator()<true>(sl); })
+                              : SlabHook([&](int sl) { slab_pass.operator()<false>(sl); }));
     ++folded_steps_;
   } else {
     auto t0 = Clock::now();
@@ -488,60 +520,17 @@ void Simulation::step(bool defer_second_kick) {
   record_collisions();
 }
 
-void Simulation::compute_forces_folded(const Kick& kick) {
+void Simulation::compute_forces_folded(const SlabHook& slab_pass) {
   const auto t0 = Clock::now();
-  const NeighbourList& list = *nl_;
-  const int nslab = list.slab_count();
-  slab_sums_.resize(2 * static_cast<std::size_t>(nslab)); // kept between steps
-  double* const sums = slab_sums_.data();
-  double* const view = nc_.view.data();
-  const std::uint32_t* const slab_start = list.slab_start.data();
-  const std::uint32_t* const members = list.slab_particles.data();
-  const double dt = dt_;
-  const BoxGeometry& box = list.box();
-  // Slab sl's particles: the pending second half kick, its dissipation term (before the packing
-  // zeroes the sums), the first half kick, the drift (Wrap: periodic axes, the centres kept in
-  // [lo, hi)) and the packing, as kick_drift does for each particle; the slab's dissipation sum
-  // and largest squared drift speed.
-  const auto slab_pass = [&, sums, view, slab_start, members, dt]<bool Wrap>(int sl) {
-    const Kick k = kick; // a local copy: the view's stores cannot change it (no reloads)
-    double w = 0.0, v2 = 0.0;
-    for (std::uint32_t m = slab_start[sl]; m < slab_start[sl + 1]; ++m) {
-      const std::size_t i = members[m];
-      const double* vi = view + ContactScratch::kView * i;
-      const std::array<double, 9> q{vi[0], vi[1], vi[2], vi[4], vi[5], vi[6], vi[8], vi[9], vi[10]};
-      const std::array<double, 6> dv = k.increment<false, false>(i, q[0], q[1], q[2]);
-      const std::array<double, 6> v{q[3] + dv[0], q[4] + dv[1], q[5] + dv[2],
-                                    q[6] + dv[3], q[7] + dv[4], q[8] + dv[5]};
-      const std::array<double, 2> t = nc_.dissipation_terms(i, v);
-      w += t[0];
-      w += t[1];
-      const std::array<double, 6> u{v[0] + dv[0], v[1] + dv[1], v[2] + dv[2],
-                                    v[3] + dv[3], v[4] + dv[4], v[5] + dv[5]};
-      double x = q[0] + dt * u[0], y = q[1] + dt * u[1], z = q[2] + dt * u[2];
-      if constexpr (Wrap) {
-        if (box.periodic[0]) x = wrapped(x, box.lo[0], box.length(0));
-        if (box.periodic[1]) y = wrapped(y, box.lo[1], box.length(1));
-        if (box.periodic[2]) z = wrapped(z, box.lo[2], box.length(2));
-      }
-      nc_.pack_state(i, {x, y, z, u[0], u[1], u[2], u[3], u[4], u[5]});
-      const double s2 = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
-      v2 = s2 > v2 ? s2 : v2;
-    }
-    sums[2 * sl] = w, sums[2 * sl + 1] = v2;
-  };
-  const bool any_periodic = box.periodic[0] || box.periodic[1] || box.periodic[2];
-  const SlabHook hook = any_periodic ? SlabHook([&](int sl) { slab_pass.operator()<true>(sl); })
-                                     : SlabHook([&](int sl) { slab_pass.operator()<false>(sl); });
   stats_ = compute_contact_forces(p_, *nl_, *table_, dt_, nc_,
                                   collisions_ || continuum_ ? &record_ : nullptr,
-                                  ScratchState::Packed, &hook);
+                                  ScratchState::Packed, &slab_pass);
   t_contacts_ += seconds_since(t0);
   // The slabs' sums in slab order (the same with any number of threads).
   double w = 0.0, v2 = 0.0;
-  for (int sl = 0; sl < nslab; ++sl) {
-    w += sums[2 * sl];
-    v2 = std::max(v2, sums[2 * sl + 1]);
+  for (int sl = 0; sl < nl_->slab_count(); ++sl) {
+    w += slab_sums_[2 * static_cast<std::size_t>(sl)];
+    v2 = std::max(v2, slab_sums_[2 * static_cast<std::size_t>(sl) + 1]);
   }
   e_dsp_ += -w * dt_;
   e_dsp_ += stats_.spring_losses;

@@ -187,8 +187,9 @@ private:
   struct Kick;
   /// The contact forces of a folded step: the step's pass over the particles (the pending
   /// second half kick, its dissipation, the first half kick, the drift, the packing) runs slab
-  /// by slab inside the contact loop (compute_contact_forces' before_slab).
-  void compute_forces_folded(const Kick& kick);
+  /// by slab inside the contact loop (compute_contact_forces' before_slab), each slab's
+  /// dissipation sum and largest squared drift speed into slab_sums_.
+  void compute_forces_folded(const SlabHook& slab_pass);
   /// Sort the particles in space (neighbour/spatial_order.hpp) and rebuild the neighbour list
   /// in the new order, keeping the contact histories and the gas forces with their particles.
   void sort_and_rebuild();
