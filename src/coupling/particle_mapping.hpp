@@ -6,8 +6,8 @@
 //    (cube_mapping.hpp), the same cube that gives the porosity [Deen07 eq. 37]. The gas state a
 //    particle sees is the cube average of the control volumes it overlaps, and its force goes
 //    back with the same weights, so the exchange conserves momentum as with the stencils.
-// Both resolve periodic images (interpolation.hpp). An object holds scratch space: use one per
-// thread.
+// Both resolve periodic images (interpolation.hpp). The cube weights are scratch space of the
+// calling thread, kept between calls (no allocation once warm).
 #pragma once
 #include "core/coupling_settings.hpp"
 #include "core/vec3.hpp"
@@ -30,7 +30,7 @@ public:
   void porosity_and_density(const Vec3& x, double d, double& eps, double& rho);
   /// Weights of the faces of velocity component `dir` for a particle of diameter d at x, with
   /// periodic ghost/copy nodes replaced by their images (for the deposit of forces). Valid until
-  /// the next call.
+  /// the calling thread's next call of any ParticleMapping.
   const CubeWeights& face_weights(int dir, const Vec3& x, double d);
 
 private:
@@ -38,7 +38,6 @@ private:
   bool cube_ = false;
   double factor_ = 0.0; ///< cube side / particle diameter, a [Deen07 eq. 34]
   std::array<bool, 3> periodic_{};
-  CubeWeights w_;
 };
 
 } // namespace fluidem::coupling
