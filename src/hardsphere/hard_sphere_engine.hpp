@@ -118,8 +118,13 @@ private:
   /// Every particle's first event at the start of a step (all clocks at `now`), into next_.
   void first_events(double now);
   void process(ParticleStore& p, const Event& ev);
-  /// The calendar (a binary heap of particles by the time of their current event).
-  bool earlier(std::uint32_t i, std::uint32_t j) const;
+  /// The calendar: a binary heap of particles by the time of their current event.
+  struct QueueEntry {
+    double t;        ///< next_[i].t
+    std::uint32_t i; ///< the particle
+  };
+  static constexpr std::uint32_t kArity = 2;
+  static bool earlier(const QueueEntry& a, const QueueEntry& b);
   void sift_up(std::uint32_t k);
   void sift_down(std::uint32_t k);
   /// Make ev the current event of particle ev.a (ev.b == kNone: it has none).
@@ -144,9 +149,9 @@ private:
   std::vector<Kin> kin_; ///< copied in at the start of a step, out at its end
   std::vector<double> last_collision_;
   std::vector<std::uint32_t> counter_;
-  std::vector<Event> next_;          ///< per particle: its current event
-  std::vector<std::uint32_t> queue_; ///< the calendar: particles with an event, a heap
-  std::vector<std::uint32_t> slot_;  ///< per particle: its place in queue_, or kNone
+  std::vector<Event> next_;         ///< per particle: its current event
+  std::vector<QueueEntry> queue_;   ///< the calendar: particles with an event, a heap
+  std::vector<std::uint32_t> slot_; ///< per particle: its place in queue_, or kNone
   std::vector<double> built_x_, built_y_, built_z_; ///< positions at the last list build
   long list_builds_ = 0;
   Vec3 g_;
