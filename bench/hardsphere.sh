@@ -86,7 +86,7 @@ STAMP=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 run() {
   local log=$1
   shift
-  "${PIN[@]}" "$FLUIDEM" run "$@" --threads "$THREADS" >"$log" 2>&1 || { tail -5 "$log" >&2; die "fluidem failed (log $log)"; }
+  "${PIN[@]}" "$FLUIDEM" run "$@" --threads "$THREADS" --force >"$log" 2>&1 || { tail -5 "$log" >&2; die "fluidem failed (log $log)"; }
   local coll secs bpp
   coll=$(awk '/ collisions, .* collisions per second of wall time/ {print $1}' "$log")
   secs=$(awk '/^done:/ {print $5}' "$log")
