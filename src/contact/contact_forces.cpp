@@ -13,6 +13,7 @@
 #include "contact/kernels/rolling_torque.hpp"
 #include "contact/kernels/tangential_force.hpp"
 #include "core/parallel.hpp"
+#include "core/simd_clones.hpp"
 
 namespace fluidem {
 
@@ -143,16 +144,7 @@ struct ContactBatch {
   static Vec3 get(const Column (&c)[3], int k) { return {c[0][k], c[1][k], c[2][k]}; }
 };
 
-// The batch kernel is compiled three times, for AVX-512, AVX2 and the x86-64 baseline, and the
-// loader picks the one the processor runs (GCC function multiversioning; clang 14 does not
-// multiversion templates, other architectures have their own baseline). A build for the build
-// machine (FLUIDEM_NATIVE) has one path: a clone for a subset of -march=native cannot inline
-// the kernels, which are compiled for all of it.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(FLUIDEM_NATIVE)
-#define FLUIDEM_SIMD_CLONES [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
-#else
-#define FLUIDEM_SIMD_CLONES
-#endif
+// The batch kernel is compiled for AVX-512, AVX2 and the x86-64 baseline (core/simd_clones.hpp).
 
 /// Pass 2 of the contact loop: evaluate the batch's contacts, several at once (see compute()).
 /// Pairs [Deen07 eq. 12]: relative contact-point velocity from both particles; walls: a partner

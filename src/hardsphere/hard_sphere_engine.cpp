@@ -13,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "core/material_mixing.hpp"
+#include "core/simd_clones.hpp"
 
 namespace fluidem {
 
@@ -41,6 +42,47 @@ double time_to_contact(const Vec3& r, const Vec3& v, double sigma, double horizo
   const double disc = b * b - norm2(v) * c;
   if (disc < 0.0) return never; // miss
   return c / (-b + std::sqrt(disc));
+}
+
+/// Up to kLanes pairs of one particle, as separations and relative velocities (as for
+/// time_to_contact), for pair_times; unused lanes hold zeros.
+struct PairLanes {
+  static constexpr int kLanes = 8;
+  alignas(64) double rx[kLanes], ry[kLanes], rz[kLanes], vx[kLanes], vy[kLanes], vz[kLanes],
+      sigma[kLanes];
+  alignas(64) double dt[kLanes];       ///< out: time to contact, infinity if none
+  alignas(64) double touching[kLanes]; ///< out: 1 where c <= 0 and b < 0 (time_to_contact's
+                                       ///< special case, left to it), else 0
+  /// Zeros in lanes m.. (pairs that never meet).
+  void clear_from(int m) {
+    for (int k = m; k < kLanes; ++k) rx[k] = ry[k] = rz[k] = vx[k] = vy[k] = vz[k] = sigma[k] = 0.0;
+  }
+  double time_to_contact(int k, double horizon) const {
+    return fluidem::time_to_contact(Vec3{rx[k], ry[k], rz[k]}, Vec3{vx[k], vy[k], vz[k]}, sigma[k],
+                                    horizon);
+  }
+};
+
+/// time_to_contact(r, v, sigma, horizon) of every lane at once, without its branches: the
+/// pairs moving apart, missing, beyond the horizon or touching get infinity (the touching ones
+/// flagged, for time_to_contact), the others c / (-b + sqrt(disc)) with the same operations in
+/// the same order, so the same bits. Whether a pair moves apart is a coin toss in a dense bed;
+/// as branches, these tests were the event engine's most frequent mispredictions.
+FLUIDEM_SIMD_CLONES void pair_times(PairLanes& l, double horizon) {
+  constexpr double never = std::numeric_limits<double>::infinity();
+#pragma GCC ivdep
+  for (int k = 0; k < PairLanes::kLanes; ++k) {
+    const double rx = l.rx[k], ry = l.ry[k], rz = l.rz[k];
+    const double vx = l.vx[k], vy = l.vy[k], vz = l.vz[k];
+    const double b = rx * vx + ry * vy + rz * vz;
+    const double c = (rx * rx + ry * ry + rz * rz) - l.sigma[k] * l.sigma[k];
+    const double disc = b * b - (vx * vx + vy * vy + vz * vz) * c;
+    const double t = c / (-b + std::sqrt(disc > 0.0 ? disc : 0.0));
+    const bool meets =
+        b < 0.0 && c > 0.0 && !(c > -2.0 * b * horizon * (1.0 + 1e-9)) && disc >= 0.0;
+    l.dt[k] = meets ? t : never;
+    l.touching[k] = b < 0.0 && c <= 0.0 ? 1.0 : 0.0;
+  }
 }
 
 hardsphere::CollisionLaw law_from(const MixedCoefficients& m) {
@@ -168,13 +210,27 @@ void HardSphereEngine::first_events(double now) {
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       const Kin& ki = kin_[i];
-      for (std::uint32_t e = split_[i]; e < full_offset_[i + 1]; ++e) {
-        const Kin& kj = kin_[full_partner_[e]];
-        const Vec3 r{min_image(ki.x - kj.x, 0), min_image(ki.y - kj.y, 1),
-                     min_image(ki.z - kj.z, 2)};
-        const Vec3 v{ki.vx - kj.vx, ki.vy - kj.vy, ki.vz - kj.vz};
-        const double dt = time_to_contact(r, v, ki.r + kj.r, t_end_ - now);
-        pair_time_[e] = dt < none ? now + dt : none;
+      const std::uint32_t end = full_offset_[i + 1];
+      PairLanes lanes;
+      for (std::uint32_t base = split_[i]; base < end; base += PairLanes::kLanes) {
+        const auto m = static_cast<int>(std::min<std::uint32_t>(PairLanes::kLanes, end - base));
+        for (int k = 0; k < m; ++k) {
+          const Kin& kj = kin_[full_partner_[base + static_cast<std::uint32_t>(k)]];
+          lanes.rx[k] = min_image(ki.x - kj.x, 0);
+          lanes.ry[k] = min_image(ki.y - kj.y, 1);
+          lanes.rz[k] = min_image(ki.z - kj.z, 2);
+          lanes.vx[k] = ki.vx - kj.vx;
+          lanes.vy[k] = ki.vy - kj.vy;
+          lanes.vz[k] = ki.vz - kj.vz;
+          lanes.sigma[k] = ki.r + kj.r;
+        }
+        lanes.clear_from(m);
+        pair_times(lanes, t_end_ - now);
+        for (int k = 0; k < m; ++k) {
+          double dt = lanes.dt[k];
+          if (lanes.touching[k] != 0.0) dt = lanes.time_to_contact(k, t_end_ - now);
+          pair_time_[base + static_cast<std::uint32_t>(k)] = dt < none ? now + dt : none;
+        }
       }
     }
 #pragma omp for schedule(static)
@@ -281,17 +337,35 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
   double best = t_end_;
   std::uint32_t partner = kNone;
   // Pairs: both fall with the same g, so their relative motion is a straight line
-  // (time_to_contact).
-  for (std::uint32_t k = full_offset_[i]; k < full_offset_[i + 1]; ++k) {
-    const std::uint32_t j = full_partner_[k];
-    const Kin& kj = kin_[j];
-    const double aj = now - kj.t;
-    const Vec3 r{min_image(xi.x - (kj.x + (kj.vx + 0.5 * g_.x * aj) * aj), 0),
-                 min_image(xi.y - (kj.y + (kj.vy + 0.5 * g_.y * aj) * aj), 1),
-                 min_image(xi.z - (kj.z + (kj.vz + 0.5 * g_.z * aj) * aj), 2)};
-    const Vec3 v = vi - (Vec3{kj.vx, kj.vy, kj.vz} + g_ * aj);
-    const double dt = time_to_contact(r, v, ki.r + kj.r, best - now);
-    if (now + dt < best) best = now + dt, partner = j;
+  // (time_to_contact), eight pairs at a time (pair_times).
+  const std::uint32_t end = full_offset_[i + 1];
+  PairLanes lanes;
+  for (std::uint32_t base = full_offset_[i]; base < end; base += PairLanes::kLanes) {
+    const auto m = static_cast<int>(std::min<std::uint32_t>(PairLanes::kLanes, end - base));
+    for (int k = 0; k < m; ++k) {
+      const Kin& kj = kin_[full_partner_[base + static_cast<std::uint32_t>(k)]];
+      const double aj = now - kj.t;
+      lanes.rx[k] = min_image(xi.x - (kj.x + (kj.vx + 0.5 * g_.x * aj) * aj), 0);
+      lanes.ry[k] = min_image(xi.y - (kj.y + (kj.vy + 0.5 * g_.y * aj) * aj), 1);
+      lanes.rz[k] = min_image(xi.z - (kj.z + (kj.vz + 0.5 * g_.z * aj) * aj), 2);
+      lanes.vx[k] = vi.x - (kj.vx + g_.x * aj);
+      lanes.vy[k] = vi.y - (kj.vy + g_.y * aj);
+      lanes.vz[k] = vi.z - (kj.vz + g_.z * aj);
+      lanes.sigma[k] = ki.r + kj.r;
+    }
+    lanes.clear_from(m);
+    // The horizon is the step's end, not the earliest event so far as in time_to_contact's
+    // calls: a pair it lets through beyond that event is later than it (the 1e-9 margin
+    // exceeds the round-off of now + dt), so the choice below is the same.
+    pair_times(lanes, t_end_ - now);
+    for (int k = 0; k < m; ++k) {
+      double dt = lanes.dt[k];
+      if (lanes.touching[k] != 0.0) dt = lanes.time_to_contact(k, best - now); // (round-off)
+      const double t = now + dt;
+      const bool earlier_pair = t < best;
+      best = earlier_pair ? t : best;
+      partner = earlier_pair ? full_partner_[base + static_cast<std::uint32_t>(k)] : partner;
+    }
   }
   wall_event(ki, xi, vi, now, best, partner);
   if (partner == kNone) return {best, i, partner, 0u, 0u};
