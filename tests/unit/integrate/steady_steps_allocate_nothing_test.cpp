@@ -38,41 +38,46 @@ namespace {
 std::atomic<bool> counting{false};
 std::atomic<long> allocations{0};
 
-void* counted_alloc(std::size_t n) {
-  if (counting.load(std::memory_order_relaxed)) {
-    long k = allocations.fetch_add(1);
-    if (k < 200) {
-      counting = false;
-      void* bt[20];
-      int m = backtrace(bt, 20);
-      backtrace_symbols_fd(bt, m, 2);
-      write(2, "----\n", 5);
-      counting = true;
-    }
-  }
-  void* q = std::malloc(n == 0 ? 1 : n);
-  if (q == nullptr) throw std::bad_alloc();
-  return q;
+void* counted_alloc(std::size_t n) noexcept {
+  if (counting.load(std::memory_order_relaxed)) allocations.fetch_add(1);
+  return std::malloc(n == 0 ? 1 : n);
 }
-void* counted_aligned_alloc(std::size_t n, std::align_val_t a) {
+void* counted_aligned_alloc(std::size_t n, std::align_val_t a) noexcept {
   if (counting.load(std::memory_order_relaxed)) allocations.fetch_add(1);
   const auto al = static_cast<std::size_t>(a);
-  void* q = std::aligned_alloc(al, (n + al - 1) / al * al);
+  return std::aligned_alloc(al, (n + al - 1) / al * al);
+}
+void* or_throw(void* q) {
   if (q == nullptr) throw std::bad_alloc();
   return q;
 }
 } // namespace
 
+// Every replaceable allocation function (the nothrow ones too: std::stable_sort's temporary
+// buffer uses them), all on malloc/free, so that every delete matches its new (AddressSanitizer
+// checks it).
 void* operator new(std::size_t n) {
-  return counted_alloc(n);
+  return or_throw(counted_alloc(n));
 }
 void* operator new[](std::size_t n) {
-  return counted_alloc(n);
+  return or_throw(counted_alloc(n));
 }
 void* operator new(std::size_t n, std::align_val_t a) {
-  return counted_aligned_alloc(n, a);
+  return or_throw(counted_aligned_alloc(n, a));
 }
 void* operator new[](std::size_t n, std::align_val_t a) {
+  return or_throw(counted_aligned_alloc(n, a));
+}
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  return counted_alloc(n);
+}
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
+  return counted_alloc(n);
+}
+void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
+  return counted_aligned_alloc(n, a);
+}
+void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
   return counted_aligned_alloc(n, a);
 }
 void operator delete(void* q) noexcept {
@@ -97,6 +102,18 @@ void operator delete(void* q, std::size_t, std::align_val_t) noexcept {
   std::free(q);
 }
 void operator delete[](void* q, std::size_t, std::align_val_t) noexcept {
+  std::free(q);
+}
+void operator delete(void* q, const std::nothrow_t&) noexcept {
+  std::free(q);
+}
+void operator delete[](void* q, const std::nothrow_t&) noexcept {
+  std::free(q);
+}
+void operator delete(void* q, std::align_val_t, const std::nothrow_t&) noexcept {
+  std::free(q);
+}
+void operator delete[](void* q, std::align_val_t, const std::nothrow_t&) noexcept {
   std::free(q);
 }
 
