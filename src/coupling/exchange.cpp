@@ -154,11 +154,9 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
           in.d = 2.0 * p.radius[i];
           Vec3 u, gp;
           if (stencils) { // [Hoomans96 eq. 40-41], the stencils kept for the rest of the step
-            CompactStencil* kept = &out.face_stencils[3 * i];
+            Stencil* st = &out.face_stencils[3 * i];
             Stencil cell; // the cell centres' (ParticleMapping::porosity_and_density's)
-            face_and_cell_stencils(gs.grid(), x, periodic, kept, cell);
-            Stencil st[3];
-            for (int d = 0; d < 3; ++d) expand(gs.grid(), kept[d], st[d]);
+            face_and_cell_stencils(gs.grid(), x, periodic, st, cell);
             velocity_and_pressure_gradient_on(gs, out.face_dp, st, u, gp);
             in.eps = interpolate(cell, gs.porosity());
             in.rho = interpolate(cell, gs.density());
@@ -277,8 +275,7 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
     for (std::size_t i = 0; i < p.size(); ++i) {
       // The weights the particle's gas velocity came from (periodic images resolved).
       if (cached) {
-        Stencil st;
-        expand(g, f.face_stencils[3 * i + static_cast<std::size_t>(d)], st);
+        const Stencil& st = f.face_stencils[3 * i + static_cast<std::size_t>(d)];
         if (!any_periodic) {
           with_node_count(st.n, [&]<int N>() {
             deposit.template operator()<N>(i, st.q.data(), st.w.data(),
@@ -310,13 +307,10 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
       [&] { return ParticleMapping(gs, f.porosity); }, // per thread: scratch space
       [&](ParticleMapping& map, std::size_t i) {
         Vec3 u, gp;
-        if (cached) {
-          Stencil st[3];
-          for (int d = 0; d < 3; ++d) expand(gs.grid(), f.face_stencils[3 * i + d], st[d]);
-          velocity_and_pressure_gradient_on(gs, f.face_dp, st, u, gp);
-        } else {
+        if (cached)
+          velocity_and_pressure_gradient_on(gs, f.face_dp, &f.face_stencils[3 * i], u, gp);
+        else
           map.velocity_and_pressure_gradient(p.position(i), 2.0 * p.radius[i], u, gp);
-        }
         Vec3 v = p.velocity(i);
         if (scheme2) { // s_i C_c (u_c,new - v_c): minus what the gas received [Chang08 eq. 2.11]
           const long q = f.cell[i];

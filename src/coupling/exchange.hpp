@@ -120,7 +120,7 @@ struct ParticleGasForces {
   /// deposit_momentum_source and update_particle_forces, which therefore need the particles
   /// at the positions compute_particle_forces saw (as in a flow step: the particles do not move
   /// within it). Empty for the porous cube.
-  std::vector<CompactStencil> face_stencils;
+  std::vector<Stencil> face_stencils;
   /// With the stencils: the face pressure differences of the gas pressure the last loop over
   /// the particles read (face_pressure_differences), grid-sized per component.
   std::array<std::vector<double>, 3> face_dp;

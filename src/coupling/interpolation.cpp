@@ -19,31 +19,21 @@ void axis(double x, double lo, double h, double shift, int imin, int imax, int& 
   axis_at((x - lo) / h - shift, imin, imax, i0, t);
 }
 
-/// Tensor-product stencil, compact: per active axis the lower node (weight 1 - t) and, unless
-/// t = 0, the upper one (weight t); inactive axes keep i0 alone (factor 1).
-[[gnu::always_inline]] inline void compact(const gas::GasGrid& g, const std::array<int, 3>& i0,
-                                           const std::array<double, 3>& t,
-                                           const std::array<bool, 3>& active, CompactStencil& c) {
+/// Tensor-product stencil: per active axis the lower node (weight 1 - t) and, unless t = 0, the
+/// upper one (weight t); inactive axes keep i0 alone. Nodes x fastest, then y, then z; the
+/// weight is the product of the active axes' factors in the order x, y, z.
+[[gnu::always_inline]] inline void tensor(const gas::GasGrid& g, const std::array<int, 3>& i0,
+                                          const std::array<double, 3>& t,
+                                          const std::array<bool, 3>& active, Stencil& s) {
+  double f[3][2];
+  int nb[3];
   for (int d = 0; d < 3; ++d) {
     const bool two = active[d] && t[d] != 0.0;
-    c.nb[static_cast<std::size_t>(d)] = two ? 2 : 1;
-    c.f[d][0] = active[d] ? 1.0 - t[d] : 1.0;
-    c.f[d][1] = t[d];
+    nb[d] = two ? 2 : 1;
+    f[d][0] = active[d] ? 1.0 - t[d] : 1.0;
+    f[d][1] = t[d];
   }
-  c.base = g.idx(i0[0], i0[1], i0[2]);
-}
-
-/// The nodes of a compact stencil: x fastest, then y, then z; the weight is the product of the
-/// axes' factors in the order x, y, z.
-[[gnu::always_inline]] inline void expand_into(const gas::GasGrid& g, const CompactStencil& c,
-                                               Stencil& s) {
-  const int nb[3] = {c.nb[0], c.nb[1], c.nb[2]};
-  if (nb[0] == 0) {
-    s.n = 0;
-    return;
-  }
-  const auto& f = c.f;
-  const long base = c.base;
+  const long base = g.idx(i0[0], i0[1], i0[2]);
   const long sy = g.stride[1], sz = g.stride[2];
   // Two nodes along x and z (the common case): the loops below unrolled, 8 nodes (3-D) or 4
   // (one node along y); the same nodes, and the weights the same products in the same order.
@@ -75,14 +65,6 @@ void axis(double x, double lo, double h, double shift, int imin, int imax, int& 
       }
   s.n = n;
 }
-
-[[gnu::always_inline]] inline void tensor(const gas::GasGrid& g, const std::array<int, 3>& i0,
-                                          const std::array<double, 3>& t,
-                                          const std::array<bool, 3>& active, Stencil& s) {
-  CompactStencil c;
-  compact(g, i0, t, active, c);
-  expand_into(g, c, s);
-}
 Stencil tensor(const gas::GasGrid& g, const std::array<int, 3>& i0, const std::array<double, 3>& t,
                const std::array<bool, 3>& active) {
   Stencil s;
@@ -111,9 +93,8 @@ Stencil face_stencil(const gas::GasGrid& g, int d, const Vec3& x) {
 }
 
 namespace {
-/// face_stencils (compact), and with `cell` also cell_stencil(g, x, *periodic) into it.
-[[gnu::always_inline]] inline void face_and_cell(const gas::GasGrid& g, const Vec3& x,
-                                                 CompactStencil* out,
+/// face_stencils, and with `cell` also cell_stencil(g, x, *periodic) into it.
+[[gnu::always_inline]] inline void face_and_cell(const gas::GasGrid& g, const Vec3& x, Stencil* out,
                                                  const std::array<bool, 3>* periodic,
                                                  Stencil* cell) {
   // Per axis the two node lattices of face_stencil: the faces normal to it (shift 0, lower
@@ -143,9 +124,9 @@ namespace {
   }
   if (cell) tensor(g, i_mid, t_mid, mid_active, *cell);
   for (int d = 0; d < 3; ++d) {
-    CompactStencil& c = out[d];
+    Stencil& s = out[d];
     if (two_d && d == 1) {
-      c.nb = {0, 0, 0};
+      s.n = 0;
       continue;
     }
     // The faces' lattice along d, the cell centres' across (y inactive in 2-D): tensor()'s
@@ -156,31 +137,17 @@ namespace {
       i0[e] = e == d ? i_face[e] : i_cell[e];
       t[e] = e == d ? t_face[e] : t_cell[e];
     }
-    compact(g, i0, t, {true, !two_d, true}, c);
+    tensor(g, i0, t, {true, !two_d, true}, s);
   }
 }
 } // namespace
 
-void expand(const gas::GasGrid& g, const CompactStencil& c, Stencil& s) {
-  expand_into(g, c, s);
-}
-
 void face_stencils(const gas::GasGrid& g, const Vec3& x, Stencil* out) {
-  CompactStencil c[3];
-  face_and_cell(g, x, c, nullptr, nullptr);
-  for (int d = 0; d < 3; ++d) expand_into(g, c[d], out[d]);
+  face_and_cell(g, x, out, nullptr, nullptr);
 }
 
 void face_and_cell_stencils(const gas::GasGrid& g, const Vec3& x,
                             const std::array<bool, 3>& periodic, Stencil* faces, Stencil& cell) {
-  CompactStencil c[3];
-  face_and_cell(g, x, c, &periodic, &cell);
-  for (int d = 0; d < 3; ++d) expand_into(g, c[d], faces[d]);
-}
-
-void face_and_cell_stencils(const gas::GasGrid& g, const Vec3& x,
-                            const std::array<bool, 3>& periodic, CompactStencil* faces,
-                            Stencil& cell) {
   face_and_cell(g, x, faces, &periodic, &cell);
 }
 

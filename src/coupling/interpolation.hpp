@@ -38,24 +38,6 @@ Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool
 void face_and_cell_stencils(const gas::GasGrid& g, const Vec3& x,
                             const std::array<bool, 3>& periodic, Stencil* faces, Stencil& cell);
 
-/// A stencil of the trilinear kind in compact form, one cache line (a Stencil takes 136 bytes):
-/// its lowest node, the node count along x, y, z (1 or 2; all 0 for the empty stencil, v_y in
-/// 2-D) and the axis factors (lower, upper node). The per-particle cache of a flow step keeps
-/// these (ParticleGasForces::face_stencils: 192 instead of 408 bytes per particle, so that it
-/// stays in the core's cache between the loops that read it); expand() gives the Stencil,
-/// bitwise the one face_stencil builds (the same nodes, the same products in the same order).
-struct alignas(64) CompactStencil {
-  long base = 0;
-  std::array<unsigned char, 3> nb{0, 0, 0};
-  double f[3][2] = {};
-};
-/// The three face stencils of face_and_cell_stencils, compact.
-void face_and_cell_stencils(const gas::GasGrid& g, const Vec3& x,
-                            const std::array<bool, 3>& periodic, CompactStencil* faces,
-                            Stencil& cell);
-/// The nodes and weights of c into s.
-void expand(const gas::GasGrid& g, const CompactStencil& c, Stencil& s);
-
 /// The node a periodic ghost or copy node stands for: grid index q of component d (faces normal
 /// to d; -1: cell centres) with every index along a periodic axis wrapped into the unknowns
 /// (cells 1..n; along d for faces: 1..n, face 0 being the copy of face n). Other q unchanged.
