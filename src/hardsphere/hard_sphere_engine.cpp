@@ -31,7 +31,8 @@ constexpr std::size_t kParallelMin = 4096;
 /// since sqrt(disc) <= |b|: such pairs are passed over without the square root and the division;
 /// the margin 1e-9 covers the round-off of the root, so the choice is the same as with it).
 /// Touching spheres (c <= 0, round-off) collide now if approaching along the normal, judged with
-/// the same arithmetic as the collision operator so that both agree.
+/// the same arithmetic as the collision operator so that both agree. The engine's loops use
+/// pair_times below, eight pairs at once and bitwise the same, and this for the touching pairs.
 double time_to_contact(const Vec3& r, const Vec3& v, double sigma, double horizon) {
   constexpr double never = std::numeric_limits<double>::infinity();
   const double b = dot(r, v);
@@ -255,9 +256,9 @@ void HardSphereEngine::first_events(double now) {
 // the step, keyed by the time of their one current event (next_[i]); ties by index. A new
 // prediction replaces the particle's entry in place, so no stale events pile up. Each entry
 // holds its key (the time) beside the particle, so that a sift compares within the heap's own
-// array instead of looking up next_ per comparison (bubble bed: the engine 4% faster; with four
-// or eight children per node 3% and 1%). The keys (t, i) are distinct, so the earliest event,
-// and with it the order of the collisions, does not depend on the heap's shape.
+// array instead of looking up next_ per comparison (bubble bed: the engine ~5% faster; with
+// four or eight children per node less so, bench/RESULTS.md). The keys (t, i) are distinct, so the
+// earliest event, and with it the order of the collisions, does not depend on the heap's shape.
 bool HardSphereEngine::earlier(const QueueEntry& a, const QueueEntry& b) {
   return a.t < b.t || (a.t == b.t && a.i < b.i);
 }
