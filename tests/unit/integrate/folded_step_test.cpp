@@ -27,47 +27,13 @@
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-
+#include "../../common/random_bed.hpp"
 #include "integrate/drift_bound.hpp"
 #include "integrate/simulation.hpp"
 #include "io/case_reader.hpp"
 
 namespace fluidem {
 namespace {
-
-/// A closed box (`hi`, possibly with a periodic line after it) of `count` spheres at random with
-/// 0.8 m/s random velocities under gravity; `extra` goes at the end of [contact].
-std::string bed(int count, const char* hi, const char* normal, const char* extra) {
-  return fmt::format(R"(
-[simulation]
-dimension = 3
-end_time = 1.0
-time_step = 2e-5
-gravity = [0.0, 0.0, -9.81]
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = {}
-[[species]]
-name = "glass"
-diameter = 0.003
-density = 2500.0
-youngs_modulus = 1e7
-restitution = 0.8
-friction = 0.4
-rolling_friction = 0.05
-[[insert]]
-species = "glass"
-count = {}
-placement = "random"
-velocity_spread = 0.8
-seed = 5
-[contact]
-normal = "{}"
-tangential = "history"
-{})",
-                     hi, count, normal, extra);
-}
 
 struct Outcome {
   std::vector<double> q; // x y z vx vy vz wx wy wz per particle, then the contact sums
@@ -116,14 +82,14 @@ void expect_same_as_separate(const Outcome& folded, const Outcome& separate, lon
 
 TEST(FoldedStep, SmallBedEqualsTheSeparatePass) {
   const std::string text =
-      bed(600, "[0.04, 0.04, 0.04]", "hertz", "rolling = \"spring_dashpot\"\n");
+      test::random_bed(600, "[0.04, 0.04, 0.04]", "hertz", "rolling = \"spring_dashpot\"\n");
   const long steps = 400;
   expect_same_as_separate(run(text, steps, true), run(text, steps, false), steps);
 }
 
 TEST(FoldedStep, ThreadedBedEqualsTheSeparatePassWithAnyThreadCount) {
-  const std::string text = bed(6000, "[0.08, 0.08, 0.06]", "linear",
-                               "stiffness = 2000.0\n[output]\ncollisions = true\n");
+  const std::string text = test::random_bed(6000, "[0.08, 0.08, 0.06]", "linear",
+                                            "stiffness = 2000.0\n[output]\ncollisions = true\n");
   const long steps = 200;
   const Outcome one = run(text, steps, true, 1);
   const Outcome separate = run(text, steps, false, 1);
@@ -145,7 +111,7 @@ TEST(FoldedStep, ThreadedBedEqualsTheSeparatePassWithAnyThreadCount) {
 }
 
 TEST(FoldedStep, LargeBedInSlabGroupsEqualsTheSeparatePass) {
-  const std::string text = bed(40000, "[0.16, 0.16, 0.12]", "hertz", "");
+  const std::string text = test::random_bed(40000, "[0.16, 0.16, 0.12]", "hertz", "");
   const long steps = 60;
   const Outcome one = run(text, steps, true, 1);
   const Outcome separate = run(text, steps, false, 2);
@@ -160,7 +126,7 @@ TEST(FoldedStep, LargeBedInSlabGroupsEqualsTheSeparatePass) {
 
 TEST(FoldedStep, PeriodicBedEqualsTheSeparatePass) {
   const std::string text =
-      bed(600, "[0.04, 0.04, 0.04]\nperiodic = [true, true, false]", "hertz", "");
+      test::random_bed(600, "[0.04, 0.04, 0.04]\nperiodic = [true, true, false]", "hertz", "");
   const long steps = 400;
   expect_same_as_separate(run(text, steps, true), run(text, steps, false), steps);
 }
@@ -168,10 +134,12 @@ TEST(FoldedStep, PeriodicBedEqualsTheSeparatePass) {
 TEST(FoldedStep, OnlyThePlainKickFolds) {
   const long steps = 50;
   // The reference: the same bed folds.
-  EXPECT_GT(run(bed(300, "[0.04, 0.04, 0.04]", "hertz", ""), steps, true).folded, steps / 2);
-  const std::string field = bed(300, "[0.04, 0.04, 0.04]", "hertz",
-                                "[body_force]\ntype = \"sinusoidal_cube\"\namplitude = 2.0\n"
-                                "wavelength = 0.04\n");
+  EXPECT_GT(run(test::random_bed(300, "[0.04, 0.04, 0.04]", "hertz", ""), steps, true).folded,
+            steps / 2);
+  const std::string field =
+      test::random_bed(300, "[0.04, 0.04, 0.04]", "hertz",
+                       "[body_force]\ntype = \"sinusoidal_cube\"\namplitude = 2.0\n"
+                       "wavelength = 0.04\n");
   EXPECT_EQ(run(field, steps, true).folded, 0);
 }
 

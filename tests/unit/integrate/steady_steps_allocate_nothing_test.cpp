@@ -12,9 +12,10 @@
 //  - windows with builds: at most kPerBuild per build plus kPerSort per sort (measured: 11 per
 //    build, 27 more per sort, at 1000 and 6000 particles alike).
 // Cases (the time loop's paths):
-//  (a) soft spheres, Hertz with tangential history and rolling springs, 6000 particles in a
-//      closed box on two threads (the threaded list build and contact loop, the folded step);
-//  (b) soft spheres, linear springs, periodic in x and y, one thread;
+//  (a) soft spheres (tests/common/random_bed.hpp), Hertz with tangential history and rolling
+//      springs, 6000 particles in a closed box on two threads (the threaded list build and
+//      contact loop, the folded step), a spatial sort at every fourth build;
+//  (b) the same with linear springs, 1000 particles, periodic in x and y, one thread;
 //  (c) the hard-sphere engine coupled to the gas: the Hoomans96 bubble bed (2-D, 2400 discs,
 //      cases/hoomans96/bubble_orifice.toml; the engine rebuilds its lists every few flow steps);
 //  (d) soft spheres coupled to a 3-D gas (ideal gas, Beetstra drag, porous-cube porosity,
@@ -24,13 +25,10 @@
 
 #include <atomic>
 #include <cstdlib>
-#include <execinfo.h>
 #include <new>
 #include <string>
-#include <unistd.h>
 
-#include <fmt/format.h>
-
+#include "../../common/random_bed.hpp"
 #include "integrate/simulation.hpp"
 #include "io/case_reader.hpp"
 
@@ -165,42 +163,11 @@ void expect_steady(const std::vector<Window>& w, bool need_builds) {
   }
 }
 
-std::string granular_bed(int count, const char* hi, const char* periodic, const char* contact) {
-  return fmt::format(R"(
-[simulation]
-dimension = 3
-end_time = 1.0
-time_step = 2e-5
-gravity = [0.0, 0.0, -9.81]
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = {}
-{}
-[[species]]
-name = "glass"
-diameter = 0.003
-density = 2500.0
-youngs_modulus = 1e7
-restitution = 0.8
-friction = 0.4
-rolling_friction = 0.05
-[[insert]]
-species = "glass"
-count = {}
-placement = "random"
-velocity_spread = {}
-seed = 5
-[neighbour]
-sort_interval = 4
-[contact]
-{})",
-                     hi, periodic, count, 0.3, contact);
-}
-
 TEST(SteadySteps, ThreadedSoftSpheresAllocateOnlyAtListBuilds) {
+  // A spatial sort at every fourth list build, so that the windows include sorts.
   Simulation sim(read_case_string(
-      granular_bed(6000, "[0.08, 0.08, 0.06]", "",
-                   "normal = \"hertz\"\ntangential = \"history\"\nrolling = \"spring_dashpot\"\n"),
+      test::random_bed(6000, "[0.08, 0.08, 0.06]", "hertz",
+                       "rolling = \"spring_dashpot\"\n[neighbour]\nsort_interval = 4\n"),
       "alloc.toml"));
   const long folded = sim.folded_steps();
   expect_steady(count_allocations(sim, 200, 30, 2), true);
@@ -208,11 +175,10 @@ TEST(SteadySteps, ThreadedSoftSpheresAllocateOnlyAtListBuilds) {
 }
 
 TEST(SteadySteps, PeriodicLinearSpringsAllocateOnlyAtListBuilds) {
-  Simulation sim(
-      read_case_string(granular_bed(1000, "[0.04, 0.04, 0.04]", "periodic = [true, true, false]",
-                                    "normal = \"linear\"\nstiffness = 2000.0\n"
-                                    "tangential = \"history\"\n"),
-                       "alloc.toml"));
+  Simulation sim(read_case_string(
+      test::random_bed(1000, "[0.04, 0.04, 0.04]\nperiodic = [true, true, false]", "linear",
+                       "stiffness = 2000.0\n[neighbour]\nsort_interval = 4\n"),
+      "alloc.toml"));
   expect_steady(count_allocations(sim, 200, 30, 1), true);
 }
 
