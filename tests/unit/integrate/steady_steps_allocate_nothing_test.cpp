@@ -192,32 +192,8 @@ TEST(SteadySteps, HardSphereBubbleBedAllocatesNothing) {
 }
 
 TEST(SteadySteps, SoftSpheresInA3DGasAllocateOnlyAtListBuilds) {
-  Simulation sim(read_case_string(R"(
-[simulation]
-engine = "soft_sphere"
-dimension = 3
-end_time = 1.0
-time_step = 2e-5
-gravity = [0.0, 0.0, -9.81]
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [0.04, 0.04, 0.12]
-[[species]]
-name = "glass"
-diameter = 0.003
-density = 2500.0
-youngs_modulus = 1e7
-restitution = 0.9
-friction = 0.3
-[[insert]]
-species = "glass"
-count = 1500
-placement = "random"
-velocity_spread = 0.3
-seed = 3
-[contact]
-normal = "hertz"
-tangential = "history"
+  // The random bed with a gas section after its [contact].
+  Simulation sim(read_case_string(test::random_bed(1500, "[0.04, 0.04, 0.12]", "hertz", R"(
 [gas]
 cells = [4, 4, 12]
 time_step = 1e-4
@@ -231,7 +207,7 @@ pressure = 101325.0
 [coupling]
 drag = "beetstra"
 porosity = "porous_cube"
-)",
+)"),
                                   "alloc_gas.toml"));
   expect_steady(count_allocations(sim, 100, 30, 1), true);
 }
