@@ -281,7 +281,9 @@ void GasSolver::step(double time, double dt) {
   while (it < s_.max_iterations && !converged) {
     ++it;
     u_iter_ = u_;
-    compute_mass_fluxes();
+    // From the second iteration on, the fluxes of the last one's end still hold: u, eps and
+    // rho have not changed since.
+    if (it == 1) compute_mass_fluxes();
     for (int d = 0; d < 3; ++d)
       if (momentum_gs_[d]) solve_momentum(d, dt);
     apply_velocity_bcs(t_new, false);
