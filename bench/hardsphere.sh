@@ -20,8 +20,9 @@
 #  (d) bubble: the Tsuji bed with the bubble at an orifice, cases/hoomans96/bubble_orifice.toml
 #      (2400 hard spheres coupled to the gas, ~3 million collisions per simulated second), for
 #      BUBBLE_END s (default 1) on 1 and 2 threads (BUBBLE_THREADS); reported: wall time per
-#      simulated second and its split from the run log's time lines: the engine ("time in
-#      contacts", hard_->advance), the gas and coupling, and the rest (outputs, setup of steps).
+#      simulated second and its split from the run log's time lines: the engine ("time in the
+#      collision engine", hard_->advance), the gas solver and coupling, and the rest (outputs,
+#      setup of steps).
 #      One thread is pinned to core 0; two threads are not pinned.
 #
 # usage: bench/hardsphere.sh [PART ...]     PART: pouring, gas, sweep, bubble (default: all four)
@@ -121,7 +122,8 @@ if want bubble; then
       { tail -5 "$log" >&2; die "fluidem failed (log $log)"; }
     read -r wall engine gas coll < <(awk '
       /^done:/ {w = $5}
-      /^time in contacts/ {e = $4; for (i = 1; i < NF; i++) if ($i == "coupling") g = $(i + 1)}
+      /^time in the collision engine/ {e = $6
+        for (i = 1; i < NF; i++) { if ($i == "solver") g += $(i + 1); if ($i == "coupling") g += $(i + 1) } }
       / collisions, .* collisions per second of wall time/ {c = $1}
       END {print w, e, g, c}' "$log")
     [ -n "$wall" ] && [ -n "$engine" ] && [ -n "$gas" ] || die "no time lines in $log"
@@ -224,7 +226,7 @@ fi
 if want bubble; then
   echo
   echo "(d) bubble_orifice (2400 hard spheres + gas), $BUBBLE_END s; seconds of wall time per simulated second"
-  echo "| threads | k collisions / sim. s | wall | engine (time in contacts) | gas and coupling | rest | collisions per engine second |"
+  echo "| threads | k collisions / sim. s | wall | engine | gas solver and coupling | rest | collisions per engine second |"
   echo "|---|---|---|---|---|---|---|"
   printf '%s\n' "${BUBBLE[@]}"
 fi

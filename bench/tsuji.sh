@@ -52,7 +52,8 @@ for part in "${parts[@]}"; do
   "${pin[@]}" "$FLUIDEM" run "${args[@]}" "${common[@]}" --out "$WORK/$part" >"$log" 2>&1 || {
     echo "tsuji.sh: $part failed, see $log" >&2; tail -3 "$log" >&2; continue; }
   wall=$(sed -n 's/^done: .* in \([0-9.]*\) s wall.*/\1/p' "$log")
-  gas=$(sed -n 's/.*gas and coupling \([0-9.]*\) s.*/\1/p' "$log")
+  gas=$(awk '/^time in / { for (i = 1; i < NF; i++) if ($i == "solver" || $i == "coupling") g += $(i + 1) }
+    END { if (g != "") print g }' "$log")
   # Mean pressure drop over t >= 0.2 s (the whole run if it is shorter) / (W/A).
   dpw=$(awk -F, -v e="$END" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "pressure_drop") c = i; next }
     c && $1 > 0 && ($1 >= 0.2 || e <= 0.2) { s += $c; n++ } END { printf "%.3f", n ? s / n / 3550.4 : 0 }' \
