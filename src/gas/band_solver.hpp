@@ -30,7 +30,7 @@ public:
   /// e1 e2) need to be set. (Stored as the upper band, row i - off, the factor's layout.)
   void clear();
   double& lower(std::size_t i, int off) {
-    return a_[(i - static_cast<std::size_t>(off)) * stride_ + static_cast<std::size_t>(off)];
+    return base()[band_start(i - static_cast<std::size_t>(off)) + static_cast<std::size_t>(off)];
   }
   /// Factorises in place. False if a pivot is not positive (not SPD to round-off): the band
   /// is then unusable until set again.
@@ -38,11 +38,26 @@ public:
   /// x = A^-1 rhs with the factor (rhs and x may be the same array).
   void solve(const double* rhs, double* x) const;
 
+  /// Column alignment of the storage, in doubles (64 bytes: one AVX-512 vector, two AVX2, four
+  /// SSE2).
+  static constexpr std::size_t kAlign = 8;
+
 private:
+  // Row r of U = L^T holds U(r, r .. r + b) from slot band_start(r) = r stride + r mod kAlign:
+  // column c then lies at the same offset modulo kAlign in every row, so that factor()'s
+  // updates, in whole aligned chunks, load a row's values exactly where an earlier update or
+  // the scaling stored them (a load across two recent stores waits for them) and vectorise
+  // without remainders. Before the band: up to kAlign - 1 slots the chunks also cover (their
+  // values are never read into the band); after it, zeros (what the chunks read past the band).
+  std::size_t band_start(std::size_t r) const { return r * stride_ + r % kAlign; }
+  double* base() { return store_.data() + offset_; }
+  const double* base() const { return store_.data() + offset_; }
+
   std::size_t n_ = 0;
   int b_ = 0;
-  std::size_t stride_ = 1;  ///< 2 (b + 1): each row's band, then as many zeros
-  std::vector<double> a_;   ///< row k: U(k, k .. k + b) of U = L^T (the diagonal first)
+  std::size_t stride_ = kAlign; ///< b + 2 kAlign - 1 rounded up to kAlign
+  std::size_t offset_ = 0;      ///< of the first row in store_: 64-byte aligned
+  std::vector<double> store_;
   std::vector<double> inv_; ///< 1 / L(i, i)
 };
 
