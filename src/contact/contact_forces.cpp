@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <omp.h>
 #include <stdexcept>
 #include <string>
@@ -211,6 +212,89 @@ FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* p
   }
 }
 
+/// Four doubles in one vector register (AVX; two SSE2 registers in the baseline clone). The
+/// helpers taking and returning them are inlined into add_to_particles: no call passes one, so
+/// GCC's note on the AVX calling convention (-Wpsabi) does not apply.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+using Quad = double __attribute__((vector_size(32)));
+using QuadIndex = std::int64_t __attribute__((vector_size(32)));
+[[gnu::always_inline]] inline Quad load_quad(const double* p) {
+  Quad q;
+  std::memcpy(&q, p, sizeof q);
+  return q;
+}
+[[gnu::always_inline]] inline void store_quad(double* p, Quad q) {
+  std::memcpy(p, &q, sizeof q);
+}
+
+/// Columns c0 .. c3 at contacts k .. k+3, turned so that contact[q] holds contact k+q's four
+/// values (c0[k+q], .., c3[k+q]): a 4 x 4 transposition in eight shuffles.
+[[gnu::always_inline]] inline void transpose(const double* c0, const double* c1, const double* c2,
+                                             const double* c3, int k, Quad (&contact)[4]) {
+  const Quad r0 = load_quad(c0 + k), r1 = load_quad(c1 + k), r2 = load_quad(c2 + k),
+             r3 = load_quad(c3 + k);
+  const Quad u0 = __builtin_shuffle(r0, r1, QuadIndex{0, 4, 2, 6});
+  const Quad u1 = __builtin_shuffle(r0, r1, QuadIndex{1, 5, 3, 7});
+  const Quad u2 = __builtin_shuffle(r2, r3, QuadIndex{0, 4, 2, 6});
+  const Quad u3 = __builtin_shuffle(r2, r3, QuadIndex{1, 5, 3, 7});
+  contact[0] = __builtin_shuffle(u0, u2, QuadIndex{0, 1, 4, 5});
+  contact[1] = __builtin_shuffle(u1, u3, QuadIndex{0, 1, 4, 5});
+  contact[2] = __builtin_shuffle(u0, u2, QuadIndex{2, 3, 6, 7});
+  contact[3] = __builtin_shuffle(u1, u3, QuadIndex{2, 3, 6, 7});
+}
+
+/// Pass 3's additions into the particles' sums (ContactScratch::acc: force | torque | their
+/// non-conservative parts) for a model with a tangential force and no rolling torque: for each
+/// contact in the batch's order, into j's sums (pairs) -F, r_j (n x F_t), -F_nc, r_j (n x F_t,nc),
+/// then into i's F, r_i (n x F_t), F_nc, r_i (n x F_t,nc). The same products and additions, in
+/// the same order, as one element at a time (subtracting f is adding -1 * f, exactly; 1 * f is
+/// f), here a quad at a time: a particle's twelve sums in three loads, multiplications, adds
+/// and stores; the contact's twelve columns (force, torque_unit, nc_force, nc_torque_unit)
+/// turned into three quads four contacts at a time.
+template <bool Pairs, int kSize>
+FLUIDEM_SIMD_CLONES void
+add_to_particles(int n, const std::uint32_t* i, const std::uint32_t* j, const double* ri,
+                 const double* rj, const double (*force)[kSize], const double (*torque_unit)[kSize],
+                 const double (*nc_force)[kSize], const double (*nc_torque_unit)[kSize],
+                 double* acc) {
+  constexpr std::size_t kWidth = ContactScratch::kAcc;
+  static_assert(kWidth == 12);
+  // The scale of each sum's value: forces 1 (i) or -1 (j), torques the particle's radius.
+  auto add = [](double* a, const Quad(&value)[3], double r, double sign) {
+    const Quad rs = Quad{} + r, signs = Quad{} + sign; // broadcast
+    const Quad scale[3] = {__builtin_shuffle(signs, rs, QuadIndex{0, 1, 2, 7}),
+                           __builtin_shuffle(signs, rs, QuadIndex{4, 5, 2, 3}),
+                           __builtin_shuffle(signs, rs, QuadIndex{0, 5, 6, 7})};
+    for (int part = 0; part < 3; ++part)
+      store_quad(a + 4 * part, load_quad(a + 4 * part) + value[part] * scale[part]);
+  };
+  int k = 0;
+  for (; k + 4 <= n; k += 4) {
+    Quad a[4], b[4], c[4]; // per contact: (F, tu.x), (tu.y, tu.z, F_nc.x, F_nc.y), (F_nc.z, tu_nc)
+    transpose(force[0], force[1], force[2], torque_unit[0], k, a);
+    transpose(torque_unit[1], torque_unit[2], nc_force[0], nc_force[1], k, b);
+    transpose(nc_force[2], nc_torque_unit[0], nc_torque_unit[1], nc_torque_unit[2], k, c);
+    for (int q = 0; q < 4; ++q) {
+      const Quad value[3] = {a[q], b[q], c[q]};
+      if constexpr (Pairs) add(acc + kWidth * j[k + q], value, rj[k + q], -1.0);
+      add(acc + kWidth * i[k + q], value, ri[k + q], 1.0);
+    }
+  }
+  for (; k < n; ++k) {
+    const double v[12] = {force[0][k],          force[1][k],          force[2][k],
+                          torque_unit[0][k],    torque_unit[1][k],    torque_unit[2][k],
+                          nc_force[0][k],       nc_force[1][k],       nc_force[2][k],
+                          nc_torque_unit[0][k], nc_torque_unit[1][k], nc_torque_unit[2][k]};
+    auto add_scalar = [&v](double* a, double r, double sign) {
+      for (int m = 0; m < 12; ++m) a[m] += v[m] * ((m >= 3 && m < 6) || m >= 9 ? r : sign);
+    };
+    if constexpr (Pairs) add_scalar(acc + kWidth * j[k], rj[k], -1.0);
+    add_scalar(acc + kWidth * i[k], ri[k], 1.0);
+  }
+}
+#pragma GCC diagnostic pop
+
 /// The groups of consecutive slabs the contact loop's phases run over (compute()): group g is
 /// slabs [starts[g], starts[g + 1]), each of at least two slabs (one when there is a single
 /// slab). Beds of up to kCachedParticles: pairs of slabs (the last group two or three), which
@@ -363,6 +447,12 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     double elastic = acc.elastic_energy, spring_losses = acc.spring_losses;
     double max_ratio = acc.max_overlap_ratio, max_force2 = acc.max_force2;
     std::size_t deepest = n; // the particle of the deepest overlap, when this batch has it
+    // With a tangential force and no rolling torque, the additions into the particles' sums a
+    // quad at a time (add_to_particles), before the per-contact loop below.
+    constexpr bool kQuadAdditions = Tangential && Rolling == RollingModel::None;
+    if constexpr (kQuadAdditions)
+      add_to_particles<!wall, Batch::kSize>(b.n, b.i, b.j, b.ri, b.rj, b.force, b.torque_unit,
+                                            b.nc_force, b.nc_torque_unit, acc_f);
     for (int k = 0; k < b.n; ++k) {
       const std::uint32_t i = b.i[k];
       const double ri = b.ri[k];
@@ -381,21 +471,23 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
         ti += tr, nti += nctr;
         if constexpr (!wall) tj -= tr, ntj -= nctr;
       }
-      if constexpr (!wall) {
-        double* aj = acc_f + ContactScratch::kAcc * b.j[k];
-        aj[0] -= f.x, aj[1] -= f.y, aj[2] -= f.z;
-        aj[6] -= ncf.x, aj[7] -= ncf.y, aj[8] -= ncf.z;
-        if constexpr (Tangential || Rolling != RollingModel::None) {
-          aj[3] += tj.x, aj[4] += tj.y, aj[5] += tj.z;
-          aj[9] += ntj.x, aj[10] += ntj.y, aj[11] += ntj.z;
+      if constexpr (!kQuadAdditions) {
+        if constexpr (!wall) {
+          double* aj = acc_f + ContactScratch::kAcc * b.j[k];
+          aj[0] -= f.x, aj[1] -= f.y, aj[2] -= f.z;
+          aj[6] -= ncf.x, aj[7] -= ncf.y, aj[8] -= ncf.z;
+          if constexpr (Tangential || Rolling != RollingModel::None) {
+            aj[3] += tj.x, aj[4] += tj.y, aj[5] += tj.z;
+            aj[9] += ntj.x, aj[10] += ntj.y, aj[11] += ntj.z;
+          }
         }
-      }
-      double* ai = acc_f + ContactScratch::kAcc * i;
-      ai[0] += f.x, ai[1] += f.y, ai[2] += f.z;
-      ai[6] += ncf.x, ai[7] += ncf.y, ai[8] += ncf.z;
-      if constexpr (Tangential || Rolling != RollingModel::None) {
-        ai[3] += ti.x, ai[4] += ti.y, ai[5] += ti.z;
-        ai[9] += nti.x, ai[10] += nti.y, ai[11] += nti.z;
+        double* ai = acc_f + ContactScratch::kAcc * i;
+        ai[0] += f.x, ai[1] += f.y, ai[2] += f.z;
+        ai[6] += ncf.x, ai[7] += ncf.y, ai[8] += ncf.z;
+        if constexpr (Tangential || Rolling != RollingModel::None) {
+          ai[3] += ti.x, ai[4] += ti.y, ai[5] += ti.z;
+          ai[9] += nti.x, ai[10] += nti.y, ai[11] += nti.z;
+        }
       }
       double* hist = history + static_cast<std::size_t>(b.e[k]) * Batch::kHistory;
       for (int m = 0; m < Batch::kHistory; ++m) hist[m] = b.hist[m][k];
@@ -460,9 +552,11 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // Pass 1 for a row of the list: every entry is written into the batch's next slot, which is
   // kept only when the pair touches (no branch on contact); a pair that stopped touching
   // releases its history.
-  // Prefetch: the partners' lines ahead of the walk (beds above the threading threshold, whose
-  // packed view, 96 bytes a particle, outgrows the L2 cache; below it the prefetch address
-  // alone cost 11 of the walk's ~76 instructions per entry).
+  // Prefetch: the partners' lines ahead of the walk, in beds of more than kPrefetchParticles
+  // (their packed view, 96 bytes a particle, and the list outgrow the L2 and L3 caches). Below,
+  // the prefetch address alone cost 11 of the walk's ~76 instructions per entry: without it
+  // bed10k took 12% fewer instructions in the walk and ran ~2% faster (bench/RESULTS.md).
+  constexpr std::size_t kPrefetchParticles = 32768;
   auto gather_row = [&, view, partner, row_offset, species, pair_history, any_periodic,
                      last]<bool Prefetch>(std::size_t i, Batch& b, ContactStats& acc,
                                           std::vector<ContactSample>* buf) {
@@ -664,8 +758,13 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
             // bounce between the cores (false sharing).
             ContactStats local;
             Batch batch;
-            for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
-              gather_row.template operator()<true>(nl.slab_particles[k], batch, local, buf);
+            if (n > kPrefetchParticles) {
+              for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
+                gather_row.template operator()<true>(nl.slab_particles[k], batch, local, buf);
+            } else {
+              for (std::uint32_t k = nl.slab_start[sl]; k < nl.slab_start[sl + 1]; ++k)
+                gather_row.template operator()<false>(nl.slab_particles[k], batch, local, buf);
+            }
             flush(batch, kPairs, local, buf);
             slab_stats[sl] = local;
           }
