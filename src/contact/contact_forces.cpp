@@ -293,6 +293,29 @@ add_to_particles(int n, const std::uint32_t* i, const std::uint32_t* j, const do
     add_scalar(acc + kWidth * i[k], ri[k], 1.0);
   }
 }
+
+/// The largest of `init` and the squared forces |F|^2 = (F_x^2 + F_y^2) + F_z^2 of the batch's
+/// first n contacts (columns `force`), four at a time: a maximum does not depend on the order it
+/// is taken in, so this is bitwise the one-by-one scan (NaN never taken, as with f2 > m).
+template <int kSize>
+FLUIDEM_SIMD_CLONES double largest_force2(int n, const double (*force)[kSize], double init) {
+  Quad m = Quad{} + init;
+  int k = 0;
+  for (; k + 4 <= n; k += 4) {
+    const Quad fx = load_quad(force[0] + k), fy = load_quad(force[1] + k),
+               fz = load_quad(force[2] + k);
+    const Quad f2 = fx * fx + fy * fy + fz * fz;
+    m = f2 > m ? f2 : m;
+  }
+  double largest = init;
+  for (int q = 0; q < 4; ++q) largest = m[q] > largest ? m[q] : largest;
+  for (; k < n; ++k) {
+    const double f2 =
+        force[0][k] * force[0][k] + force[1][k] * force[1][k] + force[2][k] * force[2][k];
+    largest = f2 > largest ? f2 : largest;
+  }
+  return largest;
+}
 #pragma GCC diagnostic pop
 
 /// The groups of consecutive slabs the contact loop's phases run over (compute()): group g is
@@ -445,7 +468,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     // The sums and the deepest overlap in registers (the accumulator's stores could alias
     // them), in the same order.
     double elastic = acc.elastic_energy, spring_losses = acc.spring_losses;
-    double max_ratio = acc.max_overlap_ratio, max_force2 = acc.max_force2;
+    double max_ratio = acc.max_overlap_ratio;
+    const double max_force2 = largest_force2<Batch::kSize>(b.n, b.force, acc.max_force2);
     std::size_t deepest = n; // the particle of the deepest overlap, when this batch has it
     // With a tangential force and no rolling torque, the additions into the particles' sums a
     // quad at a time (add_to_particles), before the per-contact loop below.
@@ -493,8 +517,6 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       for (int m = 0; m < Batch::kHistory; ++m) hist[m] = b.hist[m][k];
       elastic += b.elastic[k];
       spring_losses += b.spring_loss[k];
-      const double f2 = f.x * f.x + f.y * f.y + f.z * f.z;
-      max_force2 = f2 > max_force2 ? f2 : max_force2;
       const double dmin = wall ? 2.0 * ri : 2.0 * std::min(ri, b.rj[k]);
       if (b.overlap[k] > max_ratio * dmin) [[unlikely]] {
         const double ratio = b.overlap[k] / dmin;
