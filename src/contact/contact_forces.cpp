@@ -150,7 +150,11 @@ struct ContactBatch {
 /// Pass 2 of the contact loop: evaluate the batch's contacts, several at once (see compute()).
 /// Pairs [Deen07 eq. 12]: relative contact-point velocity from both particles; walls: a partner
 /// of infinite mass and radius at rest, whose normal never turns.
-template <NormalModel Normal, bool Tangential, RollingModel Rolling, bool Wall, int HW>
+/// Uniform: every contact has the parameters params[0] (one species, walls of one material):
+/// read once for all lanes instead of a lane at a time through b.params (GCC emulates such a
+/// gather with a load and an insert per lane and field: ~12 instructions per contact).
+template <NormalModel Normal, bool Tangential, RollingModel Rolling, bool Wall, bool Uniform,
+          int HW>
 FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* params, double dt) {
   const int n = b.n;
 #pragma GCC ivdep
@@ -189,7 +193,8 @@ FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* p
     }
     double hist[HW > 0 ? HW : 1];
     for (int m = 0; m < HW; ++m) hist[m] = b.hist[m][k];
-    const auto out = evaluate<Normal, Tangential, Rolling>(c, params[b.params[k]], hist, dt);
+    const PairParams& pp = Uniform ? params[0] : params[b.params[k]];
+    const auto out = evaluate<Normal, Tangential, Rolling>(c, pp, hist, dt);
     for (int m = 0; m < HW; ++m) b.hist[m][k] = hist[m];
     // Only the columns the model fills: without tangential or rolling forces their torques
     // are zero, and the last pass does not read them (fewer stores and loads per contact).
@@ -425,8 +430,17 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   const double wall_hi[3] = {box.hi[0], box.hi[1], box.hi[2]};
   const std::uint8_t* const wall_face_of = nl.wall_face.data();
   const int* const species_of = p.species.data();
-  auto flush = [&, view, acc_f](Batch& b, auto wall_kind, ContactStats& acc,
-                                std::vector<ContactSample>* buf) {
+  // One set of parameters for all pairs (one species), or for all wall contacts (every
+  // species against every face alike, compared bit for bit): the kernel reads it once.
+  const bool pairs_uniform = n_species == 1;
+  const bool walls_uniform = [&] {
+    for (int sp = 0; sp < n_species; ++sp)
+      for (int f = 0; f < 6; ++f)
+        if (std::memcmp(&table.wall(sp, f), wall_params, sizeof(PairParams)) != 0) return false;
+    return true;
+  }();
+  auto flush = [&, view, acc_f, pairs_uniform, walls_uniform](
+                   Batch& b, auto wall_kind, ContactStats& acc, std::vector<ContactSample>* buf) {
     constexpr bool wall = decltype(wall_kind)::value;
     double* history = wall ? nl.wall_history.data() : nl.history.data();
     for (int k = 0; k < b.n; ++k) {
@@ -446,14 +460,14 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
         const int a = f / 2;
         const bool lo_face = (f % 2 == 0);
         const double gap = lo_face ? pi[a] - wall_lo[a] : wall_hi[a] - pi[a];
-        b.params[k] = species_of[b.i[k]] * 6 + f;
+        if (!walls_uniform) b.params[k] = species_of[b.i[k]] * 6 + f;
         for (int c = 0; c < 3; ++c) b.normal[c][k] = 0.0;
         b.normal[a][k] = lo_face ? -1.0 : 1.0; // from the particle towards the wall
         b.overlap[k] = pi[3] - gap;
         b.wall_gap[k] = gap;
       } else {
         const double* pj = view + ContactScratch::kView * b.j[k];
-        b.params[k] = species_of[b.i[k]] * n_species + species_of[b.j[k]];
+        if (!pairs_uniform) b.params[k] = species_of[b.i[k]] * n_species + species_of[b.j[k]];
         b.rj[k] = pj[3], b.mj[k] = pj[7];
         for (int a = 0; a < 3; ++a) {
           b.dv[a][k] = pi[4 + a] - pj[4 + a];
@@ -464,7 +478,12 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       const double* hist = history + static_cast<std::size_t>(b.e[k]) * Batch::kHistory;
       for (int m = 0; m < Batch::kHistory; ++m) b.hist[m][k] = hist[m];
     }
-    evaluate_batch<Normal, Tangential, Rolling, wall>(b, wall ? wall_params : pair_params, dt);
+    if (wall ? walls_uniform : pairs_uniform)
+      evaluate_batch<Normal, Tangential, Rolling, wall, true>(b, wall ? wall_params : pair_params,
+                                                              dt);
+    else
+      evaluate_batch<Normal, Tangential, Rolling, wall, false>(b, wall ? wall_params : pair_params,
+                                                               dt);
     // The sums and the deepest overlap in registers (the accumulator's stores could alias
     // them), in the same order.
     double elastic = acc.elastic_energy, spring_losses = acc.spring_losses;
