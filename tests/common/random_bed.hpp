@@ -12,6 +12,21 @@
 
 namespace fluidem::test {
 
+/// The beds' [[species]] entry, named `name`: glass spheres of d = 3 mm, 2500 kg/m3, E = 1e7
+/// Pa, e = 0.8, mu = 0.4, rolling friction 0.05.
+inline std::string glass_species(const char* name) {
+  return fmt::format(R"(
+[[species]]
+name = "{}"
+diameter = 0.003
+density = 2500.0
+youngs_modulus = 1e7
+restitution = 0.8
+friction = 0.4
+rolling_friction = 0.05)",
+                     name);
+}
+
 inline std::string random_bed(int count, const char* hi, const char* normal, const char* extra) {
   return fmt::format(R"(
 [simulation]
@@ -21,15 +36,7 @@ time_step = 2e-5
 gravity = [0.0, 0.0, -9.81]
 [domain]
 lo = [0.0, 0.0, 0.0]
-hi = {}
-[[species]]
-name = "glass"
-diameter = 0.003
-density = 2500.0
-youngs_modulus = 1e7
-restitution = 0.8
-friction = 0.4
-rolling_friction = 0.05
+hi = {}{}
 [[insert]]
 species = "glass"
 count = {}
@@ -40,7 +47,7 @@ seed = 5
 normal = "{}"
 tangential = "history"
 {})",
-                     hi, count, normal, extra);
+                     hi, glass_species("glass"), count, normal, extra);
 }
 
 } // namespace fluidem::test

@@ -14,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "../../common/random_bed.hpp"
 #include "integrate/simulation.hpp"
 #include "io/case_reader.hpp"
 
@@ -33,22 +34,7 @@ gravity = [0.0, 0.0, -9.81]
 [domain]
 lo = [0.0, 0.0, 0.0]
 hi = [{4}, {4}, 0.08]
-[[species]]
-name = "glass"
-diameter = 0.003
-density = 2500.0
-youngs_modulus = 1e7
-restitution = 0.8
-friction = 0.4
-rolling_friction = 0.05
-[[species]]
-name = "glass_b"
-diameter = 0.003
-density = 2500.0
-youngs_modulus = 1e7
-restitution = 0.8
-friction = 0.4
-rolling_friction = 0.05
+{5}{6}
 [[insert]]
 species = "glass"
 count = {0}
@@ -68,7 +54,8 @@ normal = "{2}"
 tangential = "history"
 {3}
 )",
-                     count, upper, normal, extra, side);
+                     count, upper, normal, extra, side, test::glass_species("glass"),
+                     test::glass_species("glass_b"));
 }
 
 struct Outcome {
