@@ -218,9 +218,10 @@ FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* p
 }
 
 /// Four doubles in one vector register (AVX; two SSE2 registers in the baseline clone). The
-/// helpers taking and returning them are inlined into add_to_particles: no call passes one, so
-/// GCC's note on the AVX calling convention (-Wpsabi) does not apply.
-#pragma GCC diagnostic push
+/// helpers taking and returning them are inlined into the functions of this file that use them
+/// (their templates are instantiated at its end): no call between translation units passes one,
+/// so GCC's note on the AVX calling convention (-Wpsabi) does not apply (in this file: it is
+/// given where the templates are instantiated, at the file's end).
 #pragma GCC diagnostic ignored "-Wpsabi"
 using Quad = double __attribute__((vector_size(32)));
 using QuadIndex = std::int64_t __attribute__((vector_size(32)));
@@ -233,12 +234,10 @@ using QuadIndex = std::int64_t __attribute__((vector_size(32)));
   std::memcpy(p, &q, sizeof q);
 }
 
-/// Columns c0 .. c3 at contacts k .. k+3, turned so that contact[q] holds contact k+q's four
-/// values (c0[k+q], .., c3[k+q]): a 4 x 4 transposition in eight shuffles.
-[[gnu::always_inline]] inline void transpose(const double* c0, const double* c1, const double* c2,
-                                             const double* c3, int k, Quad (&contact)[4]) {
-  const Quad r0 = load_quad(c0 + k), r1 = load_quad(c1 + k), r2 = load_quad(c2 + k),
-             r3 = load_quad(c3 + k);
+/// Rows r0 .. r3 (four columns' values at contacts k .. k+3), turned so that contact[q] holds
+/// contact k+q's four values (r0[q], .., r3[q]): a 4 x 4 transposition in eight shuffles.
+[[gnu::always_inline]] inline void transpose(Quad r0, Quad r1, Quad r2, Quad r3,
+                                             Quad (&contact)[4]) {
   const Quad u0 = __builtin_shuffle(r0, r1, QuadIndex{0, 4, 2, 6});
   const Quad u1 = __builtin_shuffle(r0, r1, QuadIndex{1, 5, 3, 7});
   const Quad u2 = __builtin_shuffle(r2, r3, QuadIndex{0, 4, 2, 6});
@@ -249,50 +248,107 @@ using QuadIndex = std::int64_t __attribute__((vector_size(32)));
   contact[3] = __builtin_shuffle(u1, u3, QuadIndex{2, 3, 6, 7});
 }
 
-/// Pass 3's additions into the particles' sums (ContactScratch::acc: force | torque | their
-/// non-conservative parts) for a model with a tangential force and no rolling torque: for each
-/// contact in the batch's order, into j's sums (pairs) -F, r_j (n x F_t), -F_nc, r_j (n x F_t,nc),
-/// then into i's F, r_i (n x F_t), F_nc, r_i (n x F_t,nc). The same products and additions, in
-/// the same order, as one element at a time (subtracting f is adding -1 * f, exactly; 1 * f is
-/// f), here a quad at a time: a particle's twelve sums in three loads, multiplications, adds
-/// and stores; the contact's twelve columns (force, torque_unit, nc_force, nc_torque_unit)
-/// turned into three quads four contacts at a time.
-template <bool Pairs, int kSize>
-FLUIDEM_SIMD_CLONES void
-add_to_particles(int n, const std::uint32_t* i, const std::uint32_t* j, const double* ri,
-                 const double* rj, const double (*force)[kSize], const double (*torque_unit)[kSize],
-                 const double (*nc_force)[kSize], const double (*nc_torque_unit)[kSize],
-                 double* acc) {
+/// The batch's output columns pass 3 adds into the particles' sums (ContactScratch::acc:
+/// force | torque | their non-conservative parts), kSize contacts each; the torque columns of a
+/// model without them are not read.
+template <int kSize>
+struct AddColumns {
+  const double (*force)[kSize], (*torque_unit)[kSize], (*nc_force)[kSize], (*nc_torque_unit)[kSize],
+      (*torque_roll)[kSize], (*nc_torque_roll)[kSize];
+};
+
+/// Pass 3's additions into the particles' sums: for each contact in the batch's order, into j's
+/// (pairs) -F, r_j (n x F_t) - T_r, -F_nc, r_j (n x F_t,nc) - T_r,nc, then into i's F,
+/// r_i (n x F_t) + T_r, F_nc, r_i (n x F_t,nc) + T_r,nc (the tangential terms with a tangential
+/// force, the rolling torques T_r with a rolling model). The same products and additions, in the
+/// same order, as one element at a time (subtracting f is adding -1 * f, exactly; 1 * f is f; a
+/// model without a tangential force adds +0 torques, which leave the sums as they are: they
+/// start at +0 and a sum of doubles is -0 only if every term is), here a quad at a time: a
+/// particle's twelve sums in three loads, adds and stores; the columns turned into three quads
+/// per contact, four contacts at a time (transpose).
+template <bool Pairs, bool Tangential, bool Rolling, int kSize>
+FLUIDEM_SIMD_CLONES void add_to_particles(int n, const std::uint32_t* i, const std::uint32_t* j,
+                                          const double* ri, const double* rj,
+                                          const AddColumns<kSize>& col, double* acc) {
   constexpr std::size_t kWidth = ContactScratch::kAcc;
   static_assert(kWidth == 12);
-  // The scale of each sum's value: forces 1 (i) or -1 (j), torques the particle's radius.
-  auto add = [](double* a, const Quad(&value)[3], double r, double sign) {
+  // The quads' lanes: (F.x F.y F.z T.x), (T.y T.z F_nc.x F_nc.y), (F_nc.z T_nc.x T_nc.y T_nc.z);
+  // which lanes hold torques, as shuffle indices that take those lanes from the second operand.
+  constexpr QuadIndex kTorqueLanes[3] = {{0, 1, 2, 7}, {4, 5, 2, 3}, {0, 5, 6, 7}};
+  // value * scale (forces 1 for i or -1 for j, torques the particle's radius), plus (i) or
+  // minus (j) the rolling torques on the torque lanes, added into the sums at a.
+  auto add = [&kTorqueLanes](double* a, const Quad(&value)[3], const Quad(&roll)[3], double r,
+                             double sign) {
     const Quad rs = Quad{} + r, signs = Quad{} + sign; // broadcast
-    const Quad scale[3] = {__builtin_shuffle(signs, rs, QuadIndex{0, 1, 2, 7}),
-                           __builtin_shuffle(signs, rs, QuadIndex{4, 5, 2, 3}),
-                           __builtin_shuffle(signs, rs, QuadIndex{0, 5, 6, 7})};
-    for (int part = 0; part < 3; ++part)
-      store_quad(a + 4 * part, load_quad(a + 4 * part) + value[part] * scale[part]);
+    for (int part = 0; part < 3; ++part) {
+      Quad v = value[part] * __builtin_shuffle(signs, rs, kTorqueLanes[part]);
+      if constexpr (Rolling)
+        v = __builtin_shuffle(v, sign > 0.0 ? v + roll[part] : v - roll[part], kTorqueLanes[part]);
+      store_quad(a + 4 * part, load_quad(a + 4 * part) + v);
+    }
+  };
+  const Quad zero{};
+  // Column c at contacts k .. k+3 (zero for a torque column the model does not have).
+  auto rows = [&](const double(*c)[kSize], int m, int k, bool present) {
+    return present ? load_quad(c[m] + k) : zero;
   };
   int k = 0;
   for (; k + 4 <= n; k += 4) {
-    Quad a[4], b[4], c[4]; // per contact: (F, tu.x), (tu.y, tu.z, F_nc.x, F_nc.y), (F_nc.z, tu_nc)
-    transpose(force[0], force[1], force[2], torque_unit[0], k, a);
-    transpose(torque_unit[1], torque_unit[2], nc_force[0], nc_force[1], k, b);
-    transpose(nc_force[2], nc_torque_unit[0], nc_torque_unit[1], nc_torque_unit[2], k, c);
+    Quad a[4], b[4], c[4], ra[4], rb[4], rc[4];
+    transpose(rows(col.force, 0, k, true), rows(col.force, 1, k, true), rows(col.force, 2, k, true),
+              rows(col.torque_unit, 0, k, Tangential), a);
+    transpose(rows(col.torque_unit, 1, k, Tangential), rows(col.torque_unit, 2, k, Tangential),
+              rows(col.nc_force, 0, k, true), rows(col.nc_force, 1, k, true), b);
+    transpose(rows(col.nc_force, 2, k, true), rows(col.nc_torque_unit, 0, k, Tangential),
+              rows(col.nc_torque_unit, 1, k, Tangential),
+              rows(col.nc_torque_unit, 2, k, Tangential), c);
+    if constexpr (Rolling) {
+      transpose(zero, zero, zero, rows(col.torque_roll, 0, k, true), ra);
+      transpose(rows(col.torque_roll, 1, k, true), rows(col.torque_roll, 2, k, true), zero, zero,
+                rb);
+      transpose(zero, rows(col.nc_torque_roll, 0, k, true), rows(col.nc_torque_roll, 1, k, true),
+                rows(col.nc_torque_roll, 2, k, true), rc);
+    }
     for (int q = 0; q < 4; ++q) {
       const Quad value[3] = {a[q], b[q], c[q]};
-      if constexpr (Pairs) add(acc + kWidth * j[k + q], value, rj[k + q], -1.0);
-      add(acc + kWidth * i[k + q], value, ri[k + q], 1.0);
+      const Quad roll[3] = {Rolling ? ra[q] : zero, Rolling ? rb[q] : zero, Rolling ? rc[q] : zero};
+      if constexpr (Pairs) add(acc + kWidth * j[k + q], value, roll, rj[k + q], -1.0);
+      add(acc + kWidth * i[k + q], value, roll, ri[k + q], 1.0);
     }
   }
-  for (; k < n; ++k) {
-    const double v[12] = {force[0][k],          force[1][k],          force[2][k],
-                          torque_unit[0][k],    torque_unit[1][k],    torque_unit[2][k],
-                          nc_force[0][k],       nc_force[1][k],       nc_force[2][k],
-                          nc_torque_unit[0][k], nc_torque_unit[1][k], nc_torque_unit[2][k]};
-    auto add_scalar = [&v](double* a, double r, double sign) {
-      for (int m = 0; m < 12; ++m) a[m] += v[m] * ((m >= 3 && m < 6) || m >= 9 ? r : sign);
+  for (; k < n; ++k) { // the last contacts one element at a time, the same operations
+    auto at = [k](const double(*c)[kSize], int m, bool present) { return present ? c[m][k] : 0.0; };
+    const double v[12] = {at(col.force, 0, true),
+                          at(col.force, 1, true),
+                          at(col.force, 2, true),
+                          at(col.torque_unit, 0, Tangential),
+                          at(col.torque_unit, 1, Tangential),
+                          at(col.torque_unit, 2, Tangential),
+                          at(col.nc_force, 0, true),
+                          at(col.nc_force, 1, true),
+                          at(col.nc_force, 2, true),
+                          at(col.nc_torque_unit, 0, Tangential),
+                          at(col.nc_torque_unit, 1, Tangential),
+                          at(col.nc_torque_unit, 2, Tangential)};
+    const double roll[12] = {0.0,
+                             0.0,
+                             0.0,
+                             at(col.torque_roll, 0, Rolling),
+                             at(col.torque_roll, 1, Rolling),
+                             at(col.torque_roll, 2, Rolling),
+                             0.0,
+                             0.0,
+                             0.0,
+                             at(col.nc_torque_roll, 0, Rolling),
+                             at(col.nc_torque_roll, 1, Rolling),
+                             at(col.nc_torque_roll, 2, Rolling)};
+    auto add_scalar = [&v, &roll](double* a, double r, double sign) {
+      for (int m = 0; m < 12; ++m) {
+        const bool torque = (m >= 3 && m < 6) || m >= 9;
+        double x = v[m] * (torque ? r : sign);
+        if (Rolling && torque) x = sign > 0.0 ? x + roll[m] : x - roll[m];
+        a[m] += x;
+      }
     };
     if constexpr (Pairs) add_scalar(acc + kWidth * j[k], rj[k], -1.0);
     add_scalar(acc + kWidth * i[k], ri[k], 1.0);
@@ -321,7 +377,6 @@ FLUIDEM_SIMD_CLONES double largest_force2(int n, const double (*force)[kSize], d
   }
   return largest;
 }
-#pragma GCC diagnostic pop
 
 /// The groups of consecutive slabs the contact loop's phases run over (compute()): group g is
 /// slabs [starts[g], starts[g + 1]), each of at least two slabs (one when there is a single
@@ -490,48 +545,17 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     double max_ratio = acc.max_overlap_ratio;
     const double max_force2 = largest_force2<Batch::kSize>(b.n, b.force, acc.max_force2);
     std::size_t deepest = n; // the particle of the deepest overlap, when this batch has it
-    // With a tangential force and no rolling torque, the additions into the particles' sums a
-    // quad at a time (add_to_particles), before the per-contact loop below.
-    constexpr bool kQuadAdditions = Tangential && Rolling == RollingModel::None;
-    if constexpr (kQuadAdditions)
-      add_to_particles<!wall, Batch::kSize>(b.n, b.i, b.j, b.ri, b.rj, b.force, b.torque_unit,
-                                            b.nc_force, b.nc_torque_unit, acc_f);
+    // The additions into the particles' sums, a quad at a time, before the per-contact loop.
+    add_to_particles<!wall, Tangential, Rolling != RollingModel::None, Batch::kSize>(
+        b.n, b.i, b.j, b.ri, b.rj,
+        {b.force, b.torque_unit, b.nc_force, b.nc_torque_unit, b.torque_roll, b.nc_torque_roll},
+        acc_f);
     for (int k = 0; k < b.n; ++k) {
       const std::uint32_t i = b.i[k];
       const double ri = b.ri[k];
-      const Vec3 f = b.get(b.force, k), ncf = b.get(b.nc_force, k);
-      // The torques: r (n x F_t) from the tangential force and the rolling torque, each only
-      // when the model has it (a zero torque adds nothing: the sums are bitwise the same).
-      Vec3 ti{}, nti{}, tj{}, ntj{}, tr{};
-      if constexpr (Tangential) {
-        const Vec3 tu = b.get(b.torque_unit, k), nctu = b.get(b.nc_torque_unit, k);
-        ti = tu * ri, nti = nctu * ri;
-        if constexpr (!wall) tj = tu * b.rj[k], ntj = nctu * b.rj[k];
-      }
-      if constexpr (Rolling != RollingModel::None) {
-        tr = b.get(b.torque_roll, k);
-        const Vec3 nctr = b.get(b.nc_torque_roll, k);
-        ti += tr, nti += nctr;
-        if constexpr (!wall) tj -= tr, ntj -= nctr;
-      }
-      if constexpr (!kQuadAdditions) {
-        if constexpr (!wall) {
-          double* aj = acc_f + ContactScratch::kAcc * b.j[k];
-          aj[0] -= f.x, aj[1] -= f.y, aj[2] -= f.z;
-          aj[6] -= ncf.x, aj[7] -= ncf.y, aj[8] -= ncf.z;
-          if constexpr (Tangential || Rolling != RollingModel::None) {
-            aj[3] += tj.x, aj[4] += tj.y, aj[5] += tj.z;
-            aj[9] += ntj.x, aj[10] += ntj.y, aj[11] += ntj.z;
-          }
-        }
-        double* ai = acc_f + ContactScratch::kAcc * i;
-        ai[0] += f.x, ai[1] += f.y, ai[2] += f.z;
-        ai[6] += ncf.x, ai[7] += ncf.y, ai[8] += ncf.z;
-        if constexpr (Tangential || Rolling != RollingModel::None) {
-          ai[3] += ti.x, ai[4] += ti.y, ai[5] += ti.z;
-          ai[9] += nti.x, ai[10] += nti.y, ai[11] += nti.z;
-        }
-      }
+      const Vec3 f = b.get(b.force, k);
+      Vec3 tr{}; // the rolling torque on i, for the record
+      if constexpr (Rolling != RollingModel::None) tr = b.get(b.torque_roll, k);
       double* hist = history + static_cast<std::size_t>(b.e[k]) * Batch::kHistory;
       for (int m = 0; m < Batch::kHistory; ++m) hist[m] = b.hist[m][k];
       elastic += b.elastic[k];
