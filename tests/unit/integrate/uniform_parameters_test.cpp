@@ -4,9 +4,10 @@
 // must give the same forces for the same parameters: a bed of one species and the same bed whose
 // upper half is a second species of identical material (its own [[species]] entry, so the
 // pairs take the per-contact path) must stay bitwise identical, with Hertz and linear springs
-// and tangential history (the quad additions into the particles' sums) and with rolling springs
-// (the one-at-a-time additions), in a closed box (wall contacts) with > 4096 particles (the
-// threaded slab loop, one batch per slab) and with fewer (one batch through all slabs).
+// and tangential history and with rolling springs (whose torques the additions into the
+// particles' sums take on their torque lanes), in a closed box (wall contacts) with > 4096
+// particles (the threaded slab loop, one batch per slab) and with fewer (one batch through all
+// slabs).
 #include <gtest/gtest.h>
 
 #include <string>
