@@ -44,6 +44,11 @@ struct ContactScratch {
   std::vector<int> slab_group_start;                ///< the contact loop's groups of slabs
   std::vector<double> chunk_sums;                   ///< dissipation_sum(): per chunk of particles
   std::vector<unsigned char> chunk_flags;           ///< dissipation_sum(): per chunk
+  /// The particle whose row holds each pair entry of the neighbour list (beds small enough for
+  /// the contact loop to walk a slab's entries in one loop), for the list of generation
+  /// entry_owner_generation (NeighbourList::generation()).
+  std::vector<std::uint32_t> entry_owner;
+  std::uint64_t entry_owner_generation = ~std::uint64_t{0};
   /// Pack the view from p and zero the sums.
   void reset(const ParticleStore& p);
   /// reset() for particle i alone (the view and sums must be sized for p): the integrator packs

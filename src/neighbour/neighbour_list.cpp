@@ -306,6 +306,7 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
   y0_ = p.y;
   z0_ = p.z;
   ++builds_;
+  ++generation_;
   // The previous list is needed only while its history is carried over: released here, so that
   // a run holds one list, not two (the next build allocates its arrays again; builds are rare
   // next to steps, and the history carried over is ~100 bytes per particle). So is the cell
@@ -354,6 +355,7 @@ NeighbourList::State NeighbourList::state() const {
 
 void NeighbourList::restore(const ParticleStore& p, const State& s) {
   skin_ = s.skin;
+  ++generation_;
   if (s.x0.empty()) { // never built
     builds_ = s.builds;
     return;

@@ -78,6 +78,9 @@ public:
   /// Change the skin for the next build (the hard-sphere engine sizes it per flow step).
   void set_skin(double skin) { skin_ = skin; }
   long builds() const { return builds_; }
+  /// Changes with every build() and restore() of this object (and is not saved): whoever
+  /// derives data from the pairs (the contact loop's entry owners) rebuilds them when it does.
+  std::uint64_t generation() const { return generation_; }
   /// Side of the cells the list bins particles in: the largest diameter plus the skin.
   double cell_size(const ParticleStore& p) const;
   std::size_t bytes() const;
@@ -114,6 +117,7 @@ private:
   double skin_;
   int hw_;
   long builds_ = 0;
+  std::uint64_t generation_ = 0;
   std::uint32_t max_entries_ = 0;
   std::vector<double> x0_, y0_, z0_; ///< positions at the last build
   // Cell grid (its arrays are scratch of build(), released at its end)
