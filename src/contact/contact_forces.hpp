@@ -49,6 +49,12 @@ struct ContactScratch {
   /// entry_owner_generation (NeighbourList::generation()).
   std::vector<std::uint32_t> entry_owner;
   std::uint64_t entry_owner_generation = ~std::uint64_t{0};
+  /// Whether every particle has the radius same_radius and the mass same_mass, found for the
+  /// list of generation same_particles_generation and that many particles.
+  bool same_particles = false;
+  double same_radius = 0.0, same_mass = 0.0;
+  std::uint64_t same_particles_generation = ~std::uint64_t{0};
+  std::size_t same_particles_count = 0;
   /// Pack the view from p and zero the sums.
   void reset(const ParticleStore& p);
   /// reset() for particle i alone (the view and sums must be sized for p): the integrator packs

@@ -1,9 +1,11 @@
 // The contact loop reads the contact parameters once for all of a batch's contacts when they are
-// the same for every contact (one species; walls of one material), and a lane at a time through
-// each contact's species pair otherwise (contact_forces.cpp, evaluate_batch's Uniform). Both
-// must give the same forces for the same parameters: a bed of one species and the same bed whose
-// upper half is a second species of identical material (its own [[species]] entry, so the
-// pairs take the per-contact path) must stay bitwise identical, with Hertz and linear springs
+// the same for every contact (one species; walls of one material), with the particles' radius
+// and mass too when those are all the same, and a lane at a time through each contact's species
+// pair otherwise (contact_forces.cpp, Uniformity; tests/unit/contact/uniform_batches_test.cpp
+// checks each path at the contact loop). Over whole runs: a bed of one species (all of its
+// contacts on the uniform path) and the same bed whose upper half is a second species of
+// identical material (its own [[species]] entry, so the pairs take the per-contact path, the
+// walls still the uniform one) must stay bitwise identical, with Hertz and linear springs
 // and tangential history and with rolling springs (whose torques the additions into the
 // particles' sums take on their torque lanes), in a closed box (wall contacts) with > 4096
 // particles (the threaded slab loop, one batch per slab) and with fewer (one batch through all
