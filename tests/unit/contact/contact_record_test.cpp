@@ -21,6 +21,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "../../common/case_box.hpp"
 #include "contact/contact_forces.hpp"
 
 namespace fluidem {
@@ -50,15 +51,6 @@ CaseSpec make_spec() {
   s.contact.tangential = TangentialModel::History;
   s.contact.rolling = RollingModel::SpringDashpot;
   return s;
-}
-
-BoxGeometry box_of(const CaseSpec& s) {
-  BoxGeometry b;
-  b.lo = s.domain.lo;
-  b.hi = s.domain.hi;
-  b.periodic = s.domain.periodic;
-  for (int f = 0; f < 6; ++f) b.wall[f] = !b.periodic[f / 2];
-  return b;
 }
 
 /// A jittered lattice of 20 x 20 per layer, spacing 0.97 d: most neighbours overlap slightly; the
@@ -97,7 +89,7 @@ Result run(std::size_t layers, bool record, int threads = 0) {
   const ContactTable table(spec);
   Result r;
   r.p = make_particles(layers);
-  NeighbourList nl(box_of(spec), 0.1 * kD, contact_history_width(table));
+  NeighbourList nl(test::box_of(spec), 0.1 * kD, contact_history_width(table));
   nl.build(r.p);
   r.rec.enabled = record;
   const int saved = omp_get_max_threads();
@@ -209,7 +201,7 @@ TEST(ContactScratchState, PackedByParticleGivesTheSameForces) {
   const CaseSpec spec = make_spec();
   const ContactTable table(spec);
   const ParticleStore p = make_particles(3);
-  NeighbourList nl(box_of(spec), 0.1 * kD, contact_history_width(table));
+  NeighbourList nl(test::box_of(spec), 0.1 * kD, contact_history_width(table));
   nl.build(p);
   NeighbourList nl_packed = nl;
   ContactScratch stale, packed;

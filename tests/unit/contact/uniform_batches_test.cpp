@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "../../common/case_box.hpp"
 #include "contact/contact_forces.hpp"
 
 namespace fluidem {
@@ -51,14 +52,6 @@ CaseSpec make_spec(int species, NormalModel normal) {
   s.contact.tangential = TangentialModel::History;
   s.contact.rolling = RollingModel::SpringDashpot;
   return s;
-}
-
-BoxGeometry box_of(const CaseSpec& s) {
-  BoxGeometry b;
-  b.lo = s.domain.lo;
-  b.hi = s.domain.hi;
-  for (int f = 0; f < 6; ++f) b.wall[f] = true;
-  return b;
 }
 
 /// A jittered lattice of `layers` layers, spacing 0.97 d, random velocities and spins, the
@@ -95,7 +88,7 @@ Result run(int layers, int species, bool spread, NormalModel normal) {
   const CaseSpec spec = make_spec(species, normal);
   const ContactTable table(spec);
   const ParticleStore p = make_particles(layers, species, spread);
-  NeighbourList nl(box_of(spec), 0.1 * kD, contact_history_width(table));
+  NeighbourList nl(test::box_of(spec), 0.1 * kD, contact_history_width(table));
   nl.build(p);
   ContactScratch nc;
   Result r;
