@@ -21,7 +21,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "../../common/case_box.hpp"
+#include "../../common/contact_case.hpp"
 #include "contact/contact_forces.hpp"
 
 namespace fluidem {
@@ -38,15 +38,7 @@ CaseSpec make_spec() {
   s.domain.lo = {0.0, 0.0, 0.0};
   s.domain.hi = {kL, kL, kH};
   s.domain.periodic = {true, true, false};
-  SpeciesSpec sp;
-  sp.name = "glass";
-  sp.diameter = kD;
-  sp.density = 2500.0;
-  sp.material.youngs_modulus = 1e7;
-  sp.material.restitution = 0.8;
-  sp.material.friction = 0.4;
-  sp.material.rolling_friction = 0.05;
-  s.species.push_back(sp);
+  s.species.push_back(test::glass_species_spec("glass")); // d = kD
   s.contact.normal = NormalModel::Hertz;
   s.contact.tangential = TangentialModel::History;
   s.contact.rolling = RollingModel::SpringDashpot;

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "../../common/case_box.hpp"
+#include "../../common/contact_case.hpp"
 #include "contact/contact_forces.hpp"
 
 namespace fluidem {
@@ -36,17 +36,8 @@ CaseSpec make_spec(int species, NormalModel normal) {
   s.simulation.dimension = 3;
   s.domain.lo = {0.0, 0.0, 0.0};
   s.domain.hi = {kL, kL, kH};
-  for (int k = 0; k < species; ++k) {
-    SpeciesSpec sp;
-    sp.name = k == 0 ? "glass" : "glass_b";
-    sp.diameter = kD;
-    sp.density = 2500.0;
-    sp.material.youngs_modulus = 1e7;
-    sp.material.restitution = 0.8;
-    sp.material.friction = 0.4;
-    sp.material.rolling_friction = 0.05;
-    s.species.push_back(sp);
-  }
+  for (int k = 0; k < species; ++k) // d = kD
+    s.species.push_back(test::glass_species_spec(k == 0 ? "glass" : "glass_b"));
   s.contact.normal = normal;
   s.contact.stiffness = 2000.0; // linear springs only
   s.contact.tangential = TangentialModel::History;
