@@ -431,6 +431,67 @@ void slab_group_starts(const std::vector<std::uint32_t>& slab_start, int nslab,
   starts.push_back(nslab);
 }
 
+/// The wall entries are cut into chunks of about kWallChunk that never split one particle's
+/// entries (they are sorted by particle), so the chunks run in parallel without races; each
+/// keeps its own statistics and samples, joined in chunk order: the result does not depend on
+/// the number of threads. The chunks are small enough to share out evenly (2048 entries gave one
+/// thread 3 of 5 chunks). Chunk k is entries [wall_chunk_start(k), wall_chunk_start(k + 1)).
+constexpr std::size_t kWallChunk = 512;
+std::size_t wall_chunk_count(const std::vector<std::uint32_t>& wall_particle) {
+  return (wall_particle.size() + kWallChunk - 1) / kWallChunk;
+}
+std::size_t wall_chunk_start(const std::vector<std::uint32_t>& wall_particle, std::size_t k) {
+  const std::size_t nwall = wall_particle.size();
+  std::size_t e = std::min(k * kWallChunk, nwall);
+  while (e > 0 && e < nwall && wall_particle[e] == wall_particle[e - 1]) ++e;
+  return e;
+}
+
+/// For each wall chunk, the lowest and highest slab group (slab_group_starts: group_start) that
+/// holds one of its particles: the groups whose pairs add into the chunk's particles are those
+/// and the group before the lowest (whose last slab's rows add into the next group's first
+/// slab). A chunk without particles in any slab (none: every particle is in one) would get
+/// every group.
+void wall_chunk_groups(const NeighbourList& nl, const std::vector<int>& group_start,
+                       std::vector<int>& lo, std::vector<int>& hi) {
+  const std::vector<std::uint32_t>& wall_particle = nl.wall_particle;
+  const std::size_t nchunk = wall_chunk_count(wall_particle);
+  const int ngroup = std::max(0, static_cast<int>(group_start.size()) - 1);
+  lo.assign(nchunk, ngroup);
+  hi.assign(nchunk, -1);
+  // The chunk of entry e: chunk k starts at k * kWallChunk or a few entries after it.
+  auto chunk_of = [&](std::size_t e) {
+    const std::size_t k = e / kWallChunk;
+    return wall_chunk_start(wall_particle, k) > e ? k - 1 : k;
+  };
+  // Mark the chunks of entries [e0, e1) as holding a particle of group g.
+  auto mark = [&](std::size_t e0, std::size_t e1, int g) {
+    if (e0 >= e1) return;
+    for (std::size_t k = chunk_of(e0), k_end = chunk_of(e1 - 1); k <= k_end; ++k)
+      lo[k] = std::min(lo[k], g), hi[k] = std::max(hi[k], g);
+  };
+  auto entries_from = [&](std::uint32_t i) {
+    return static_cast<std::size_t>(
+        std::lower_bound(wall_particle.begin(), wall_particle.end(), i) - wall_particle.begin());
+  };
+  for (int g = 0; g < ngroup; ++g)
+    for (int sl = group_start[g]; sl < group_start[g + 1]; ++sl) {
+      const std::uint32_t s0 = nl.slab_start[sl], s1 = nl.slab_start[sl + 1];
+      if (s0 == s1) continue;
+      const std::uint32_t first = nl.slab_particles[s0], final = nl.slab_particles[s1 - 1];
+      if (final - first == s1 - 1 - s0) { // consecutive indices (ascending within a slab)
+        mark(entries_from(first), entries_from(final + 1), g);
+      } else {
+        for (std::uint32_t m = s0; m < s1; ++m) {
+          const std::uint32_t i = nl.slab_particles[m];
+          mark(entries_from(i), entries_from(i + 1), g);
+        }
+      }
+    }
+  for (std::size_t k = 0; k < nchunk; ++k)
+    if (lo[k] > hi[k]) lo[k] = 0, hi[k] = ngroup - 1;
+}
+
 /// Add a slab's or wall chunk's statistics to the total (the deepest overlap: the first one
 /// found in the order of the calls).
 void add_stats(ContactStats& total, const ContactStats& part) {
@@ -791,11 +852,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
         gather_row.template operator()<false>(nl.slab_particles[k], b, acc, buf);
     }
   };
-  // Particle-wall contacts: wall of infinite mass, its own material. The entries are cut into
-  // chunks of about kWallChunk that never split one particle's entries (they are sorted by
-  // particle), so the chunks run in parallel without races; each keeps its own statistics and
-  // samples, joined in chunk order: the result does not depend on the number of threads. The
-  // chunks are small enough to share out evenly (2048 entries gave one thread 3 of 5 chunks).
+  // Particle-wall contacts: wall of infinite mass, its own material, in chunks of entries
+  // (wall_chunk_start).
   // Pass 1 for the wall entries [e_begin, e_end), as for a row of pairs.
   auto gather_walls = [&](std::size_t e_begin, std::size_t e_end, Batch& b, ContactStats& acc,
                           std::vector<ContactSample>* buf) {
@@ -828,32 +886,25 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     }
     b.n = k;
   };
-  constexpr std::size_t kWallChunk = 512;
-  const std::size_t nwall = nl.wall_particle.size();
-  const std::size_t nchunk = (nwall + kWallChunk - 1) / kWallChunk;
-  auto chunk_start = [&](std::size_t k) {
-    std::size_t e = std::min(k * kWallChunk, nwall);
-    while (e > 0 && e < nwall && nl.wall_particle[e] == nl.wall_particle[e - 1]) ++e;
-    return e;
-  };
+  const std::size_t nchunk = wall_chunk_count(nl.wall_particle);
+  auto chunk_start = [&](std::size_t k) { return wall_chunk_start(nl.wall_particle, k); };
   auto& wall_stats = nc.wall_stats;
   wall_stats.assign(nchunk, ContactStats{});
   std::vector<std::vector<ContactSample>> chunk_samples(recording ? nchunk : 0);
-  // The wall chunks [k_begin, k_end): each thread of the pairs' region runs its share after the
-  // pairs, in the same region (one fork and join per step fewer). So they are threaded when the
-  // pairs are, by particle count, not by wall entries: in a bed one particle deep every
-  // particle has two, and the worker thread's writes into the accumulators of a bed whose pairs
-  // ran on the main thread made two threads 25% slower than one in the contacts.
-  auto run_wall_chunks = [&](std::size_t k_begin, std::size_t k_end) {
-    for (std::size_t k = k_begin; k < k_end; ++k) {
-      std::vector<ContactSample>* buf = recording ? &chunk_samples[k] : nullptr;
-      const std::size_t end = chunk_start(k + 1);
-      ContactStats local; // on the stack, as the slabs' (no false sharing)
-      Batch batch;
-      gather_walls(chunk_start(k), end, batch, local, buf);
-      flush(batch, kWalls, local, buf);
-      wall_stats[k] = local;
-    }
+  // Wall chunk k. With threads, each thread of the pairs' region runs the chunks of its own
+  // particles after its pairs, in the same region (one fork and join per step fewer), so they
+  // are threaded when the pairs are, by particle count, not by wall entries: in a bed one
+  // particle deep every particle has two, and the worker thread's writes into the accumulators
+  // of a bed whose pairs ran on the main thread made two threads 25% slower than one in the
+  // contacts.
+  auto run_wall_chunk = [&](std::size_t k) {
+    std::vector<ContactSample>* buf = recording ? &chunk_samples[k] : nullptr;
+    const std::size_t end = chunk_start(k + 1);
+    ContactStats local; // on the stack, as the slabs' (no false sharing)
+    Batch batch;
+    gather_walls(chunk_start(k), end, batch, local, buf);
+    flush(batch, kWalls, local, buf);
+    wall_stats[k] = local;
   };
   const int nslab = nl.slab_count();
   // The slabs run in two phases over fixed groups of consecutive slabs (slab_group_starts(), at
@@ -887,7 +938,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // The hook (before_slab of compute_contact_forces): in phase 0, for a group's first slab, then
   // for each next slab of the group just before the rows that read it (a group's last slab is
   // read by its own rows in phase 1 and by the slab before it in phase 0; the next group's
-  // first slab is prepared by that group's phase 0, before the barrier).
+  // first slab is prepared by that group's phase 0, which the group's phase 1 waits for).
   const auto prepare = [hook](int slab) {
     if (hook) (*hook)(slab);
   };
@@ -904,18 +955,39 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       }
     flush(batch, kPairs, local, nullptr);
     if (nslab > 0) slab_stats[0] = local;
-    run_wall_chunks(0, nchunk);
+    for (std::size_t k = 0; k < nchunk; ++k) run_wall_chunk(k);
   } else {
     // Each thread runs a fixed, contiguous run of slab groups holding about its share of the
     // particles (the particles are sorted by slab): about the same particles as in the integrator's
     // and the packing's static loops, so their view and accumulator lines stay in the one
     // core's cache from step to step instead of moving between the cores (with the slabs
     // handed out dynamically, the packing's share of the time tripled with two threads and the
-    // spin-wait took 7-17%). Both phases in one parallel region, a barrier between them.
-    // Then, after the barrier that ends the pairs, in the same region, the thread's share of
-    // the wall chunks (a chunk writes only to its own particles' sums).
-    // One thread (or a recording below the threshold): the same slabs in the same order,
-    // outside any OpenMP region (core/parallel.hpp).
+    // spin-wait took 7-17%). Then, in the same region, the wall chunks whose lowest group is
+    // one of the thread's (a chunk writes only to its own particles' sums).
+    // The threads hand over through the groups' marks (PhaseProgress) instead of barriers:
+    // group g's phase 1 waits for group g + 1's phase 0 (the first slab it writes into, and
+    // which it reads prepared); a wall chunk waits for phase 1 of its groups and of the group
+    // before them (every pair addition into its particles: the walls add after the pairs, as
+    // on one thread). When the slabs' axis is periodic the last group's last slab writes into
+    // slab 0: group 0 follows the last group. Each thread runs its last group's phase 1, which
+    // waits for the next thread, after its other groups', and its wall chunks from the last, whose
+    // first one may wait for the previous thread's last group: a thread held up for a moment holds
+    // up the others only when their own work runs out (with a barrier after each phase the two
+    // threads of bed10k waited 4-6% of the loop). One thread (or a recording below the threshold):
+    // the same slabs in the same order, outside any OpenMP region (core/parallel.hpp).
+    if (nc.chunk_groups_generation != nl.generation() || nc.chunk_group_lo.size() != nchunk) {
+      wall_chunk_groups(nl, nc.slab_group_start, nc.chunk_group_lo, nc.chunk_group_hi);
+      nc.chunk_groups_generation = nl.generation();
+    }
+    const int* const chunk_lo = nc.chunk_group_lo.data();
+    const int* const chunk_hi = nc.chunk_group_hi.data();
+    PhaseProgress& progress = nc.group_progress;
+    const std::uint64_t step = progress.start(static_cast<std::size_t>(ngroup));
+    const bool wrap = nl.slabs_wrap() && ngroup > 1;
+    // The group whose first slab group g's last slab writes into (-1: none), and the one that
+    // writes into group g's first slab.
+    auto next_group = [&](int g) { return g + 1 < ngroup ? g + 1 : (wrap ? 0 : -1); };
+    auto previous_group = [&](int g) { return g > 0 ? g - 1 : (wrap ? ngroup - 1 : -1); };
     auto run_slabs = [&](int nt, int t) {
       auto first_slab = [&](int thread) {
         const std::size_t share = n * static_cast<std::size_t>(thread) / nt;
@@ -933,28 +1005,39 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
         return g;
       };
       const int g_begin = first_group(t), g_end = t + 1 == nt ? ngroup : first_group(t + 1);
-      for (int phase = 0; phase < 2; ++phase) {
-        for (int g = g_begin; g < g_end; ++g) {
-          if (phase == 0) prepare(group_begin(g));
-          for (auto [sl, sl_end] = phase_slabs(g, phase); sl < sl_end; ++sl) {
-            if (phase == 0) prepare(sl + 1);
-            std::vector<ContactSample>* buf = recording ? &slab_samples[sl] : nullptr;
-            // Summed on this thread's stack, stored once: the slabs' entries of slab_stats
-            // share cache lines, and updating them per contact from two threads made the lines
-            // bounce between the cores (false sharing).
-            ContactStats local;
-            Batch batch;
-            walk_slab(sl, batch, local, buf);
-            flush(batch, kPairs, local, buf);
-            slab_stats[sl] = local;
-          }
+      const bool handing_over = nt > 1;
+      auto run_group = [&](int g, int phase) {
+        if (phase == 0) prepare(group_begin(g));
+        for (auto [sl, sl_end] = phase_slabs(g, phase); sl < sl_end; ++sl) {
+          if (phase == 0) prepare(sl + 1);
+          std::vector<ContactSample>* buf = recording ? &slab_samples[sl] : nullptr;
+          // Summed on this thread's stack, stored once: the slabs' entries of slab_stats
+          // share cache lines, and updating them per contact from two threads made the lines
+          // bounce between the cores (false sharing).
+          ContactStats local;
+          Batch batch;
+          walk_slab(sl, batch, local, buf);
+          flush(batch, kPairs, local, buf);
+          slab_stats[sl] = local;
         }
-        if (nt > 1) {
-#pragma omp barrier
-        }
+        if (handing_over) progress.finish(static_cast<std::size_t>(g), phase, step);
+      };
+      for (int g = g_begin; g < g_end; ++g) run_group(g, 0);
+      for (int g = g_begin; g < g_end; ++g) {
+        if (handing_over && next_group(g) >= 0)
+          progress.wait(static_cast<std::size_t>(next_group(g)), 0, step);
+        run_group(g, 1);
       }
-      run_wall_chunks(nchunk * static_cast<std::size_t>(t) / nt,
-                      nchunk * static_cast<std::size_t>(t + 1) / nt);
+      for (std::size_t k = nchunk; k-- > 0;) {
+        if (chunk_lo[k] < g_begin || chunk_lo[k] >= g_end) continue;
+        if (handing_over) {
+          if (previous_group(chunk_lo[k]) >= 0)
+            progress.wait(static_cast<std::size_t>(previous_group(chunk_lo[k])), 1, step);
+          for (int g = chunk_lo[k]; g <= chunk_hi[k]; ++g)
+            progress.wait(static_cast<std::size_t>(g), 1, step);
+        }
+        run_wall_chunk(k);
+      }
     };
     if (go_parallel(threaded)) {
 #pragma omp parallel
@@ -1014,7 +1097,8 @@ void ContactScratch::reset(const ParticleStore& p) {
 
 std::size_t ContactScratch::bytes() const {
   return (view.capacity() + acc.capacity()) * sizeof(double) +
-         entry_owner.capacity() * sizeof(std::uint32_t);
+         entry_owner.capacity() * sizeof(std::uint32_t) + group_progress.bytes() +
+         (chunk_group_lo.capacity() + chunk_group_hi.capacity()) * sizeof(int);
 }
 
 ContactStats compute_contact_forces(const ParticleStore& p, NeighbourList& nl,

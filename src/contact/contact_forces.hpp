@@ -8,6 +8,7 @@
 #include "contact/contact_record.hpp"
 #include "contact/contact_table.hpp"
 #include "core/parallel.hpp"
+#include "core/phase_progress.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "particles/particle_store.hpp"
 
@@ -49,6 +50,13 @@ struct ContactScratch {
   /// entry_owner_generation (NeighbourList::generation()).
   std::vector<std::uint32_t> entry_owner;
   std::uint64_t entry_owner_generation = ~std::uint64_t{0};
+  /// The threads' hand-off in the contact loop: per group of slabs, the step whose phases it
+  /// has finished.
+  PhaseProgress group_progress;
+  /// Per wall chunk, the lowest and highest slab group holding one of its particles, for the
+  /// list of generation chunk_groups_generation.
+  std::vector<int> chunk_group_lo, chunk_group_hi;
+  std::uint64_t chunk_groups_generation = ~std::uint64_t{0};
   /// Whether every particle has the radius same_radius and the mass same_mass, found for the
   /// list of generation same_particles_generation and that many particles.
   bool same_particles = false;

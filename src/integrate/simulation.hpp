@@ -157,6 +157,8 @@ public:
   long spatial_sorts() const { return sorts_; }
   /// Builds of the soft-sphere neighbour list so far (checkpointed).
   long neighbour_builds() const { return nl_->builds(); }
+  /// Particle-wall entries in the neighbour list of the last build.
+  std::size_t neighbour_wall_entries() const { return nl_->wall_particle.size(); }
   /// Steps whose integration pass ran inside the contact loop, slab by slab (step()), in this
   /// process (not checkpointed: a log figure).
   long folded_steps() const { return folded_steps_; }

@@ -72,6 +72,8 @@ public:
   // slab_particles[slab_start[s] .. slab_start[s+1]), in ascending index order.
   std::vector<std::uint32_t> slab_start, slab_particles;
   int slab_count() const { return nslab_; }
+  /// Whether the slabs' axis is periodic: then the last slab's rows also write into slab 0.
+  bool slabs_wrap() const { return box_.periodic[slab_axis_]; }
 
   int history_width() const { return hw_; }
   double skin() const { return skin_; }

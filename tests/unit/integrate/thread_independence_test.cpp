@@ -75,9 +75,42 @@ normal = "hertz"
 tangential = "history"
 )";
 
+// A closed box four diameters deep in y (walls on every face, no periodic axis) with fast
+// particles everywhere: wall contacts in every slab, so the wall chunks, which run after the
+// pairs that add into their particles (on whichever thread ran those), span the threads' shares.
+const char* kClosedCase = R"(
+[simulation]
+dimension = 3
+end_time = 0.0045
+time_step = 1.5e-5
+gravity = [0.0, 0.0, -9.81]
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [0.06, 0.008, 0.2]
+[walls]
+friction = 0.3
+[[species]]
+name = "glass"
+diameter = 0.002
+density = 2500.0
+youngs_modulus = 1e7
+restitution = 0.8
+friction = 0.4
+[[insert]]
+species = "glass"
+count = 6000
+placement = "random"
+velocity_spread = 0.8
+seed = 5
+[contact]
+normal = "hertz"
+tangential = "history"
+)";
+
 struct State {
   std::vector<double> x, v, w;
   long contacts = 0;
+  std::size_t wall_entries = 0;
 };
 
 State run_with_threads(int threads, const char* text = kCase, long steps = 300) {
@@ -89,12 +122,24 @@ State run_with_threads(int threads, const char* text = kCase, long steps = 300) 
   const auto& p = sim.particles();
   State s;
   s.contacts = sim.contact_stats().n_contacts;
+  s.wall_entries = sim.neighbour_wall_entries();
   for (std::size_t i = 0; i < p.size(); ++i) {
     s.x.insert(s.x.end(), {p.x[i], p.y[i], p.z[i]});
     s.v.insert(s.v.end(), {p.vx[i], p.vy[i], p.vz[i]});
     s.w.insert(s.w.end(), {p.wx[i], p.wy[i], p.wz[i]});
   }
   return s;
+}
+
+/// The runs on two and three threads end with the particles of the run on one thread, bit for
+/// bit (operator== on doubles, no tolerance).
+void expect_bitwise_equal(const State& one, const State& two, const State& three) {
+  EXPECT_TRUE(one.x == two.x);
+  EXPECT_TRUE(one.v == two.v);
+  EXPECT_TRUE(one.w == two.w);
+  EXPECT_TRUE(one.x == three.x);
+  EXPECT_TRUE(one.v == three.v);
+  EXPECT_TRUE(one.w == three.w);
 }
 
 TEST(ThreadIndependence, OneAndTwoThreadsGiveBitwiseIdenticalParticles) {
@@ -104,13 +149,7 @@ TEST(ThreadIndependence, OneAndTwoThreadsGiveBitwiseIdenticalParticles) {
   // threads split in halves; three split them unevenly (and share two cores here).
   const State three = run_with_threads(3);
   ASSERT_EQ(one.x.size(), 18000u);
-  // Bitwise: operator== on doubles, no tolerance.
-  EXPECT_TRUE(one.x == two.x);
-  EXPECT_TRUE(one.v == two.v);
-  EXPECT_TRUE(one.w == two.w);
-  EXPECT_TRUE(one.x == three.x);
-  EXPECT_TRUE(one.v == three.v);
-  EXPECT_TRUE(one.w == three.w);
+  expect_bitwise_equal(one, two, three);
   // The run did something: contacts exist, particles rotate.
   EXPECT_GT(one.contacts, 100);
   double wmax = 0.0;
@@ -123,13 +162,19 @@ TEST(ThreadIndependence, LargeBedInSlabGroupsGivesBitwiseIdenticalParticles) {
   const State two = run_with_threads(2, kLargeCase, 60);
   const State three = run_with_threads(3, kLargeCase, 60);
   ASSERT_EQ(one.x.size(), 120000u);
-  EXPECT_TRUE(one.x == two.x);
-  EXPECT_TRUE(one.v == two.v);
-  EXPECT_TRUE(one.w == two.w);
-  EXPECT_TRUE(one.x == three.x);
-  EXPECT_TRUE(one.v == three.v);
-  EXPECT_TRUE(one.w == three.w);
+  expect_bitwise_equal(one, two, three);
   EXPECT_GT(one.contacts, 1000); // the particles collide (0.8 m/s spread, 1.2 ms)
+}
+
+TEST(ThreadIndependence, ClosedBoxWithWallsInEverySlabGivesBitwiseIdenticalParticles) {
+  const State one = run_with_threads(1, kClosedCase);
+  const State two = run_with_threads(2, kClosedCase);
+  const State three = run_with_threads(3, kClosedCase);
+  ASSERT_EQ(one.x.size(), 18000u);
+  expect_bitwise_equal(one, two, three);
+  // Walls near a third of the particles (the y walls are four diameters apart).
+  EXPECT_GT(one.wall_entries, 1500u); // 1955
+  EXPECT_GT(one.contacts, 100);
 }
 
 } // namespace
