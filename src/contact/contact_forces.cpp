@@ -957,13 +957,15 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     if (nslab > 0) slab_stats[0] = local;
     for (std::size_t k = 0; k < nchunk; ++k) run_wall_chunk(k);
   } else {
-    // Each thread runs a fixed, contiguous run of slab groups holding about its share of the
-    // particles (the particles are sorted by slab): about the same particles as in the integrator's
-    // and the packing's static loops, so their view and accumulator lines stay in the one
-    // core's cache from step to step instead of moving between the cores (with the slabs
+    // Each thread runs a contiguous run of slab groups, and then, in the same region, the wall
+    // chunks whose lowest group is one of its own (a chunk writes only to its own particles'
+    // sums). The runs hold shares of the particles that LoadShares adjusts step by step toward
+    // equal busy times (two threads on bed10k: even shares by particle count left the upper
+    // half's thread, with more slabs and fewer walls, 3% longer at work than the lower's);
+    // they move little from step to step, so that a thread's particles' view and accumulator
+    // lines stay in its core's cache instead of moving between the cores (with the slabs
     // handed out dynamically, the packing's share of the time tripled with two threads and the
-    // spin-wait took 7-17%). Then, in the same region, the wall chunks whose lowest group is
-    // one of the thread's (a chunk writes only to its own particles' sums).
+    // spin-wait took 7-17%).
     // The threads hand over through the groups' marks (PhaseProgress) instead of barriers:
     // group g's phase 1 waits for group g + 1's phase 0 (the first slab it writes into, and
     // which it reads prepared); a wall chunk waits for phase 1 of its groups and of the group
@@ -988,23 +990,27 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     // writes into group g's first slab.
     auto next_group = [&](int g) { return g + 1 < ngroup ? g + 1 : (wrap ? 0 : -1); };
     auto previous_group = [&](int g) { return g > 0 ? g - 1 : (wrap ? ngroup - 1 : -1); };
+    LoadShares& shares = nc.thread_shares;
+    const bool parallel = go_parallel(threaded);
+    const double* const bounds = parallel ? shares.prepare(omp_get_max_threads()) : nullptr;
+    // The particles before group g's first slab (g = ngroup: all).
+    auto particles_before = [&](int g) { return nl.slab_start[group_begin(g)]; };
     auto run_slabs = [&](int nt, int t) {
-      auto first_slab = [&](int thread) {
-        const std::size_t share = n * static_cast<std::size_t>(thread) / nt;
-        return static_cast<int>(
-            std::lower_bound(nl.slab_start.begin(), nl.slab_start.begin() + nslab, share) -
-            nl.slab_start.begin());
+      const double t0 = omp_get_wtime();
+      double waited = 0.0;
+      const bool measured = nt > 1 && nt == shares.threads(); // (a smaller team: even shares)
+      // The group boundary nearest to a fraction of the particles.
+      auto group_at = [&](int thread) {
+        if (thread == 0 || thread == nt) return thread == 0 ? 0 : ngroup;
+        const double target =
+            (measured ? bounds[thread] : static_cast<double>(thread) / nt) * static_cast<double>(n);
+        int best = 0;
+        for (int g = 1; g <= ngroup; ++g)
+          if (std::abs(particles_before(g) - target) < std::abs(particles_before(best) - target))
+            best = g;
+        return best;
       };
-      // The first group starting at or after the thread's first slab (the groups hold about
-      // equal particle counts: so the threads about the same work and the same particles as
-      // in the integrator's static loops).
-      auto first_group = [&](int thread) {
-        const int sl = first_slab(thread);
-        int g = 0;
-        while (g < ngroup && group_begin(g) < sl) ++g;
-        return g;
-      };
-      const int g_begin = first_group(t), g_end = t + 1 == nt ? ngroup : first_group(t + 1);
+      const int g_begin = group_at(t), g_end = std::max(g_begin, group_at(t + 1));
       const bool handing_over = nt > 1;
       auto run_group = [&](int g, int phase) {
         if (phase == 0) prepare(group_begin(g));
@@ -1025,23 +1031,27 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       for (int g = g_begin; g < g_end; ++g) run_group(g, 0);
       for (int g = g_begin; g < g_end; ++g) {
         if (handing_over && next_group(g) >= 0)
-          progress.wait(static_cast<std::size_t>(next_group(g)), 0, step);
+          waited += progress.wait(static_cast<std::size_t>(next_group(g)), 0, step);
         run_group(g, 1);
       }
       for (std::size_t k = nchunk; k-- > 0;) {
         if (chunk_lo[k] < g_begin || chunk_lo[k] >= g_end) continue;
         if (handing_over) {
           if (previous_group(chunk_lo[k]) >= 0)
-            progress.wait(static_cast<std::size_t>(previous_group(chunk_lo[k])), 1, step);
+            waited += progress.wait(static_cast<std::size_t>(previous_group(chunk_lo[k])), 1, step);
           for (int g = chunk_lo[k]; g <= chunk_hi[k]; ++g)
-            progress.wait(static_cast<std::size_t>(g), 1, step);
+            waited += progress.wait(static_cast<std::size_t>(g), 1, step);
         }
         run_wall_chunk(k);
       }
+      if (measured)
+        shares.record(t, static_cast<double>(particles_before(g_end) - particles_before(g_begin)),
+                      omp_get_wtime() - t0 - waited);
     };
-    if (go_parallel(threaded)) {
+    if (parallel) {
 #pragma omp parallel
       run_slabs(omp_get_num_threads(), omp_get_thread_num());
+      shares.update();
     } else {
       run_slabs(1, 0);
     }

@@ -7,6 +7,7 @@
 
 #include "contact/contact_record.hpp"
 #include "contact/contact_table.hpp"
+#include "core/load_shares.hpp"
 #include "core/parallel.hpp"
 #include "core/phase_progress.hpp"
 #include "neighbour/neighbour_list.hpp"
@@ -53,6 +54,8 @@ struct ContactScratch {
   /// The threads' hand-off in the contact loop: per group of slabs, the step whose phases it
   /// has finished.
   PhaseProgress group_progress;
+  /// How the contact loop's threads share the slab groups (measured step by step).
+  LoadShares thread_shares;
   /// Per wall chunk, the lowest and highest slab group holding one of its particles, for the
   /// list of generation chunk_groups_generation.
   std::vector<int> chunk_group_lo, chunk_group_hi;

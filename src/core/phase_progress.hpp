@@ -6,6 +6,7 @@
 #pragma once
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -36,15 +37,19 @@ public:
     marks_[item].phase[phase].store(step, std::memory_order_release);
   }
   /// Wait until item `item` has finished `phase` of step `step` (spinning, then yielding the core
-  /// to a thread that may be the one awaited, when there are more threads than cores).
-  void wait(std::size_t item, int phase, std::uint64_t step) const {
+  /// to a thread that may be the one awaited, when there are more threads than cores). Returns
+  /// the seconds waited (0 when the item was done: then without reading the clock).
+  double wait(std::size_t item, int phase, std::uint64_t step) const {
     const std::atomic<std::uint64_t>& mark = marks_[item].phase[phase];
+    if (mark.load(std::memory_order_acquire) == step) return 0.0;
+    const auto t0 = std::chrono::steady_clock::now();
     for (unsigned spins = 0; mark.load(std::memory_order_acquire) != step; ++spins) {
       if (spins < kSpins)
         pause();
       else
         std::this_thread::yield();
     }
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   std::size_t bytes() const { return capacity_ * sizeof(Marks); }
 
