@@ -960,18 +960,18 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     // Each thread runs a contiguous run of slab groups, and then, in the same region, the wall
     // chunks whose lowest group is one of its own (a chunk writes only to its own particles'
     // sums). The runs hold shares of the particles that LoadShares adjusts step by step toward
-    // equal busy times (two threads on bed10k: even shares by particle count left the upper
-    // half's thread, with more slabs and fewer walls, 3% longer at work than the lower's);
-    // they move little from step to step, so that a thread's particles' view and accumulator
-    // lines stay in its core's cache instead of moving between the cores (with the slabs
-    // handed out dynamically, the packing's share of the time tripled with two threads and the
-    // spin-wait took 7-17%).
-    // The threads hand over through the groups' marks (PhaseProgress) instead of barriers:
-    // group g's phase 1 waits for group g + 1's phase 0 (the first slab it writes into, and
-    // which it reads prepared); a wall chunk waits for phase 1 of its groups and of the group
-    // before them (every pair addition into its particles: the walls add after the pairs, as
-    // on one thread). When the slabs' axis is periodic the last group's last slab writes into
-    // slab 0: group 0 follows the last group. Each thread runs its last group's phase 1, which
+    // equal busy times (on this shared machine one core ran bed10k 25% slower than the other
+    // for minutes at a time: two threads' shares settled at 0.45 / 0.55 of the particles, and
+    // at 0.57 / 0.43 with the threads' cores swapped, so the work follows the cores' speed, not
+    // the bed's halves); they move little from step to step, so that a thread's particles' view and
+    // accumulator lines stay in its core's cache instead of moving between the cores (with the
+    // slabs handed out dynamically, the packing's share of the time tripled with two threads and
+    // the spin-wait took 7-17%). The threads hand over through the groups' marks (PhaseProgress)
+    // instead of barriers: group g's phase 1 waits for group g + 1's phase 0 (the first slab it
+    // writes into, and which it reads prepared); a wall chunk waits for phase 1 of its groups and
+    // of the group before them (every pair addition into its particles: the walls add after the
+    // pairs, as on one thread). When the slabs' axis is periodic the last group's last slab writes
+    // into slab 0: group 0 follows the last group. Each thread runs its last group's phase 1, which
     // waits for the next thread, after its other groups', and its wall chunks from the last, whose
     // first one may wait for the previous thread's last group: a thread held up for a moment holds
     // up the others only when their own work runs out (with a barrier after each phase the two
