@@ -39,7 +39,7 @@ public:
   /// boundaries so that each thread's share is proportional to its speed.
   void update() {
     if (nt_ < 2) return;
-    double mean = 0.0;
+    double mean = 0.0; // of this step's measured rates
     int known = 0;
     for (int t = 0; t < nt_; ++t) {
       const Slot& s = slots_[t];
@@ -50,16 +50,22 @@ public:
       // bounded amount.
       if (rate > 0.0) r = std::clamp(r, 0.5 * rate, 2.0 * rate);
       rate = rate > 0.0 ? rate + kSmoothing * (r - rate) : r;
+      mean += rate, ++known;
     }
-    for (double rate : rate_)
-      if (rate > 0.0) mean += rate, ++known;
     if (known == 0) return;
     mean /= known;
+    // A thread that had no work this step (its share fell between two group boundaries) is not
+    // measured: its estimate moves toward the others', so that its share grows back.
+    for (int t = 0; t < nt_; ++t) {
+      const Slot& s = slots_[t];
+      if (s.particles > 0.0 && s.busy > 0.0) continue;
+      rate_[t] = rate_[t] > 0.0 ? rate_[t] + kSmoothing * (mean - rate_[t]) : mean;
+    }
     double total = 0.0;
     std::vector<double>& speed = speed_;
     speed.resize(static_cast<std::size_t>(nt_));
-    for (int t = 0; t < nt_; ++t) total += speed[t] = 1.0 / (rate_[t] > 0.0 ? rate_[t] : mean);
-    // Each share at least a quarter of an even one (a thread with none is not measured).
+    for (int t = 0; t < nt_; ++t) total += speed[t] = 1.0 / rate_[t];
+    // Each share at least a quarter of an even one.
     const double least = 0.25 / nt_;
     double sum = 0.0;
     for (int t = 0; t < nt_; ++t) sum += speed[t] = std::max(speed[t] / total, least);

@@ -79,6 +79,23 @@ TEST(LoadShares, OneOutlierStepMovesTheSharesLittle) {
   EXPECT_NEAR(bounds[1], 0.5122, 1e-3);
 }
 
+TEST(LoadShares, AThreadWithoutWorkGetsItsShareBack) {
+  // Thread 1 measured four times slower, then given no particles for 100 steps (as when its
+  // share falls between two group boundaries): its estimate moves 5% a step toward thread 0's,
+  // so the shares return to within 0.95^100 ~ 0.6% of even.
+  LoadShares shares;
+  settle(shares, {1e-8, 4e-8}, 20);
+  for (int s = 0; s < 100; ++s) {
+    shares.prepare(2);
+    shares.record(0, 10000.0, 10000.0 * 1e-8);
+    shares.record(1, 0.0, 0.0);
+    shares.update();
+  }
+  const double* b = shares.prepare(2);
+  EXPECT_NEAR(b[1], 0.5, 0.01);
+  EXPECT_GT(b[1], 0.5); // approached from thread 0's larger share
+}
+
 TEST(LoadShares, ANewTeamSizeStartsFromEvenShares) {
   LoadShares shares;
   settle(shares, {4e-8, 2e-8}, 100);
