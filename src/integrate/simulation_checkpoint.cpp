@@ -27,7 +27,9 @@ namespace fluidem {
 
 namespace {
 
-void put_list(CheckpointWriter& w, const std::string& prefix, const NeighbourList::State& s) {
+/// A neighbour list's State or StateView.
+template <class ListState>
+void put_list(CheckpointWriter& w, const std::string& prefix, const ListState& s) {
   w.put_scalar(prefix + "/skin", s.skin);
   w.put_scalar(prefix + "/builds", s.builds);
   // views: `s` outlives the writer's commit (write_checkpoint)
@@ -128,9 +130,8 @@ void Simulation::write_checkpoint(const std::string& path) {
   w.put_view("particles/species", p_.species);
   w.put_view("particles/id", p_.id);
   w.put_view("particles/layer", p_.layer);
-  const NeighbourList::State list = nl_->state();
-  put_list(w, "neighbour", list);
-  HardSphereEngine::State h; // its list goes in as views: alive until w.commit()
+  put_list(w, "neighbour", nl_->state_view()); // the list's own arrays, unchanged until commit
+  HardSphereEngine::State h;                   // its list goes in as views: alive until w.commit()
   if (hard_) {
     h = hard_->state();
     w.put("hardsphere/last_collision", h.last_collision);

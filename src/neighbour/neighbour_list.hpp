@@ -106,6 +106,25 @@ public:
     std::vector<double> history, wall_history;
   };
   State state() const;
+  /// The same arrays as State, without copying them: valid while the list is neither rebuilt
+  /// nor restored (a checkpoint writes them from here).
+  struct StateView {
+    double skin = 0.0;
+    std::int64_t builds = 0;
+    const std::vector<double>& x0;
+    const std::vector<double>& y0;
+    const std::vector<double>& z0;
+    const std::vector<std::uint32_t>& offset;
+    const std::vector<std::uint32_t>& partner;
+    const std::vector<std::uint32_t>& wall_particle;
+    const std::vector<std::uint8_t>& wall_face;
+    const std::vector<double>& history;
+    const std::vector<double>& wall_history;
+  };
+  StateView state_view() const {
+    return {skin_,   builds_,       x0_,       y0_,     z0_,         offset,
+            partner, wall_particle, wall_face, history, wall_history};
+  }
   /// Rebuilds the list of `s` from its build positions (the other particle data from p) and
   /// restores its history and build count. std::runtime_error if the rebuilt pairs differ.
   void restore(const ParticleStore& p, const State& s);
