@@ -975,7 +975,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     // waits for the next thread, after its other groups', and its wall chunks from the last, whose
     // first one may wait for the previous thread's last group: a thread held up for a moment holds
     // up the others only when their own work runs out (with a barrier after each phase the two
-    // threads of bed10k waited 4-6% of the loop). One thread (or a recording below the threshold):
+    // threads of bed10k waited 2-10% of the loop). One thread (or a recording below the threshold):
     // the same slabs in the same order, outside any OpenMP region (core/parallel.hpp).
     if (nc.chunk_groups_generation != nl.generation() || nc.chunk_group_lo.size() != nchunk) {
       wall_chunk_groups(nl, nc.slab_group_start, nc.chunk_group_lo, nc.chunk_group_hi);

@@ -54,7 +54,7 @@ public:
   std::size_t bytes() const { return capacity_ * sizeof(Marks); }
 
 private:
-  static constexpr unsigned kSpins = 1u << 14; // ~0.1 ms of pause instructions
+  static constexpr unsigned kSpins = 1u << 14; // pause instructions before the first yield
   static void pause() {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_ia32_pause();
