@@ -20,6 +20,12 @@
 #        THREADS  fluidem thread counts (default: "1 2")
 #        PEERS    which peers (default: "lammps liggghts"; empty: fluidem only)
 #        NWARM    peer warm-up steps before the timed run (default: 100)
+#        CORE1    1 (default with two or more cores and taskset): each round also runs fluidem on one
+#                 thread pinned to core 1, and two threads are compared with the one-thread run on
+#                 either core, the faster one and their mean. This VM's host at times runs one core
+#                 25-35% slower than the other, for minutes, and which one changes (bench/RESULTS.md);
+#                 against the slow core two threads look better than they are, against the fast
+#                 one worse than the machine allows. 0: core 0 only.
 #        REPEAT   rounds per size (default: 1): each round runs fluidem and the peers once, one
 #                 after the other; the table gives each code's median rate and the median of the
 #                 rounds' own ratios (with their range), taken on a machine whose speed drifts
@@ -33,6 +39,8 @@ read -r -a THREADS <<<"${THREADS:-1 2}"
 read -r -a PEERS <<<"${PEERS-lammps liggghts}"
 NWARM=${NWARM:-100}
 REPEAT=${REPEAT:-1}
+CORE1=${CORE1:-1}
+[ "$(nproc)" -ge 2 ] && command -v taskset >/dev/null 2>&1 || CORE1=0
 SIZES=("$@")
 [ ${#SIZES[@]} -gt 0 ] || SIZES=(10k 100k)
 # shellcheck source=bench/bench_lib.sh
@@ -53,7 +61,7 @@ done
 
 CSV=$WORK/results.csv
 [ -f "$CSV" ] || echo "date,commit,code,threads,N,steps,seconds,particle_steps_per_s,peak_rss_mb,bytes_per_particle" >"$CSV"
-ROWS=()
+ROWS=() TWO_OVER_ONE=()
 
 # peer_run NAME N STEPS DATA: one peer run on core 0; prints "rate rss".
 peer_run() {
@@ -103,6 +111,16 @@ for n in "${SIZES[@]}"; do
       echo "$STAMP,$COMMIT,fluidem,$t,$np,$steps,$secs,$rate,$rss,$bpp" >>"$CSV"
       RATE[fluidem_$t]=$rate RSS[fluidem_$t]=$rss BPP[fluidem_$t]=$bpp
     done
+    if [ "$CORE1" = 1 ] && [ -n "${RATE[fluidem_1]:-}" ] && [ -n "${RATE[fluidem_2]:-}" ]; then
+      echo "== fluidem, bed$n, 1 thread on core 1 (round $round of $REPEAT)" >&2
+      pin0=("${PIN1[@]}")
+      PIN1=(taskset -c 1)
+      read -r _ _ _ rate _ _ < <(run_fluidem "$WORK/fluidem_${n}_t1_core1.log" 1 "$case_file" \
+        --set "insert[0].file=$data" --out "$WORK/fluidem_${n}_t1_core1")
+      PIN1=("${pin0[@]}")
+      echo "$STAMP,$COMMIT,fluidem_core1,1,$np,$steps,,$rate,," >>"$CSV"
+      RATE[fluidem_core1]=$rate
+    fi
     for pr in "${PEERS[@]}"; do
       [ -n "${PEER_BIN[$pr]}" ] || continue
       echo "== $pr, bed$n, 1 core, $NWARM warm-up + $steps timed steps (round $round of $REPEAT)" >&2
@@ -119,6 +137,12 @@ for n in "${SIZES[@]}"; do
     if [ -n "${RATE[fluidem_1]:-}" ] && [ -n "${RATE[fluidem_2]:-}" ]; then
       RATIOS[two_over_one]+=" $(awk -v a="${RATE[fluidem_2]}" -v b="${RATE[fluidem_1]}" 'BEGIN {printf "%.4f", a / b}')"
     fi
+    if [ -n "${RATE[fluidem_core1]:-}" ]; then
+      read -r r1 rf rm < <(awk -v a="${RATE[fluidem_2]}" -v c0="${RATE[fluidem_1]}" -v c1="${RATE[fluidem_core1]}" \
+        'BEGIN {printf "%.4f %.4f %.4f\n", a / c1, a / (c0 > c1 ? c0 : c1), 2 * a / (c0 + c1)}')
+      RATIOS[two_over_core1]+=" $r1" RATIOS[two_over_faster]+=" $rf" RATIOS[two_over_mean]+=" $rm"
+      RATIOS[core1_over_core0]+=" $(awk -v a="${RATE[fluidem_core1]}" -v b="${RATE[fluidem_1]}" 'BEGIN {printf "%.4f", a / b}')"
+    fi
     unset RATE
   done
   for key in "${keys[@]}"; do
@@ -129,7 +153,12 @@ for n in "${SIZES[@]}"; do
     ROWS+=("| $n | $code | $t | $(stats ${RATES[$key]}) | $(stats ${RATIOS[$key]:-}) | ${RSS[$key]} | ${BPP[$key]} |")
   done
   # shellcheck disable=SC2086
-  [ -n "${RATIOS[two_over_one]:-}" ] && echo "bed$n: fluidem 2 threads / 1 thread = $(stats ${RATIOS[two_over_one]})" >&2
+  if [ -n "${RATIOS[two_over_one]:-}" ]; then
+    line="bed$n: fluidem 2 threads / 1 thread on core 0 = $(stats ${RATIOS[two_over_one]})"
+    [ -n "${RATIOS[two_over_core1]:-}" ] && line+="; on core 1 = $(stats ${RATIOS[two_over_core1]}); on the faster core = $(stats ${RATIOS[two_over_faster]}); on their mean = $(stats ${RATIOS[two_over_mean]}) (core 1 / core 0 one-thread speed $(stats ${RATIOS[core1_over_core0]}))"
+    echo "$line" >&2
+    TWO_OVER_ONE+=("$line")
+  fi
   unset RATES RATIOS RSS BPP
 done
 
@@ -139,4 +168,5 @@ echo "rounds per size: $REPEAT (with more than one: median (min-max) over the ro
 echo "| N | code | threads | particle-steps/s | ratio to LAMMPS (1 core) | peak RSS MB | bytes/particle (own count) |"
 echo "|---|---|---|---|---|---|---|"
 printf '%s\n' "${ROWS[@]}"
+[ ${#TWO_OVER_ONE[@]} -eq 0 ] || printf '%s\n' "${TWO_OVER_ONE[@]}"
 echo "(all rows appended to $CSV)"
