@@ -36,6 +36,16 @@ double seconds_since(Clock::time_point t0) {
 constexpr double kMinStepsPerContact = 10.0;
 /// A run of more steps than this would not end in any useful time: refused.
 constexpr double kMaxSteps = 1e12;
+/// The integrator's pass folds into the contact loop (Simulation::step) only in beds with at
+/// least this many neighbour-list pairs per particle (the default of
+/// Simulation::fold_pairs_per_particle): there the contact loop streams every
+/// particle through the cache anyway, and the fold saves the separate pass's stream (bed100k,
+/// 5.0 pairs per particle: +6-7%; bed10k, 3.72: +1.5% on one thread, +4% on two). In sparser
+/// beds the contact loop reads few particles, and the fold's pass, in slab order, ran slower
+/// than the separate one in index order: 40 000 discs settled (2.79 pairs per particle) -1.5%,
+/// falling (0.08) -12%, 40 000 falling spheres (0.1) -4% (bench/RESULTS.md, 2026-12-04).
+constexpr double kFoldPairsPerParticle = 3.0;
+double fold_pairs_threshold = kFoldPairsPerParticle;
 
 void check_step_count(const CaseSpec& spec, double dt) {
   const double steps = spec.simulation.end_time / dt;
@@ -434,7 +444,13 @@ void Simulation::step(bool defer_second_kick) {
   // summed per slab (compute_forces_folded).
   const bool plain = !with_gas && !with_field;
   const auto& g = spec_.simulation.gravity;
-  if (fold_enabled_ && plain && fused && tracked &&
+  // fold_pairs_per_particle(); the same list as after the last step (a folded step does not
+  // build).
+  const auto dense = [this, n] {
+    return static_cast<double>(nl_->partner.size()) >=
+           fold_pairs_threshold * static_cast<double>(n);
+  };
+  if (fold_enabled_ && plain && fused && tracked && dense() &&
       drift_bound_.next_step_within(dt, 0.5 * list.skin(), stats_.max_force2,
                                     list.max_entries_per_particle(), max_inv_mass_,
                                     std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]))) {
@@ -502,9 +518,13 @@ void Simulation::step(bool defer_second_kick) {
     // own pass; this is a pass of its own, on the steps that are not folded), when the next
     // step may fold: this step leaves its second kick pending.
     if (fold_enabled_ && plain && defer_second_kick && !sample_continuum) {
-      t0 = Clock::now();
-      drift_bound_.measure(nc_.view.data(), ContactScratch::kView, n, list);
-      t_integration_ += seconds_since(t0);
+      if (dense()) {
+        t0 = Clock::now();
+        drift_bound_.measure(nc_.view.data(), ContactScratch::kView, n, list);
+        t_integration_ += seconds_since(t0);
+      } else {
+        drift_bound_ = DriftBound{}; // unknown: a step after a build that makes it dense measures
+      }
     }
   }
 
@@ -518,6 +538,14 @@ void Simulation::step(bool defer_second_kick) {
   ++step_;
   time_ = static_cast<double>(step_) * dt_;
   record_collisions();
+}
+
+double Simulation::fold_pairs_per_particle() {
+  return fold_pairs_threshold;
+}
+
+void Simulation::set_fold_pairs_per_particle(double pairs) {
+  fold_pairs_threshold = pairs;
 }
 
 void Simulation::compute_forces_folded(const SlabHook& slab_pass) {

@@ -169,6 +169,16 @@ public:
     fold_enabled_ = on;
     drift_bound_ = DriftBound{}; // not kept up to date while off: the next step measures it
   }
+  /// Steps fold only while the neighbour list holds at least this many pairs per particle
+  /// (default 3: sparser beds ran slower folded, integrate/simulation.cpp). For all simulations
+  /// of the process; tests set 0 to fold sparse beds.
+  static double fold_pairs_per_particle();
+  static void set_fold_pairs_per_particle(double pairs);
+  /// Neighbour-list pair entries per particle (soft spheres; 0 without particles).
+  double neighbour_pairs_per_particle() const {
+    return p_.size() ? static_cast<double>(nl_->partner.size()) / static_cast<double>(p_.size())
+                     : 0.0;
+  }
   /// The contacts of the last step, when that step recorded them (else empty).
   const ContactRecord& contact_record() const { return record_; }
 

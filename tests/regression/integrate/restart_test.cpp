@@ -32,6 +32,7 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include "../../common/fold_threshold.hpp"
 #include "../../common/tsuji_column.hpp"
 #include "integrate/simulation.hpp"
 #include "io/case_reader.hpp"
@@ -217,6 +218,7 @@ TEST(Restart, SoftSpheresContinueBitwise) {
 // The same without continuum averages: most steps run the integrator's pass inside the contact
 // loop (the folded step), whose choice restarts must reproduce.
 TEST(Restart, SoftSpheresWithFoldedStepsContinueBitwise) {
+  const test::FoldThreshold fold_always(0.0); // the pouring bed is sparse
   CaseSpec spec = pouring(Engine::SoftSphere);
   spec.neighbour.sort_interval = 1;
   check_restart_identity(spec, 0.1, "soft_folded", false);

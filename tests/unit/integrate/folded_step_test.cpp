@@ -19,6 +19,8 @@
 //  (d) periodic x and y (the drift wraps the centres): as (a); a body-force field: no step folds
 //      (the plain kick only; nor with gas forces, the same condition in Simulation::step).
 //  (e) DriftBound: the bound's arithmetic against hand-computed values.
+//  (f) Only beds with at least Simulation::fold_pairs_per_particle() neighbour-list pairs per
+//      particle fold (3 by default; the tests above lower it, their beds being sparser).
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -27,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "../../common/fold_threshold.hpp"
 #include "../../common/random_bed.hpp"
 #include "integrate/drift_bound.hpp"
 #include "integrate/simulation.hpp"
@@ -40,9 +43,14 @@ struct Outcome {
   std::vector<ContactSample> record;
   double dissipated = 0.0;
   long builds = 0, folded = 0;
+  double pairs_per_particle = 0.0; // at the end
 };
 
-Outcome run(const std::string& text, long steps, bool fold, int threads = 1) {
+// min_pairs: Simulation::fold_pairs_per_particle for the run (these beds are sparser than the
+// default's 3 pairs per particle; 0: every step that may fold does).
+Outcome run(const std::string& text, long steps, bool fold, int threads = 1,
+            double min_pairs = 0.0) {
+  const test::FoldThreshold threshold(min_pairs);
   const int saved = omp_get_max_threads();
   omp_set_num_threads(threads);
   Simulation sim(read_case_string(text, "folded.toml"));
@@ -59,6 +67,7 @@ Outcome run(const std::string& text, long steps, bool fold, int threads = 1) {
   r.dissipated = sim.dissipated_energy();
   r.builds = sim.neighbour_builds();
   r.folded = sim.folded_steps();
+  r.pairs_per_particle = sim.neighbour_pairs_per_particle();
   return r;
 }
 
@@ -141,6 +150,29 @@ TEST(FoldedStep, OnlyThePlainKickFolds) {
                        "[body_force]\ntype = \"sinusoidal_cube\"\namplitude = 2.0\n"
                        "wavelength = 0.04\n");
   EXPECT_EQ(run(field, steps, true).folded, 0);
+}
+
+// (f) The default threshold: a bed sparser than 3 neighbour-list pairs per particle runs the
+// separate pass (where it was faster, integrate/simulation.cpp), the same bed with a threshold
+// below its density folds; and a dense bed folds by default.
+TEST(FoldedStep, OnlyBedsWithEnoughPairsPerParticleFold) {
+  EXPECT_EQ(Simulation::fold_pairs_per_particle(), 3.0);
+  const long steps = 50;
+  const std::string sparse = test::random_bed(600, "[0.04, 0.04, 0.04]", "hertz", "");
+  const Outcome by_default = run(sparse, steps, true, 1, Simulation::fold_pairs_per_particle());
+  ASSERT_GT(by_default.pairs_per_particle, 0.0);
+  ASSERT_LT(by_default.pairs_per_particle, 3.0);
+  EXPECT_EQ(by_default.folded, 0);
+  const Outcome below = run(sparse, steps, true, 1, 0.5 * by_default.pairs_per_particle);
+  EXPECT_GT(below.folded, steps / 2);
+  EXPECT_EQ(differing(below.q, by_default.q), 0u); // bitwise the same particles either way
+  // The same bed with a skin of one diameter: its list holds ~4 pairs per particle (about
+  // 600 * 0.5 * 4/3 pi (6 mm)^3 / (40 mm)^3), so it folds by default.
+  const std::string wide =
+      test::random_bed(600, "[0.04, 0.04, 0.04]", "hertz", "[neighbour]\nskin = 0.003\n");
+  const Outcome dense = run(wide, steps, true, 1, Simulation::fold_pairs_per_particle());
+  EXPECT_GE(dense.pairs_per_particle, 3.0);
+  EXPECT_GT(dense.folded, steps / 2);
 }
 
 // (e) Hand-computed: dt = 1e-3 s, v_max = 2 m/s, E = 10 entries, F_max = 0.5 N, 1/m = 100 /kg,

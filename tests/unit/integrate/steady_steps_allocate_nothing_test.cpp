@@ -28,6 +28,7 @@
 #include <new>
 #include <string>
 
+#include "../../common/fold_threshold.hpp"
 #include "../../common/random_bed.hpp"
 #include "integrate/simulation.hpp"
 #include "io/case_reader.hpp"
@@ -164,7 +165,9 @@ void expect_steady(const std::vector<Window>& w, bool need_builds) {
 }
 
 TEST(SteadySteps, ThreadedSoftSpheresAllocateOnlyAtListBuilds) {
-  // A spatial sort at every fourth list build, so that the windows include sorts.
+  // A spatial sort at every fourth list build, so that the windows include sorts; the folded
+  // step on this sparse bed too (its threshold lowered).
+  const test::FoldThreshold fold_always(0.0);
   Simulation sim(read_case_string(
       test::random_bed(6000, "[0.08, 0.08, 0.06]", "hertz",
                        "rolling = \"spring_dashpot\"\n[neighbour]\nsort_interval = 4\n"),
