@@ -166,8 +166,9 @@ TEST(FoldedStep, OnlyBedsWithEnoughPairsPerParticleFold) {
   const Outcome below = run(sparse, steps, true, 1, 0.5 * by_default.pairs_per_particle);
   EXPECT_GT(below.folded, steps / 2);
   EXPECT_EQ(differing(below.q, by_default.q), 0u); // bitwise the same particles either way
-  // The same bed with a skin of one diameter: its list holds ~4 pairs per particle (about
-  // 600 * 0.5 * 4/3 pi (6 mm)^3 / (40 mm)^3), so it folds by default.
+  // The same bed with a skin of one diameter: its list holds ~4 pairs per particle (600 * 0.5
+  // * 4/3 pi (6 mm)^3 / (40 mm)^3 = 4.2 for uniform positions; 3.98 measured; 0.53 with the
+  // default skin), so it folds by default.
   const std::string wide =
       test::random_bed(600, "[0.04, 0.04, 0.04]", "hertz", "[neighbour]\nskin = 0.003\n");
   const Outcome dense = run(wide, steps, true, 1, Simulation::fold_pairs_per_particle());
