@@ -181,20 +181,39 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
     std::copy(rows.begin(), rows.end(), full_partner_.begin() + full_offset_[i0]);
 #pragma omp barrier
     // split_[i]: the first entry of row i above i; mirror_[e] for an entry (i, j < i): the
-    // entry (j, i) in row j, which holds the pair's time in the sweep.
-    for (std::size_t i = i0; i < i1; ++i) {
-      const auto row0 = full_partner_.begin() + full_offset_[i];
-      const auto row1 = full_partner_.begin() + full_offset_[i + 1];
-      const auto up = std::upper_bound(row0, row1, static_cast<std::uint32_t>(i));
-      split_[i] = static_cast<std::uint32_t>(up - full_partner_.begin());
-      for (auto e = row0; e != up; ++e) {
-        const std::uint32_t j = *e;
-        const auto it = std::lower_bound(full_partner_.begin() + full_offset_[j],
-                                         full_partner_.begin() + full_offset_[j + 1],
-                                         static_cast<std::uint32_t>(i));
-        mirror_[e - full_partner_.begin()] = static_cast<std::uint32_t>(it - full_partner_.begin());
+    // entry (j, i) in row j, which holds the pair's time in the sweep. One thread: in one pass
+    // over the rows in order, each row's entries below its split (ascending partners) are
+    // handed out by a cursor as the rows of those partners come by, instead of a binary search
+    // per entry (the list is symmetric: j is in row i exactly when i is in row j). Threads: each
+    // searches for its own rows' mirrors.
+    if (nt == 1) {
+      std::vector<std::uint32_t>& cursor = mirror_cursor_; // kept between builds
+      cursor.resize(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto row0 = full_partner_.begin() + full_offset_[i];
+        const auto row1 = full_partner_.begin() + full_offset_[i + 1];
+        split_[i] = static_cast<std::uint32_t>(
+            std::upper_bound(row0, row1, static_cast<std::uint32_t>(i)) - full_partner_.begin());
+        cursor[i] = full_offset_[i];
       }
-    }
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::uint32_t e = split_[i]; e < full_offset_[i + 1]; ++e)
+          mirror_[cursor[full_partner_[e]]++] = e;
+    } else
+      for (std::size_t i = i0; i < i1; ++i) {
+        const auto row0 = full_partner_.begin() + full_offset_[i];
+        const auto row1 = full_partner_.begin() + full_offset_[i + 1];
+        const auto up = std::upper_bound(row0, row1, static_cast<std::uint32_t>(i));
+        split_[i] = static_cast<std::uint32_t>(up - full_partner_.begin());
+        for (auto e = row0; e != up; ++e) {
+          const std::uint32_t j = *e;
+          const auto it = std::lower_bound(full_partner_.begin() + full_offset_[j],
+                                           full_partner_.begin() + full_offset_[j + 1],
+                                           static_cast<std::uint32_t>(i));
+          mirror_[e - full_partner_.begin()] =
+              static_cast<std::uint32_t>(it - full_partner_.begin());
+        }
+      }
   }
 }
 
@@ -651,9 +670,9 @@ std::size_t HardSphereEngine::bytes() const {
   std::size_t rows = 0;
   for (const auto& r : thread_rows_) rows += b(r);
   return b(cell_start_) + b(cell_particles_) + b(particle_cell_) + b(cell_fill_) + b(full_offset_) +
-         b(full_partner_) + b(split_) + b(mirror_) + b(pair_time_) + rows + b(kin_) +
-         b(last_collision_) + b(counter_) + b(next_) + b(queue_) + b(slot_) + b(built_x_) +
-         b(built_y_) + b(built_z_);
+         b(full_partner_) + b(split_) + b(mirror_) + b(mirror_cursor_) + b(pair_time_) + rows +
+         b(kin_) + b(last_collision_) + b(counter_) + b(next_) + b(queue_) + b(slot_) +
+         b(built_x_) + b(built_y_) + b(built_z_);
 }
 
 } // namespace fluidem
