@@ -152,17 +152,33 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
     const std::size_t i0 = n * t / nt, i1 = n * (t + 1) / nt;
     std::vector<std::uint32_t>& rows = thread_rows_[t];
     rows.clear();
+    // The scan's arrays, box and skin in locals: the rows' stores would otherwise make the
+    // compiler reload them for every candidate. min_image() as it is, without its division
+    // where the separation is at most half a period (nearest_integer(d / l) is then 0, ties
+    // going to even): the same separations, so the same rows.
+    const double *const px = p.x.data(), *const py = p.y.data(), *const pz = p.z.data(),
+                        *const pr = p.radius.data();
+    const std::uint32_t *const start = cell_start_.data(), *const members = cell_particles_.data();
+    const double skin = skin_;
+    std::array<double, 3> period{}, half{};
+    for (int a = 0; a < 3; ++a) {
+      period[a] = box_.periodic[a] ? box_.length(a) : std::numeric_limits<double>::infinity();
+      half[a] = 0.5 * period[a];
+    }
+    const auto image = [&](double d, int a) {
+      return std::abs(d) <= half[a] ? d : d - period[a] * nearest_integer(d / period[a]);
+    };
     for (std::size_t i = i0; i < i1; ++i) {
-      const double xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.radius[i];
+      const double xi = px[i], yi = py[i], zi = pz[i], ri = pr[i];
       const std::size_t before = rows.size();
       for_each_cell_around(particle_cell_[i], ncell_, box_.periodic, [&](std::uint32_t cell) {
-        for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-          const std::uint32_t j = cell_particles_[k];
+        for (std::uint32_t k = start[cell]; k < start[cell + 1]; ++k) {
+          const std::uint32_t j = members[k];
           if (j == i) continue;
-          const double ddx = min_image(p.x[j] - xi, 0);
-          const double ddy = min_image(p.y[j] - yi, 1);
-          const double ddz = min_image(p.z[j] - zi, 2);
-          const double cut = ri + p.radius[j] + skin_;
+          const double ddx = image(px[j] - xi, 0);
+          const double ddy = image(py[j] - yi, 1);
+          const double ddz = image(pz[j] - zi, 2);
+          const double cut = ri + pr[j] + skin;
           if (ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) rows.push_back(j);
         }
       });
