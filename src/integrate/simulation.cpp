@@ -42,8 +42,9 @@ constexpr double kMaxSteps = 1e12;
 /// particle through the cache anyway, and the fold saves the separate pass's stream (bed100k,
 /// 5.0 pairs per particle: +6-7%; bed10k, 3.72: +1.5% on one thread, +4% on two). In sparser
 /// beds the contact loop reads few particles, and the fold's pass, in slab order, ran slower
-/// than the separate one in index order: 40 000 discs settled (2.79 pairs per particle) -1.5%,
-/// falling (0.08) -12%, 40 000 falling spheres (0.1) -4% (bench/RESULTS.md, 2026-12-04).
+/// than the separate one in index order: 40 000 discs settled (2.79 pairs per particle) 1-2%
+/// slower, falling (0.08) 3-5% (medians; up to 20% in single pairs), 40 000 falling spheres
+/// (0.1) 4-5% (bench/RESULTS.md, 2026-12-04).
 constexpr double kFoldPairsPerParticle = 3.0;
 double fold_pairs_threshold = kFoldPairsPerParticle;
 
@@ -446,10 +447,7 @@ void Simulation::step(bool defer_second_kick) {
   const auto& g = spec_.simulation.gravity;
   // fold_pairs_per_particle(); the same list as after the last step (a folded step does not
   // build).
-  const auto dense = [this, n] {
-    return static_cast<double>(nl_->partner.size()) >=
-           fold_pairs_threshold * static_cast<double>(n);
-  };
+  const auto dense = [this] { return neighbour_pairs_per_particle() >= fold_pairs_threshold; };
   if (fold_enabled_ && plain && fused && tracked && dense() &&
       drift_bound_.next_step_within(dt, 0.5 * list.skin(), stats_.max_force2,
                                     list.max_entries_per_particle(), max_inv_mass_,
@@ -1031,7 +1029,7 @@ RunSummary Simulation::run(const std::string& out_dir,
     s.neighbour_builds = hard_->list_builds();
   } else {
     const double n = static_cast<double>(p_.size());
-    s.pairs_per_particle = n > 0 ? static_cast<double>(nl_->partner.size()) / n : 0.0;
+    s.pairs_per_particle = neighbour_pairs_per_particle();
     s.walls_per_particle = n > 0 ? static_cast<double>(nl_->wall_particle.size()) / n : 0.0;
     s.contacts = stats_.n_contacts;
   }
