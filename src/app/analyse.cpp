@@ -321,12 +321,27 @@ std::pair<double, double> analyse_probes(const Table& probes, const fs::path& pr
 
 } // namespace
 
+namespace {
+
+/// The run's directory, locked while analyse or plot write into it (not created when missing).
+std::optional<OutputDirectory> lock_run_directory(const std::string& out_dir,
+                                                  const OutputDirectory* held, const char* who) {
+  std::error_code ec;
+  if (!fs::is_directory(out_dir, ec))
+    throw InputError(
+        fmt::format("'{}' is not a directory (the output directory of a run)", out_dir));
+  std::optional<OutputDirectory> own;
+  if (held == nullptr) own.emplace(out_dir, who);
+  (held ? *held : *own).refuse_links(); // nothing is written through a link
+  return own;
+}
+
+} // namespace
+
 int analyse(const AnalyseOptions& o) {
   const fs::path out(o.out_dir);
   std::error_code ec;
-  if (!fs::is_directory(out, ec))
-    throw InputError(
-        fmt::format("'{}' is not a directory (the output directory of a run)", o.out_dir));
+  const auto lock = lock_run_directory(o.out_dir, o.directory, "fluidem analyse");
   const fs::path probes_path = out / "probes.csv";
   std::optional<Table> probes;
   if (fs::exists(probes_path, ec)) {
@@ -385,16 +400,30 @@ int analyse(const AnalyseOptions& o) {
 }
 
 int plot(const std::string& out_dir, const char* argv0, int movie_every) {
-  std::error_code ec;
-  if (!fs::is_directory(out_dir, ec))
-    throw InputError(
-        fmt::format("'{}' is not a directory (the output directory of a run)", out_dir));
+  const auto lock = lock_run_directory(out_dir, nullptr, "fluidem plot");
   const fs::path dir = find_python_script_dir("fluidem_analysis_plot.py", argv0);
   if (movie_every > 0)
     return run_python_script(dir / "fluidem_plot.py",
                              {out_dir, "--movie", "--every", std::to_string(movie_every)});
-  for (const char* script : {"fluidem_plot.py", "fluidem_analysis_plot.py"})
-    if (const int code = run_python_script(dir / script, {out_dir}); code != 0) return code;
+  if (const int code = run_python_script(dir / "fluidem_plot.py", {out_dir}); code != 0)
+    return code;
+  // The analysis the pictures need, with its default window, unless `analyse` wrote one.
+  std::error_code ec;
+  if (!fs::exists(fs::path(out_dir) / "analysis" / "summary.csv", ec)) {
+    fmt::print("no {}/analysis/ yet: analysing the run (fluidem analyse {})\n", out_dir, out_dir);
+    AnalyseOptions o;
+    o.out_dir = out_dir;
+    o.directory = &*lock;
+    try {
+      analyse(o);
+    } catch (const InputError& e) {
+      fmt::print("the analysis pictures are left out: {}\npicture: {}/snapshot.png\n", e.what(),
+                 out_dir);
+      return 0;
+    }
+  }
+  if (const int code = run_python_script(dir / "fluidem_analysis_plot.py", {out_dir}); code != 0)
+    return code;
   fmt::print("pictures: {}/snapshot.png, {}/analysis/*.png\n", out_dir, out_dir);
   return 0;
 }

@@ -24,6 +24,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "output/output_directory.hpp"
+
 namespace fluidem {
 
 struct AnalyseOptions {
@@ -31,12 +33,17 @@ struct AnalyseOptions {
   std::string probe;              ///< empty: every probe of probes.csv
   double segment_seconds = 0.0;   ///< 0: the largest power of two of samples <= n / 4
   std::optional<double> from, to; ///< window [T0, T1], s; default the second half of the run
+  /// The run's directory when the caller holds its lock (a run with output.analyse); nullptr:
+  /// analyse locks it (output/output_directory.hpp) and refuses while another process writes.
+  const OutputDirectory* directory = nullptr;
 };
 
 /// Analyse the run in `o.out_dir`; prints a summary to stdout. Returns 0; InputError on bad input.
 int analyse(const AnalyseOptions& o);
 
-/// Draw the run's pictures (the scripts above). Returns 0 or the failing script's exit code.
+/// Draw the run's pictures (the scripts above), analysing the run first (default window) when
+/// OUT/analysis/ has no summary yet; an analysis that cannot be made (too few frames, say) is
+/// reported and its pictures left out. Returns 0 or the failing script's exit code.
 /// With `movie_every` > 0 it draws every movie_every-th frame instead and joins them into
 /// OUT/movie.mp4 (fluidem_plot.py --movie; exit 3 without ffmpeg, the frames kept).
 int plot(const std::string& out_dir, const char* argv0, int movie_every = 0);

@@ -22,6 +22,7 @@
 #include "integrate/simulation.hpp"
 #include "io/case_reader.hpp"
 #include "output/checkpoint_file.hpp"
+#include "output/output_directory.hpp"
 
 namespace fluidem {
 
@@ -89,76 +90,56 @@ std::string default_out_dir(const std::string& case_path) {
   return (std::filesystem::path("out") / std::filesystem::path(case_path).stem()).string();
 }
 
-/// The files a run writes to its output directory.
-const char* const kResultFiles[] = {"case.resolved.toml",
-                                    "particles.h5",
-                                    "particles.xmf",
-                                    "series.csv",
-                                    "fields.h5",
-                                    "fields.xmf",
-                                    "probes.csv",
-                                    "checkpoint.h5",
-                                    "checkpoint.prev.h5",
-                                    "collisions.csv",
-                                    "collision_overlap.csv",
-                                    "continuum.h5",
-                                    "continuum.xmf"};
+/// Before a run, with the directory locked: it must not hold another run's results (unless
+/// `force`: they are removed, but only once every other check has passed), must hold no link
+/// under fluidem's file names, must be writable and should have room for the outputs
+/// (InputError otherwise).
+void prepare_out_dir(const OutputDirectory& dir, bool force, bool resuming, const Simulation& sim) {
+  dir.refuse_links();
+  std::vector<std::string> found;
+  if (!resuming) found = dir.present_results();
+  if (!found.empty() && !force)
+    throw InputError(fmt::format(
+        "output directory '{}' holds the results of another run ({}); use --force to "
+        "overwrite them, --restart {}/checkpoint.h5 to continue that run, or --out elsewhere",
+        dir.path(), fmt::join(found, ", "), dir.path()));
+  dir.check_writable();
+  const double need = sim.output_bytes_needed();
+  const double freed = found.empty() ? 0.0 : static_cast<double>(dir.present_bytes());
+  const double available = static_cast<double>(dir.available_bytes()) + freed;
+  if (available < need)
+    throw InputError(fmt::format(
+        "not enough disk space in '{}': the run needs about {:.3g} MB for its outputs, {:.3g} MB "
+        "are free{} (write fewer frames or rows with output.frame_interval and "
+        "output.series_interval, or use --out elsewhere)",
+        dir.path(), need / 1e6, available / 1e6,
+        freed > 0.0 ? " counting the results --force would remove" : ""));
+  if (!found.empty()) dir.remove_results(); // --force, and every check passed
+}
 
-/// Before a run: the directory must not hold another run's results (unless `force`: they are
-/// removed), must be writable, and should have room for the outputs (InputError otherwise).
-void prepare_out_dir(const std::string& out_dir, bool force, bool resuming, const Simulation& sim) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!resuming) {
-    std::vector<std::string> found;
-    for (const char* f : kResultFiles)
-      if (fs::exists(fs::path(out_dir) / f, ec)) found.push_back(f);
-    if (!found.empty() && !force)
-      throw InputError(fmt::format(
-          "output directory '{}' holds the results of another run ({}); use --force to "
-          "overwrite them, --restart {}/checkpoint.h5 to continue that run, or --out elsewhere",
-          out_dir, fmt::join(found, ", "), out_dir));
-    for (const std::string& f : found) fs::remove(fs::path(out_dir) / f, ec);
+/// --threads: a whole number from 1 to 1024 (0 or negative, or text, named in the message).
+std::string check_threads(const std::string& text) {
+  std::size_t used = 0;
+  long n = 0;
+  try {
+    n = std::stol(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
   }
-  fs::create_directories(out_dir, ec);
-  if (ec)
-    throw InputError(
-        fmt::format("cannot create the output directory '{}': {}", out_dir, ec.message()));
-  {
-    const fs::path probe = fs::path(out_dir) / ".fluidem-write-test";
-    std::FILE* f = std::fopen(probe.c_str(), "wb");
-    const bool ok = f != nullptr && std::fputs("x", f) >= 0 && std::fclose(f) == 0;
-    if (!ok)
-      throw InputError(fmt::format("cannot write to the output directory '{}': {}", out_dir,
-                                   std::strerror(errno)));
-    fs::remove(probe, ec);
-  }
-  // Room for the outputs: particle frames (about 14 values per particle), gas field frames
-  // (8 values per cell), the checkpoint twice (current and previous), with a margin of 2.
-  const CaseSpec& spec = sim.spec();
-  const double remaining = std::max(0.0, spec.simulation.end_time - sim.time());
-  const double frames = std::floor(remaining / spec.output.frame_interval) + 2.0;
-  const double n = static_cast<double>(sim.particles().size());
-  double cells = 0.0;
-  if (sim.gas()) {
-    const auto& g = sim.gas()->solver().grid();
-    cells = static_cast<double>(g.size());
-  }
-  const double need = 2.0 * (frames * (14.0 * 8.0 * n + 8.0 * 8.0 * cells) +
-                             2.0 * (26.0 * 8.0 * n + 10.0 * 8.0 * cells));
-  const fs::space_info space = fs::space(out_dir, ec);
-  if (!ec && static_cast<double>(space.available) < need)
-    throw InputError(fmt::format("not enough disk space in '{}': the run needs about {:.3g} MB "
-                                 "for its outputs, {:.3g} MB are free (write fewer frames with "
-                                 "output.frame_interval, or use --out elsewhere)",
-                                 out_dir, need / 1e6, static_cast<double>(space.available) / 1e6));
+  if (used != text.size() || text.empty() || n < 1 || n > 1024)
+    return fmt::format("--threads {}: give a whole number of threads from 1 to 1024 (leave "
+                       "--threads out to use every core)",
+                       text);
+  return {};
 }
 
 } // namespace
 
 int run_cli(int argc, char** argv) {
   CLI::App app{"fluidem: discrete particle simulation of gas-fluidised beds (CFD-DEM)\n"
-               "Exit codes: 0 success, 2 invalid input, 3 run stopped because it went unstable.",
+               "Exit codes: 0 success, 2 invalid input, 3 run stopped because it went unstable, 4 an "
+               "output could not be written (disk full, I/O error), 130/143 stopped by "
+               "SIGINT/SIGTERM.",
                "fluidem"};
   app.set_version_flag("--version", std::string("fluidem ") + kVersion);
   app.require_subcommand(1);
@@ -176,12 +157,14 @@ int run_cli(int argc, char** argv) {
                       "output.*");
   case_opt->excludes(restart_opt);
   run->add_flag("--force", force, "Overwrite the results of another run in the output directory");
-  run->add_option("--out,-o", out_dir, "Output directory (default: out/<case name>)");
+  auto* out_opt =
+      run->add_option("--out,-o", out_dir, "Output directory (default: out/<case name>)");
   run->add_option("--set", overrides,
                   "Override a case value: section.key=value (repeatable), e.g. "
                   "--set simulation.end_time=0.5");
-  run->add_option("--threads,-t", threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+  run->add_option("--threads,-t", threads, "OpenMP threads, 1 to 1024 (default: all cores)")
+      ->check(CLI::Validator(check_threads, "1..1024", "threads"))
+      ->type_name("N");
 
   std::string check_path;
   std::vector<std::string> check_overrides;
@@ -191,8 +174,23 @@ int run_cli(int argc, char** argv) {
   const auto analysis = add_analysis_commands(app); // analyse, plot (app/analyse.hpp)
   const auto validate = add_validate_command(app);  // validate (app/validate.hpp)
 
+  // A first word that is not an option nor a command: say so (CLI11 would ask for a command).
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string word = argv[1];
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands({})) known = known || sub->check_name(word);
+    if (!known) {
+      std::vector<std::string> names;
+      for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+      fmt::print(stderr, "error: unknown command '{}'; the commands are {} (fluidem --help)\n",
+                 word, fmt::join(names, ", "));
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
+    if (*run && out_opt->count() > 0 && out_dir.empty())
+      throw CLI::ValidationError("--out", "the output directory is an empty path");
     if (*run && case_path.empty() && restart_path.empty())
       throw CLI::RequiredError("a case file (or --restart CHECKPOINT)");
   } catch (const CLI::Success& e) {
@@ -213,6 +211,11 @@ int run_cli(int argc, char** argv) {
       return 0;
     }
     if (threads > 0) omp_set_num_threads(threads);
+    if (threads > omp_get_num_procs())
+      fmt::print(stderr,
+                 "warning: --threads {} on a machine with {} cores: the results are the same, "
+                 "but threads that share a core wait for each other (--threads {} is faster)\n",
+                 threads, omp_get_num_procs(), omp_get_num_procs());
     std::unique_ptr<Simulation> sim_owner;
     bool resuming = false;
     if (!restart_path.empty()) {
@@ -230,7 +233,9 @@ int run_cli(int argc, char** argv) {
       sim_owner = std::make_unique<Simulation>(read_case_file(case_path, overrides));
     }
     Simulation& sim = *sim_owner;
-    prepare_out_dir(out_dir, force, resuming, sim);
+    // Locked for the run (and its analysis) before anything in it is looked at.
+    const OutputDirectory dir(out_dir, "this run");
+    prepare_out_dir(dir, force, resuming, sim);
     print_report(sim.spec(), sim.report());
     fmt::print("threads            {}\noutput             {}\n", omp_get_max_threads(), out_dir);
     if (omp_get_max_threads() > 1)
@@ -246,6 +251,7 @@ int run_cli(int argc, char** argv) {
     RunSummary s;
     RunOptions ro;
     ro.resume = resuming;
+    ro.directory = &dir;
     ro.stop = &install_stop_handlers();
     try {
       s = sim.run(
@@ -312,6 +318,7 @@ int run_cli(int argc, char** argv) {
     if (sim.spec().output.analyse) { // output.analyse: the run's analysis, as `fluidem analyse`
       AnalyseOptions ao;
       ao.out_dir = out_dir;
+      ao.directory = &dir;
       fmt::print("analysis (output.analyse = true):\n");
       try {
         analyse(ao);
@@ -336,6 +343,13 @@ int run_cli(int argc, char** argv) {
                "checkpoint (if one was written) is {}/checkpoint.h5\n",
                e.what(), out_dir, out_dir);
     return 3;
+  } catch (const OutputError& e) {
+    fmt::print(stderr,
+               "error: {}\nthe run stopped; the last good checkpoint (if one was written) is "
+               "{}/checkpoint.h5: continue with fluidem run --restart {}/checkpoint.h5 once "
+               "there is room\n",
+               e.what(), out_dir, out_dir);
+    return 4;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

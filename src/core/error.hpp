@@ -1,4 +1,5 @@
-// Errors that name what was wrong. InputError -> exit code 2, InstabilityError -> exit code 3.
+// Errors that name what was wrong. InputError -> exit code 2, InstabilityError -> exit code 3,
+// OutputError -> exit code 4.
 #pragma once
 #include <stdexcept>
 #include <string>
@@ -25,6 +26,13 @@ public:
 class InstabilityError : public std::runtime_error {
 public:
   explicit InstabilityError(const std::string& message) : std::runtime_error(message) {}
+};
+
+/// An output that could not be written while the run went (a full disk, an I/O error, a file
+/// that vanished or became a link): the run stops; the last good checkpoint is kept.
+class OutputError : public std::runtime_error {
+public:
+  explicit OutputError(const std::string& message) : std::runtime_error(message) {}
 };
 
 } // namespace fluidem

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -702,31 +703,16 @@ void Simulation::advance(long n) {
   }
 }
 
-RunSummary Simulation::run(const std::string& out_dir,
-                           const std::function<void(const RunStatus&)>& progress,
-                           const RunOptions& options) {
-  namespace fs = std::filesystem;
-  fs::create_directories(out_dir);
-  {
-    std::ofstream resolved(fs::path(out_dir) / "case.resolved.toml");
-    resolved << "# fluidem " << kVersion << ": the fully resolved case of this run; running it "
-             << "reproduces the run.\n"
-             << write_case_toml(spec_);
-    if (!resolved) throw std::runtime_error("cannot write " + out_dir + "/case.resolved.toml");
-  }
-  const std::string checkpoint_path = (fs::path(out_dir) / "checkpoint.h5").string();
-  // Outputs are written up to (and including) the checkpoint's step before it is taken: a
-  // resumed run keeps what the old one wrote up to half a step after the checkpoint's time.
-  const double t_keep = time_ + 0.5 * dt_;
-  H5mdBox hbox{spec_.domain.lo, spec_.domain.hi, spec_.domain.periodic};
-  const std::string h5_path = (fs::path(out_dir) / "particles.h5").string();
-  std::unique_ptr<H5mdWriter> h5 =
-      options.resume
-          ? std::make_unique<H5mdWriter>(H5mdWriter::resume(h5_path, t_keep, p_.size(),
-                                                            spec_.simulation.dimension, hbox,
-                                                            spec_.output.layers > 0))
-          : std::make_unique<H5mdWriter>(h5_path, p_.size(), spec_.simulation.dimension, kVersion,
-                                         hbox, std::string(), spec_.output.layers > 0);
+long Simulation::total_steps() const {
+  return static_cast<long>(std::ceil(spec_.simulation.end_time / dt_ - 1e-9));
+}
+
+OutputLayout Simulation::output_layout() const {
+  OutputLayout l;
+  l.particles = p_.size();
+  l.dimension = spec_.simulation.dimension;
+  l.box = H5mdBox{spec_.domain.lo, spec_.domain.hi, spec_.domain.periodic};
+  l.layers = spec_.output.layers > 0;
   std::vector<std::string> columns{"time",
                                    "e_kin",
                                    "e_rot",
@@ -749,19 +735,12 @@ RunSummary Simulation::run(const std::string& out_dir,
     columns.insert(columns.end(),
                    {"pressure_drop", "bed_height", "gas_iterations", "superficial_velocity"});
   }
-  auto open_series = [&](const std::string& name, const std::vector<std::string>& cols) {
-    const std::string path = (fs::path(out_dir) / name).string();
-    return options.resume ? std::make_unique<SeriesWriter>(SeriesWriter::resume(path, cols, t_keep))
-                          : std::make_unique<SeriesWriter>(path, cols);
-  };
-  std::unique_ptr<SeriesWriter> series = open_series("series.csv", columns);
-  std::unique_ptr<SeriesWriter> probes;
+  l.csv["series.csv"] = columns;
   if (gas_ && !spec_.output.probes.empty()) {
     std::vector<std::string> pc{"time"};
     for (const ProbeSpec& pr : spec_.output.probes) pc.push_back(pr.name);
-    probes = open_series("probes.csv", pc);
+    l.csv["probes.csv"] = pc;
   }
-  std::unique_ptr<SeriesWriter> coll;
   if (collisions_) { // analysis/collision_statistics.hpp; one row per series interval
     std::vector<std::string> cc{
         "time",           "pair_collisions",     "wall_collisions",    "collision_frequency",
@@ -769,73 +748,87 @@ RunSummary Simulation::run(const std::string& out_dir,
     for (const CollisionRegionSpec& r : spec_.output.collision_regions)
       cc.insert(cc.end(), {r.name + "_collision_frequency", r.name + "_void_fraction",
                            r.name + "_particles"});
-    coll = open_series("collisions.csv", cc);
+    l.csv["collisions.csv"] = cc;
   }
-  const std::string xmf = (fs::path(out_dir) / "particles.xmf").string();
-  // Gas fields per particle frame (fields.h5 + fields.xmf), coupled runs only.
-  const std::vector<std::string> field_scalars{"porosity", "pressure"};
-  const std::vector<std::string> field_vectors{"gas_velocity", "solids_velocity"};
-  std::unique_ptr<FieldsWriter> fields;
-  FieldGrid fgrid;
-  CellFields cells;
-  if (gas_) {
+  if (gas_) { // gas fields per particle frame
     const auto& g = gas_->solver().grid();
-    fgrid.cells = g.n;
-    fgrid.lo = g.lo;
-    fgrid.spacing = g.h;
-    const std::string path = (fs::path(out_dir) / "fields.h5").string();
-    fields =
-        options.resume
-            ? std::make_unique<FieldsWriter>(
-                  FieldsWriter::resume(path, t_keep, fgrid, field_scalars, field_vectors))
-            : std::make_unique<FieldsWriter>(path, fgrid, field_scalars, field_vectors, kVersion);
+    l.fields = OutputLayout::Grid{
+        FieldGrid{g.n, g.lo, g.h}, {"porosity", "pressure"}, {"gas_velocity", "solids_velocity"}};
   }
-  const std::string fields_xmf = (fs::path(out_dir) / "fields.xmf").string();
-  // Continuum averages [Zhu07 Tables 5-6] (continuum.h5 + continuum.xmf): one frame at the end
-  // of every averaging interval, the cells as ParaView cell data. Tensor T_ab as the scalar
-  // <name>_<a><b>.
-  std::vector<std::string> cont_scalars{"solid_fraction", "granular_temperature"};
-  for (const char* tensor : {"kinetic_stress", "contact_stress", "couple_stress"})
-    for (const char* ab : {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"})
-      cont_scalars.push_back(std::string(tensor) + "_" + ab);
-  const std::vector<std::string> cont_vectors{"velocity", "angular_velocity"};
-  std::unique_ptr<FieldsWriter> cont;
-  FieldGrid cgrid;
-  std::vector<double> cont_times;
-  const std::string cont_xmf = (fs::path(out_dir) / "continuum.xmf").string();
   if (continuum_) {
-    cgrid.cells = continuum_->grid().cells;
-    cgrid.lo = continuum_->grid().lo;
-    cgrid.spacing = continuum_->grid().spacing;
-    const std::string path = (fs::path(out_dir) / "continuum.h5").string();
-    // A resumed run continues continuum.h5 (when the run being continued wrote one).
-    if (options.resume && fs::exists(path)) {
-      cont = std::make_unique<FieldsWriter>(
-          FieldsWriter::resume(path, t_keep, cgrid, cont_scalars, cont_vectors));
-      cont_times = cont->kept_times();
-      write_fields_xdmf(cont_xmf, "continuum.h5", cgrid, cont_scalars, cont_vectors, cont_times);
-    } else {
-      cont = std::make_unique<FieldsWriter>(path, cgrid, cont_scalars, cont_vectors, kVersion);
-    }
-    if (!clock_.started) clock_.next_continuum = time_ + continuum_interval_;
+    // Continuum averages [Zhu07 Tables 5-6]: one frame at the end of every averaging interval,
+    // the cells as ParaView cell data. Tensor T_ab as the scalar <name>_<a><b>.
+    OutputLayout::Grid c;
+    c.grid = FieldGrid{continuum_->grid().cells, continuum_->grid().lo,
+                       continuum_->grid().spacing};
+    c.scalars = {"solid_fraction", "granular_temperature"};
+    for (const char* tensor : {"kinetic_stress", "contact_stress", "couple_stress"})
+      for (const char* ab : {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"})
+        c.scalars.push_back(std::string(tensor) + "_" + ab);
+    c.vectors = {"velocity", "angular_velocity"};
+    l.continuum = c;
   }
-  if (options.resume) { // the indexes list exactly the frames kept in the files
-    clock_.frame_times = h5->kept_times();
-    if (fields && fields->kept_times() != clock_.frame_times)
-      throw std::runtime_error("cannot resume the outputs in " + out_dir +
-                               ": particles.h5 and fields.h5 hold different frames");
-    write_particles_xdmf(xmf, "particles.h5", p_.size(), clock_.frame_times);
-    if (fields)
-      write_fields_xdmf(fields_xmf, "fields.h5", fgrid, field_scalars, field_vectors,
-                        clock_.frame_times);
-  } else {
-    clock_.frame_times.clear(); // new files (a restart into another directory starts them anew)
+  return l;
+}
+
+double Simulation::output_bytes_needed() const {
+  // What the rest of the run writes: particle frames (about 14 values of 8 bytes per particle),
+  // gas field frames (8 values per cell), continuum frames (33 values per cell), CSV rows (up to
+  // 18 characters a value), and the checkpoint twice (current and previous, about 26 values per
+  // particle and 10 per cell); with a margin of 2. Outputs come at most once a step.
+  const double remaining = std::max(0.0, spec_.simulation.end_time - time_);
+  const double steps = std::ceil(remaining / dt_) + 1.0;
+  const auto count = [&](double interval) {
+    return std::min(std::floor(remaining / interval) + 2.0, steps + 1.0);
+  };
+  const double n = static_cast<double>(p_.size());
+  const OutputLayout l = output_layout();
+  const double cells = l.fields ? static_cast<double>(l.fields->grid.size()) : 0.0;
+  double need = count(spec_.output.frame_interval) * (14.0 * 8.0 * n + 8.0 * 8.0 * cells);
+  if (l.continuum)
+    need += count(continuum_interval_) * 33.0 * 8.0 * static_cast<double>(l.continuum->grid.size());
+  for (const auto& [name, columns] : l.csv)
+    need += count(spec_.output.series_interval) * 18.0 * static_cast<double>(columns.size());
+  need += 2.0 * (26.0 * 8.0 * n + 10.0 * 8.0 * cells);
+  return 2.0 * need;
+}
+
+RunSummary Simulation::run(const std::string& out_dir,
+                           const std::function<void(const RunStatus&)>& progress,
+                           const RunOptions& options) {
+  namespace fs = std::filesystem;
+  // The directory, locked for the run: the caller's (which checked it), or taken here (a new
+  // run then replaces whatever results were there).
+  std::optional<OutputDirectory> own_dir;
+  if (options.directory == nullptr) {
+    own_dir.emplace(out_dir, "this run");
+    own_dir->refuse_links();
+    if (!options.resume) own_dir->remove_results();
   }
+  const OutputDirectory& dir = options.directory ? *options.directory : *own_dir;
+  const std::string resolved = write_case_toml(spec_);
+  RunOutputs outputs = options.resume
+                           ? RunOutputs::resume(dir, output_layout(), marks_, resolved, kVersion)
+                           : RunOutputs::start(dir, output_layout(), resolved, kVersion);
+  outputs_ = &outputs;
+  struct Detach { // the outputs live in this call only
+    const RunOutputs*& p;
+    ~Detach() { p = nullptr; }
+  } detach{outputs_};
+  const std::string checkpoint_path = dir.file("checkpoint.h5");
+  if (continuum_ && !clock_.started) clock_.next_continuum = time_ + continuum_interval_;
+  SeriesWriter& series = outputs.csv("series.csv");
+  SeriesWriter* probes = outputs.has_csv("probes.csv") ? &outputs.csv("probes.csv") : nullptr;
+  SeriesWriter* coll = outputs.has_csv("collisions.csv") ? &outputs.csv("collisions.csv") : nullptr;
+  H5mdWriter& h5 = outputs.particles();
+  FieldsWriter* fields = outputs.fields();
+  FieldsWriter* cont = outputs.continuum();
+  CellFields cells;
 
   // The run ends at the first step at or after end_time; outputs are written at the first step
   // at or after each multiple of their interval (no drift from rounding intervals to steps).
   const double eps = 1e-9 * dt_;
-  const long total = static_cast<long>(std::ceil(spec_.simulation.end_time / dt_ - 1e-9));
+  const long total = total_steps();
   const double frame_dt = spec_.output.frame_interval, series_dt = spec_.output.series_interval,
                checkpoint_dt = spec_.output.checkpoint_interval;
   if (!clock_.started) {
@@ -891,7 +884,7 @@ RunSummary Simulation::run(const std::string& out_dir,
           probes->write_row(prow);
         }
       }
-      series->write_row(row);
+      series.write_row(row);
       if (coll) {
         const CollisionStatistics::Row c = collisions_->take_row(time_, p_.size());
         std::vector<double> crow{time_,
@@ -920,10 +913,8 @@ RunSummary Simulation::run(const std::string& out_dir,
         }
         output_order_valid_ = true;
       }
-      h5->write_frame(step_, time_, p_, output_order_.empty() ? nullptr : &output_order_);
-      h5->flush();
-      clock_.frame_times.push_back(time_);
-      write_particles_xdmf(xmf, "particles.h5", p_.size(), clock_.frame_times);
+      h5.write_frame(step_, time_, p_, output_order_.empty() ? nullptr : &output_order_);
+      h5.flush();
       if (fields) {
         gas_->cell_fields(p_, cells);
         auto vec = [](const std::array<std::vector<double>, 3>& v) {
@@ -931,9 +922,8 @@ RunSummary Simulation::run(const std::string& out_dir,
         };
         fields->write_frame(step_, time_, {cells.porosity.data(), cells.pressure.data()},
                             {vec(cells.gas_velocity), vec(cells.solids_velocity)});
-        write_fields_xdmf(fields_xmf, "fields.h5", fgrid, field_scalars, field_vectors,
-                          clock_.frame_times);
       }
+      outputs.frame_written(time_);
     }
     if (continuum_due) { // the averages over the interval that ends now
       while (clock_.next_continuum <= time_ + eps) clock_.next_continuum += continuum_interval_;
@@ -945,18 +935,13 @@ RunSummary Simulation::run(const std::string& out_dir,
         return std::array<const double*, 3>{v[0].data(), v[1].data(), v[2].data()};
       };
       cont->write_frame(step_, time_, sc, {vec(f.velocity), vec(f.angular_vel)});
-      cont_times.push_back(time_);
-      write_fields_xdmf(cont_xmf, "continuum.h5", cgrid, cont_scalars, cont_vectors, cont_times);
+      outputs.continuum_written(time_);
       continuum_->reset();
     }
     clock_.started = true;
     seconds_output += seconds_since(t0);
   };
-  auto flush_outputs = [&]() { // (the CSV writers flush every row)
-    if (fields) fields->flush();
-    if (cont) cont->flush();
-    h5->flush();
-  };
+  auto flush_outputs = [&]() { outputs.flush(); }; // (the CSV writers flush every row)
   RunSummary s;
   // A checkpoint holds a state that passed the stability checks, with its outputs on disk.
   auto checkpoint = [&]() {
@@ -971,7 +956,9 @@ RunSummary Simulation::run(const std::string& out_dir,
 
   const auto start = Clock::now();
   const long step0 = step_, folded0 = folded_steps_;
-  write_outputs();
+  // A continued run's checkpoint was taken after its step's outputs were written: they are in the
+  // files already (writing them again would repeat the last row and frame).
+  if (!options.resume) write_outputs();
   if (progress) progress({step_, total, time_, spec_.simulation.end_time, p_.size()});
   try {
     check_stability();
@@ -993,20 +980,11 @@ RunSummary Simulation::run(const std::string& out_dir,
     }
     checkpoint(); // at the end, or where a signal stopped the run
   } catch (...) {
-    series->close();
-    if (probes) probes->close();
-    if (coll) coll->close();
-    if (fields) fields->flush();
-    if (cont) cont->flush();
-    h5->flush();
+    outputs.close_quietly(); // what was written is flushed; the error says what went wrong
     throw;
   }
-  series->close();
-  if (probes) probes->close();
-  if (coll) {
-    coll->close();
-    write_overlap_histogram((fs::path(out_dir) / "collision_overlap.csv").string(), *collisions_);
-  }
+  outputs.close();
+  if (coll) write_overlap_histogram(dir.file("collision_overlap.csv"), *collisions_);
   s.steps = step_ - step0;
   s.wall_seconds = seconds_since(start);
   s.particle_steps_per_second = static_cast<double>(s.steps) * static_cast<double>(p_.size()) /

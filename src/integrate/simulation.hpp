@@ -26,6 +26,8 @@
 #include "integrate/drift_bound.hpp"
 #include "integrate/gas_coupling.hpp"
 #include "neighbour/neighbour_list.hpp"
+#include "output/output_directory.hpp"
+#include "output/run_outputs.hpp"
 #include "particles/particle_store.hpp"
 
 namespace fluidem {
@@ -83,6 +85,9 @@ struct RunOptions {
   /// Checked after every step: a nonzero value (the signal number) makes the run finish the
   /// step, write a checkpoint, flush the outputs and return with stopped_by_signal set.
   const std::atomic<int>* stop = nullptr;
+  /// The output directory, locked and checked by the caller (the command line: its contents,
+  /// the disk space). nullptr: run() locks it itself, and a new run replaces any results there.
+  const OutputDirectory* directory = nullptr;
 };
 
 /// The output schedule and energy reference of a run (kept in checkpoints so that a restarted
@@ -90,7 +95,6 @@ struct RunOptions {
 struct OutputClock {
   double next_frame = 0.0, next_series = 0.0, next_checkpoint = 0.0;
   double next_continuum = 0.0; ///< end of the current continuum averaging interval
-  std::vector<double> frame_times;
   double e0 = 0.0, escale = 0.0;
   bool started = false; ///< e0, escale and the first "next" times are set
 };
@@ -121,14 +125,22 @@ public:
   double time_step() const { return dt_; }
 
   /// Advance to end_time writing OUT/particles.h5, particles.xmf, series.csv and
-  /// case.resolved.toml. Throws InstabilityError (after flushing the outputs) if the run
-  /// goes unstable.
+  /// case.resolved.toml (output/run_outputs.hpp). Throws InstabilityError (after flushing the
+  /// outputs) if the run goes unstable, InputError if the outputs of a continued run do not
+  /// match its checkpoint (nothing is touched then), OutputError if an output cannot be written.
   RunSummary run(const std::string& out_dir,
                  const std::function<void(const RunStatus&)>& progress = {},
                  const RunOptions& options = {});
 
   /// Advance n steps without output (tests, benchmarks).
   void advance(long n);
+
+  /// The files run() writes, and their shapes.
+  OutputLayout output_layout() const;
+  /// About how many bytes the rest of the run writes (with a margin of 2), for the disk check.
+  double output_bytes_needed() const;
+  /// What the run had written when its checkpoint was taken (restart()); empty otherwise.
+  const OutputMarks& output_marks() const { return marks_; }
 
   /// Current energies and contact statistics.
   Energies energies() const { return particle_energies(p_, spec_.simulation.gravity); }
@@ -209,6 +221,8 @@ private:
   /// state, a particle outside the domain or an overlap beyond contact.max_overlap.
   void check_stability();
   void record_collisions();
+  /// The step at which the run ends: the first at or after simulation.end_time.
+  long total_steps() const;
   /// True when the step about to be taken (number step_ + 1) is averaged by [output.continuum].
   bool continuum_samples_next_step() const;
 
@@ -229,6 +243,10 @@ private:
   bool particles_current_ = true;
   long step_ = 0;
   OutputClock clock_;
+  /// The outputs of run() while it goes (their marks go into checkpoints), and the marks a
+  /// restarted simulation read from its checkpoint (run() with resume continues those files).
+  const RunOutputs* outputs_ = nullptr;
+  OutputMarks marks_;
   std::unique_ptr<CollisionStatistics> collisions_; ///< set when output.collisions = true
   /// The last step's contacts, recorded for the collision statistics (every step) and the
   /// continuum averages (their sampled steps).

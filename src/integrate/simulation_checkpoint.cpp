@@ -102,7 +102,19 @@ void Simulation::write_checkpoint(const std::string& path) {
   w.put_scalar("run/clock/e0", clock_.e0);
   w.put_scalar("run/clock/escale", clock_.escale);
   w.put_scalar("run/clock/started", static_cast<std::int64_t>(clock_.started));
-  w.put("run/clock/frame_times", clock_.frame_times);
+  // What the outputs hold at this step (output/run_outputs.hpp): a restart continues exactly
+  // those files, and refuses others.
+  const OutputMarks marks = outputs_ ? outputs_->marks() : OutputMarks{};
+  w.put_string("outputs/run_id", marks.run_id);
+  w.put("run/clock/frame_times", marks.frame_times);
+  w.put("outputs/continuum_times", marks.continuum_times);
+  std::string csv_names;
+  for (const auto& [name, mark] : marks.csv) {
+    csv_names += name + "\n";
+    w.put_scalar("outputs/csv/" + name + "/bytes", static_cast<std::int64_t>(mark.bytes));
+    w.put_scalar("outputs/csv/" + name + "/hash", static_cast<std::int64_t>(mark.hash));
+  }
+  w.put_string("outputs/csv_names", csv_names);
   if (continuum_) { // the sums of the averaging interval in progress
     w.put_scalar("run/clock/next_continuum", clock_.next_continuum);
     w.put("continuum/sums", continuum_->state().sums);
@@ -233,6 +245,12 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
   }
   s.step_ = static_cast<long>(r.integer("run/step"));
   s.time_ = static_cast<double>(s.step_) * s.dt_;
+  if (s.total_steps() <= s.step_)
+    throw InputError(fmt::format(
+        "simulation.end_time = {:.6g} s is not after the time of checkpoint '{}', t = {:.6g} s "
+        "(step {}): there is nothing to run; continue with --set simulation.end_time=T, T > "
+        "{:.6g}",
+        s.spec_.simulation.end_time, checkpoint, s.time_, s.step_, s.time_));
   s.e_dsp_ = r.scalar("run/e_dsp");
   s.clock_.next_frame = r.scalar("run/clock/next_frame");
   s.clock_.next_series = r.scalar("run/clock/next_series");
@@ -240,7 +258,19 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
   s.clock_.e0 = r.scalar("run/clock/e0");
   s.clock_.escale = r.scalar("run/clock/escale");
   s.clock_.started = r.integer("run/clock/started") != 0;
-  s.clock_.frame_times = r.doubles("run/clock/frame_times");
+  if (r.has("outputs/run_id")) { // (older checkpoints have none: they cannot resume in place)
+    s.marks_.run_id = r.string("outputs/run_id");
+    s.marks_.frame_times = r.doubles("run/clock/frame_times");
+    s.marks_.continuum_times = r.doubles("outputs/continuum_times");
+    const std::string names = r.string("outputs/csv_names");
+    for (std::size_t at = 0, end = 0; (end = names.find('\n', at)) != std::string::npos;
+         at = end + 1) {
+      const std::string name = names.substr(at, end - at);
+      const std::string key = "outputs/csv/" + name;
+      s.marks_.csv[name] = {static_cast<std::uint64_t>(r.integer(key + "/bytes")),
+                            static_cast<std::uint64_t>(r.integer(key + "/hash"))};
+    }
+  }
   s.stats_.n_contacts = static_cast<long>(r.integer("stats/n_contacts"));
   s.stats_.max_overlap_ratio = r.scalar("stats/max_overlap_ratio");
   s.stats_.max_overlap_particle = static_cast<long>(r.integer("stats/max_overlap_particle"));

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "output/hdf5_support.hpp"
+#include "output/safe_file.hpp"
 
 namespace fluidem {
 
@@ -95,20 +96,6 @@ private:
   void* data_ = nullptr;
 };
 
-void sync_path(const std::string& path, bool directory) {
-  const int fd = ::open(path.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
-  if (fd < 0) {
-    if (directory) return; // best effort for the directory entry
-    throw std::runtime_error("cannot open '" + path +
-                             "' to flush it to disk: " + std::strerror(errno));
-  }
-  const int rc = ::fsync(fd);
-  const int err = errno;
-  ::close(fd);
-  if (rc != 0 && !directory)
-    throw std::runtime_error("cannot flush '" + path + "' to disk: " + std::strerror(err));
-}
-
 } // namespace
 
 std::string previous_checkpoint_path(const std::string& path) {
@@ -143,45 +130,47 @@ void CheckpointWriter::put(const std::string& name, const std::vector<std::uint8
 }
 
 void CheckpointWriter::commit() const {
-  const std::string tmp = path_ + ".tmp";
-  {
-    QuietHdf5 quiet;
-    const hdf5::Builder b{tmp};
-    Handle file{check_id(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), tmp,
-                         "create file"),
-                H5Fclose};
-    b.string_attr(file.get(), "format", kFormat);
-    const std::uint64_t sum = checksum(arrays_);
-    b.scalar_attr(file.get(), "checksum", H5T_STD_U64LE, H5T_NATIVE_UINT64, &sum);
-    Handle lcpl{check_id(H5Pcreate(H5P_LINK_CREATE), tmp, "create property list"), H5Pclose};
-    check(H5Pset_create_intermediate_group(lcpl.get(), 1), tmp, "set property");
-    for (const auto& [name, a] : arrays_) {
-      const hsize_t dims[1] = {a.count};
-      Handle space = b.simple_space(1, dims);
-      Handle dset{check_id(H5Dcreate2(file.get(), name.c_str(), file_type(a.type), space.get(),
-                                      lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
-                           tmp, "create dataset", name),
-                  H5Dclose};
-      if (a.count > 0)
-        check(H5Dwrite(dset.get(), mem_type(a.type), H5S_ALL, H5S_ALL, H5P_DEFAULT, a.data()), tmp,
-              "write dataset", name);
+  const std::string tmp = safe_file::temporary_for(path_);
+  try {
+    {
+      QuietHdf5 quiet;
+      const hdf5::Builder b{tmp};
+      Handle file = hdf5::create_file(tmp, H5P_DEFAULT); // exclusive: never through a link
+      b.string_attr(file.get(), "format", kFormat);
+      const std::uint64_t sum = checksum(arrays_);
+      b.scalar_attr(file.get(), "checksum", H5T_STD_U64LE, H5T_NATIVE_UINT64, &sum);
+      Handle lcpl{check_id(H5Pcreate(H5P_LINK_CREATE), tmp, "create property list"), H5Pclose};
+      check(H5Pset_create_intermediate_group(lcpl.get(), 1), tmp, "set property");
+      for (const auto& [name, a] : arrays_) {
+        const hsize_t dims[1] = {a.count};
+        Handle space = b.simple_space(1, dims);
+        Handle dset{check_id(H5Dcreate2(file.get(), name.c_str(), file_type(a.type), space.get(),
+                                        lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
+                             tmp, "create dataset", name),
+                    H5Dclose};
+        if (a.count > 0)
+          check(H5Dwrite(dset.get(), mem_type(a.type), H5S_ALL, H5S_ALL, H5P_DEFAULT, a.data()),
+                tmp, "write dataset", name);
+      }
+      check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), tmp, "flush file");
+      check(file.reset(), tmp, "close file");
     }
-    check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), tmp, "flush file");
-    check(file.reset(), tmp, "close file");
+    safe_file::sync_close(safe_file::open_read(tmp), tmp);
+  } catch (...) { // a full disk, say: the previous checkpoint stays as it was, no temporary left
+    safe_file::remove_quietly(tmp);
+    throw;
   }
-  sync_path(tmp, false);
-  std::error_code ec;
-  if (fs::exists(path_, ec)) {
+  if (safe_file::kind(path_) == safe_file::Kind::regular) {
     const std::string prev = previous_checkpoint_path(path_);
-    fs::remove(prev, ec);
-    fs::create_hard_link(path_, prev, ec);
-    if (ec) fs::copy_file(path_, prev, fs::copy_options::overwrite_existing, ec);
+    safe_file::remove_quietly(prev);
+    std::error_code ec;
+    fs::create_hard_link(path_, prev, ec); // (link(2) does not follow links)
+    if (ec) {
+      safe_file::remove_quietly(prev);
+      safe_file::copy(path_, prev);
+    }
   }
-  fs::rename(tmp, path_, ec); // atomic: <path> is always a complete checkpoint
-  if (ec)
-    throw std::runtime_error("cannot rename '" + tmp + "' to '" + path_ + "': " + ec.message());
-  const std::string dir = fs::path(path_).parent_path().string();
-  sync_path(dir.empty() ? "." : dir, true);
+  safe_file::rename_over(tmp, path_); // atomic: <path> is always a complete checkpoint
 }
 
 CheckpointReader::CheckpointReader(std::string path) : path_(std::move(path)) {

@@ -124,7 +124,7 @@ struct FieldsWriter::Impl {
 FieldsWriter::FieldsWriter(const std::string& path, const FieldGrid& grid,
                            std::vector<std::string> scalar_names,
                            std::vector<std::string> vector_names,
-                           const std::string& program_version)
+                           const std::string& program_version, const std::string& run_id)
     : impl_(std::make_unique<Impl>()) {
   const std::string who = "FieldsWriter('" + path + "')";
   check_field_grid(grid, who);
@@ -150,12 +150,11 @@ FieldsWriter::FieldsWriter(const std::string& path, const FieldGrid& grid,
   // No lock: a viewer may open the file while the run appends frames; every frame is flushed.
   check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
 #endif
-  m.file = Handle{check_id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), path,
-                           "create file"),
-                  H5Fclose};
+  m.file = hdf5::create_file(path, fapl.get());
   const hid_t f = m.file.get();
   b.string_attr(f, "creator", "fluidem");
   b.string_attr(f, "version", program_version);
+  if (!run_id.empty()) b.string_attr(f, "run_id", run_id);
 
   { // /grid
     Handle g = b.group(f, "grid");
@@ -198,20 +197,15 @@ FieldsWriter::FieldsWriter(const std::string& path, const FieldGrid& grid,
 
 FieldsWriter::FieldsWriter() : impl_(std::make_unique<Impl>()) {}
 
-FieldsWriter FieldsWriter::resume(const std::string& path, double t_keep, const FieldGrid& grid,
-                                  std::vector<std::string> scalar_names,
-                                  std::vector<std::string> vector_names) {
-  const std::string who = "FieldsWriter::resume('" + path + "')";
-  check_field_grid(grid, who);
-  check_field_names(scalar_names, vector_names, who);
-  if (std::isnan(t_keep)) throw std::invalid_argument(who + ": t_keep is NaN");
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  FieldsWriter w;
-  Impl& m = *w.impl_;
-  m.path = path;
-  m.grid = grid;
-  m.scalar_names = std::move(scalar_names);
-  m.vector_names = std::move(vector_names);
+namespace {
+
+// Checks the open file `f` against the run (grid, names, run id) and opens its time-dependent
+// datasets into `m` (whose path, grid and names are set); returns how many frames every one of
+// them holds complete, and sets `longest` to the most any of them holds.
+hsize_t open_layout(FieldsWriter::Impl& m, hid_t f, const std::string& who,
+                    const std::string& run_id, hsize_t& longest) {
+  const std::string& path = m.path;
+  const FieldGrid& grid = m.grid;
   const auto mismatch = [&](const std::string& what) {
     throw std::runtime_error(who + ": the file does not match the run: " + what);
   };
@@ -220,9 +214,7 @@ FieldsWriter FieldsWriter::resume(const std::string& path, double t_keep, const 
     for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
     return "[" + s + "]";
   };
-
-  m.file = hdf5::open_existing(path, who);
-  const hid_t f = m.file.get();
+  hdf5::check_run_id(f, run_id, path, who);
   { // grid
     Handle g = hdf5::open_group(f, "grid", path);
     const auto read3 = [&](const char* name, hid_t mem_type, auto* out) {
@@ -269,8 +261,6 @@ FieldsWriter FieldsWriter::resume(const std::string& path, double t_keep, const 
       mismatch("vector fields " + join(vectors) + " in the file, " + join(m.vector_names) +
                " in the run");
   }
-  m.init_memory();
-
   m.frames_attr = hdf5::open_attr(fields.get(), "frames", path);
   m.step = hdf5::open_dataset(fields.get(), "step", path);
   m.time = hdf5::open_dataset(fields.get(), "time", path);
@@ -279,6 +269,7 @@ FieldsWriter FieldsWriter::resume(const std::string& path, double t_keep, const 
   if (step_dims.size() != 1 || time_dims.size() != 1)
     mismatch("/fields/step and /fields/time must be 1-D");
   hsize_t complete = std::min(step_dims[0], time_dims[0]);
+  longest = std::max(step_dims[0], time_dims[0]);
   const auto open_field = [&](const std::string& name, const hsize_t* inner, std::size_t rank) {
     const std::string full = "/fields/" + name;
     Handle d = hdf5::open_dataset(fields.get(), name, path);
@@ -286,28 +277,80 @@ FieldsWriter FieldsWriter::resume(const std::string& path, double t_keep, const 
     if (dims.size() != rank + 1 || !std::equal(inner, inner + rank, dims.begin() + 1))
       mismatch(full + " does not have the grid's shape");
     complete = std::min(complete, dims[0]);
+    longest = std::max(longest, dims[0]);
     return d;
   };
+  m.scalars.clear();
+  m.vectors.clear();
   for (const std::string& name : m.scalar_names)
     m.scalars.push_back(open_field(name, m.inner_scalar, 3));
   for (const std::string& name : m.vector_names)
     m.vectors.push_back(open_field(name, m.inner_vector, 4));
+  return complete;
+}
 
-  const std::vector<double> times =
-      hdf5::read_all<double>(m.time.get(), H5T_NATIVE_DOUBLE, time_dims[0], path, "/fields/time");
-  const hsize_t keep = hdf5::frames_to_keep(times, complete, t_keep);
-  hdf5::shrink_frames(m.step.get(), keep, path, "/fields/step");
-  hdf5::shrink_frames(m.time.get(), keep, path, "/fields/time");
-  for (std::size_t s = 0; s < m.scalars.size(); ++s)
-    hdf5::shrink_frames(m.scalars[s].get(), keep, path, "/fields/" + m.scalar_names[s]);
-  for (std::size_t v = 0; v < m.vectors.size(); ++v)
-    hdf5::shrink_frames(m.vectors[v].get(), keep, path, "/fields/" + m.vector_names[v]);
+} // namespace
+
+FieldsWriter FieldsWriter::resume(const std::string& path, const std::vector<double>& frame_times,
+                                  const std::string& run_id, const FieldGrid& grid,
+                                  std::vector<std::string> scalar_names,
+                                  std::vector<std::string> vector_names, bool check_only) {
+  const std::string who = "cannot continue '" + path + "'";
+  check_field_grid(grid, who);
+  check_field_names(scalar_names, vector_names, who);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  FieldsWriter w;
+  Impl& m = *w.impl_;
+  m.path = path;
+  m.grid = grid;
+  m.scalar_names = std::move(scalar_names);
+  m.vector_names = std::move(vector_names);
+  for (std::size_t d = 0; d < 3; ++d)
+    m.inner_scalar[d] = m.inner_vector[d] = static_cast<hsize_t>(grid.cells[2 - d]);
+  hsize_t keep = 0;
+  bool cut = false;
+  { // check, read-only: nothing is changed unless everything matches
+    Handle file = hdf5::open_existing(path, who, false);
+    hsize_t longest = 0;
+    const hsize_t complete = open_layout(m, file.get(), who, run_id, longest);
+    const std::vector<double> times =
+        hdf5::read_all<double>(m.time.get(), H5T_NATIVE_DOUBLE,
+                               hdf5::extent(m.time.get(), path, "/fields/time")[0], path,
+                               "/fields/time");
+    keep = hdf5::frames_to_keep(times, complete, frame_times, who);
+    cut = longest > keep;
+    m.close_all();
+    m.closed = false;
+  }
+  if (check_only) return FieldsWriter();
+  if (cut) // the frames written after the checkpoint go, in a copy renamed over the file
+    hdf5::edit_copy(path, [&](hid_t f, const std::string& tmp) {
+      Impl e;
+      e.path = tmp;
+      e.grid = m.grid;
+      e.scalar_names = m.scalar_names;
+      e.vector_names = m.vector_names;
+      std::copy(m.inner_scalar, m.inner_scalar + 3, e.inner_scalar);
+      std::copy(m.inner_vector, m.inner_vector + 4, e.inner_vector);
+      hsize_t longest = 0;
+      open_layout(e, f, who, run_id, longest);
+      hdf5::shrink_frames(e.step.get(), keep, tmp, "/fields/step");
+      hdf5::shrink_frames(e.time.get(), keep, tmp, "/fields/time");
+      for (std::size_t s = 0; s < e.scalars.size(); ++s)
+        hdf5::shrink_frames(e.scalars[s].get(), keep, tmp, "/fields/" + e.scalar_names[s]);
+      for (std::size_t v = 0; v < e.vectors.size(); ++v)
+        hdf5::shrink_frames(e.vectors[v].get(), keep, tmp, "/fields/" + e.vector_names[v]);
+      const std::int64_t frames64 = static_cast<std::int64_t>(keep);
+      check(H5Awrite(e.frames_attr.get(), H5T_NATIVE_INT64, &frames64), tmp, "write attribute",
+            "/fields frames");
+      e.close_all();
+    });
+  m.file = hdf5::open_existing(path, who, true);
+  hsize_t longest = 0;
+  open_layout(m, m.file.get(), who, run_id, longest);
+  m.init_memory();
   m.frames = keep;
-  const std::int64_t frames64 = static_cast<std::int64_t>(keep);
-  check(H5Awrite(m.frames_attr.get(), H5T_NATIVE_INT64, &frames64), path, "write attribute",
-        "/fields frames");
-  m.kept_times.assign(times.begin(), times.begin() + static_cast<std::ptrdiff_t>(keep));
-  w.flush();
+  m.kept_times = frame_times;
   return w;
 }
 

@@ -60,22 +60,25 @@ void check_field_names(const std::vector<std::string>& scalar_names,
 
 class FieldsWriter {
 public:
-  /// Create (truncate) `path` and write the grid. Bad grid or names: std::invalid_argument
-  /// (see check_field_grid, check_field_names); I/O: std::runtime_error naming `path`.
+  /// Create `path` and write the grid. `run_id` (when not empty) goes into the root attribute
+  /// run_id, which resume() checks. A regular file at `path` is replaced; a link or anything else
+  /// there is refused, never written through. Bad grid or names: std::invalid_argument (see
+  /// check_field_grid, check_field_names); I/O: std::runtime_error naming `path`.
   FieldsWriter(const std::string& path, const FieldGrid& grid,
                std::vector<std::string> scalar_names, std::vector<std::string> vector_names,
-               const std::string& program_version);
+               const std::string& program_version, const std::string& run_id = {});
   /// Continue the existing fields file `path` (written by this class) after a restart from a
-  /// checkpoint: keep the leading frames with time <= t_keep (the caller passes the checkpoint
-  /// time plus half a time step) that are complete in every dataset, drop all later ones, and
-  /// append the next write_frame after them. kept_times() then holds the kept frames' times, for
-  /// rewriting the XDMF index (write_fields_xdmf). Bad grid or names, NaN t_keep:
-  /// std::invalid_argument. std::runtime_error naming `path`: the file does not exist or is not
-  /// readable HDF5; it does not match the run (grid, field names; the message says what
-  /// differs) or lacks part of the layout.
-  static FieldsWriter resume(const std::string& path, double t_keep, const FieldGrid& grid,
+  /// checkpoint, as H5mdWriter::resume does: the file must belong to `run_id` and hold the
+  /// frames at `frame_times` (the checkpoint's record), complete and at bitwise those times;
+  /// later frames are dropped in a copy renamed over the file; write_frame appends after them.
+  /// `check_only`: only check (read-only) and return an empty writer. Bad grid or names:
+  /// std::invalid_argument. std::runtime_error naming `path`: the file does not exist, is a link
+  /// or is not readable HDF5; it does not match the run (grid, field names; the message says what
+  /// differs) or lacks part of the layout; another run's, or short of the checkpoint's frames.
+  static FieldsWriter resume(const std::string& path, const std::vector<double>& frame_times,
+                             const std::string& run_id, const FieldGrid& grid,
                              std::vector<std::string> scalar_names,
-                             std::vector<std::string> vector_names);
+                             std::vector<std::string> vector_names, bool check_only = false);
 
   ~FieldsWriter(); ///< closes the file; errors on this path are swallowed (call close() to see)
   FieldsWriter(FieldsWriter&&) noexcept;
@@ -102,9 +105,10 @@ public:
   /// After resume(): the times of the frames kept (frames 0..kept_times().size()-1); else empty.
   const std::vector<double>& kept_times() const;
 
+  struct Impl; ///< (opaque)
+
 private:
   FieldsWriter(); // an empty writer for resume() to fill
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

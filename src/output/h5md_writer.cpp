@@ -138,7 +138,7 @@ void H5mdWriter::Impl::append_value(Element e, const void* data, hid_t mem_space
 
 H5mdWriter::H5mdWriter(const std::string& path, std::size_t n_particles, int dimension,
                        const std::string& creator_version, const H5mdBox& box,
-                       const std::string& author, bool layer)
+                       const std::string& author, bool layer, const std::string& run_id)
     : impl_(std::make_unique<Impl>()) {
   if (dimension != 2 && dimension != 3)
     throw std::invalid_argument("H5mdWriter('" + path + "'): dimension must be 2 or 3, not " +
@@ -158,9 +158,7 @@ H5mdWriter::H5mdWriter(const std::string& path, std::size_t n_particles, int dim
   // is flushed, so what it sees is consistent.
   check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
 #endif
-  m.file = Handle{check_id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), path,
-                           "create file"),
-                  H5Fclose};
+  m.file = hdf5::create_file(path, fapl.get());
   const hid_t f = m.file.get();
 
   { // /h5md
@@ -185,6 +183,7 @@ H5mdWriter::H5mdWriter(const std::string& path, std::size_t n_particles, int dim
     Handle parameters = b.group(f, "parameters");
     const std::int32_t dim = dimension;
     b.scalar_attr(parameters.get(), "dimension", H5T_STD_I32LE, H5T_NATIVE_INT32, &dim);
+    if (!run_id.empty()) b.string_attr(parameters.get(), "run_id", run_id);
   }
 
   Handle particles = b.group(f, "particles");
@@ -246,22 +245,19 @@ H5mdWriter::H5mdWriter(const std::string& path, std::size_t n_particles, int dim
 
 H5mdWriter::H5mdWriter() : impl_(std::make_unique<Impl>()) {}
 
-H5mdWriter H5mdWriter::resume(const std::string& path, double t_keep, std::size_t n_particles,
-                              int dimension, const H5mdBox& box, bool layer) {
-  const std::string who = "H5mdWriter::resume('" + path + "')";
-  if (std::isnan(t_keep)) throw std::invalid_argument(who + ": t_keep is NaN");
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  H5mdWriter w;
-  Impl& m = *w.impl_;
-  m.path = path;
-  m.n = n_particles;
+namespace {
+
+// Checks the open file `f` against the run and opens its time-dependent datasets into `m`;
+// returns how many frames every one of them holds complete, and sets `longest` to the most any
+// of them holds.
+hsize_t open_layout(H5mdWriter::Impl& m, hid_t f, const std::string& who, int dimension,
+                    const H5mdBox& box, bool layer, const std::string& run_id, hsize_t& longest) {
+  const std::string& path = m.path;
+  const std::size_t n_particles = m.n;
   const auto mismatch = [&](const std::string& what) {
     throw std::runtime_error(who + ": the file does not match the run: " + what);
   };
-
-  m.file = hdf5::open_existing(path, who);
-  const hid_t f = m.file.get();
-  { // dimension
+  { // dimension and run id
     Handle parameters = hdf5::open_group(f, "parameters", path);
     Handle attr = hdf5::open_attr(parameters.get(), "dimension", path);
     std::int32_t dim = 0;
@@ -270,6 +266,7 @@ H5mdWriter H5mdWriter::resume(const std::string& path, double t_keep, std::size_
     if (dim != dimension)
       mismatch("dimension " + std::to_string(dim) + " in the file, " + std::to_string(dimension) +
                " in the run");
+    hdf5::check_run_id(parameters.get(), run_id, path, who);
   }
   Handle all = hdf5::open_group(f, "/particles/all", path);
   { // box
@@ -319,6 +316,7 @@ H5mdWriter H5mdWriter::resume(const std::string& path, double t_keep, std::size_
   if (step_dims.size() != 1 || time_dims.size() != 1)
     mismatch("/particles/all/position/step and time must be 1-D");
   hsize_t complete = std::min(step_dims[0], time_dims[0]);
+  longest = std::max(step_dims[0], time_dims[0]);
   { // layers: the file holds them exactly when the run keeps them
     const htri_t has = H5Lexists(all.get(), "layer", H5P_DEFAULT);
     hdf5::hdf5_error_detail(); // clear the stack of a failed lookup
@@ -339,22 +337,60 @@ H5mdWriter H5mdWriter::resume(const std::string& path, double t_keep, std::size_
       mismatch(std::string(spec.value_path) + " does not hold " + std::to_string(n_particles) +
                " particles per frame");
     complete = std::min(complete, dims[0]);
+    longest = std::max(longest, dims[0]);
   }
+  return complete;
+}
 
-  const std::vector<double> times = hdf5::read_all<double>(
-      m.time.get(), H5T_NATIVE_DOUBLE, time_dims[0], path, "/particles/all/position/time");
-  const hsize_t keep = hdf5::frames_to_keep(times, complete, t_keep);
-  hdf5::shrink_frames(m.step.get(), keep, path, "/particles/all/position/step");
-  hdf5::shrink_frames(m.time.get(), keep, path, "/particles/all/position/time");
-  for (std::size_t e = 0; e < m.elements(); ++e)
-    hdf5::shrink_frames(m.value[e].get(), keep, path, kElements[e].value_path);
+} // namespace
+
+H5mdWriter H5mdWriter::resume(const std::string& path, const std::vector<double>& frame_times,
+                              const std::string& run_id, std::size_t n_particles, int dimension,
+                              const H5mdBox& box, bool layer, bool check_only) {
+  const std::string who = "cannot continue '" + path + "'";
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  H5mdWriter w;
+  Impl& m = *w.impl_;
+  m.path = path;
+  m.n = n_particles;
+  hsize_t keep = 0;
+  bool cut = false;
+  { // check, read-only: nothing is changed unless everything matches
+    Handle file = hdf5::open_existing(path, who, false);
+    hsize_t longest = 0;
+    const hsize_t complete =
+        open_layout(m, file.get(), who, dimension, box, layer, run_id, longest);
+    const std::vector<double> times = hdf5::read_all<double>(
+        m.time.get(), H5T_NATIVE_DOUBLE, hdf5::extent(m.time.get(), path, "time")[0], path,
+        "/particles/all/position/time");
+    keep = hdf5::frames_to_keep(times, complete, frame_times, who);
+    cut = longest > keep;
+    m.close_all();
+    m.closed = false;
+  }
+  if (check_only) return H5mdWriter();
+  if (cut) // the frames written after the checkpoint go, in a copy renamed over the file
+    hdf5::edit_copy(path, [&](hid_t f, const std::string& tmp) {
+      Impl e;
+      e.path = tmp;
+      e.n = n_particles;
+      hsize_t longest = 0;
+      open_layout(e, f, who, dimension, box, layer, run_id, longest);
+      hdf5::shrink_frames(e.step.get(), keep, tmp, "/particles/all/position/step");
+      hdf5::shrink_frames(e.time.get(), keep, tmp, "/particles/all/position/time");
+      for (std::size_t k = 0; k < e.elements(); ++k)
+        hdf5::shrink_frames(e.value[k].get(), keep, tmp, kElements[k].value_path);
+      const std::int64_t frames64 = static_cast<std::int64_t>(keep);
+      check(H5Awrite(e.frames_attr.get(), H5T_NATIVE_INT64, &frames64), tmp, "write attribute",
+            "/particles/all frames");
+      e.close_all();
+    });
+  m.file = hdf5::open_existing(path, who, true);
+  hsize_t longest = 0;
+  open_layout(m, m.file.get(), who, dimension, box, layer, run_id, longest);
   m.frames = keep;
-  const std::int64_t frames64 = static_cast<std::int64_t>(keep);
-  check(H5Awrite(m.frames_attr.get(), H5T_NATIVE_INT64, &frames64), path, "write attribute",
-        "/particles/all frames");
-  m.kept_times.assign(times.begin(), times.begin() + static_cast<std::ptrdiff_t>(keep));
+  m.kept_times = frame_times;
   m.init_memory();
-  w.flush();
   return w;
 }
 

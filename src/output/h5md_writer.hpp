@@ -60,22 +60,28 @@ inline constexpr const char* kH5mdVertexIndexPath = "/particles/all/vertex_index
 
 class H5mdWriter {
 public:
-  /// Create (truncate) `path` and write the static part of the layout. `dimension` is 2 or 3.
+  /// Create `path` and write the static part of the layout. `dimension` is 2 or 3.
   /// `author` defaults to $USER (or "unknown"). `layer`: also write ParticleStore::layer.
+  /// `run_id` (when not empty) goes into /parameters as the attribute run_id, which resume()
+  /// checks. A regular file at `path` is replaced; a link or anything else there is refused
+  /// (std::runtime_error), never written through.
   H5mdWriter(const std::string& path, std::size_t n_particles, int dimension,
              const std::string& creator_version, const H5mdBox& box = {},
-             const std::string& author = {}, bool layer = false);
+             const std::string& author = {}, bool layer = false, const std::string& run_id = {});
   /// Continue the existing H5MD file `path` (written by this class) after a restart from a
-  /// checkpoint: keep the leading frames with time <= t_keep (the caller passes the checkpoint
-  /// time plus half a time step) that are complete in every dataset, drop all later ones (also
-  /// frames cut short by a crash), and append the next write_frame after them. kept_times() then
-  /// holds the kept frames' times, for rewriting the XDMF index (write_particles_xdmf).
-  /// Errors, all std::runtime_error naming `path`: the file does not exist or is not readable
-  /// HDF5; it does not match the run (n_particles, dimension, box, whether it holds /layer as
-  /// `layer` asks; the message says what differs)
-  /// or lacks part of the layout. A NaN t_keep: std::invalid_argument.
-  static H5mdWriter resume(const std::string& path, double t_keep, std::size_t n_particles,
-                           int dimension, const H5mdBox& box = {}, bool layer = false);
+  /// checkpoint. The checkpoint's run had written the frames at `frame_times`: the file must
+  /// hold them, complete and at bitwise those times, and belong to the run `run_id`; later
+  /// frames (written after the checkpoint, or cut short by a crash) are dropped, in a copy of
+  /// the file that is then renamed over it (the file is never left half-edited), and write_frame
+  /// appends after them. With `check_only` the file is only checked (opened read-only) and an
+  /// empty writer returned.
+  /// Errors, all std::runtime_error naming `path`: the file does not exist, is a link or is not
+  /// readable HDF5; it does not match the run (n_particles, dimension, box, whether it holds
+  /// /layer as `layer` asks; the message says what differs) or lacks part of the layout; it
+  /// belongs to another run; it stops short of the checkpoint's frames or holds others.
+  static H5mdWriter resume(const std::string& path, const std::vector<double>& frame_times,
+                           const std::string& run_id, std::size_t n_particles, int dimension,
+                           const H5mdBox& box = {}, bool layer = false, bool check_only = false);
 
   ~H5mdWriter(); ///< closes the file; errors on this path are swallowed (call close() to see them)
   H5mdWriter(H5mdWriter&&) noexcept;
@@ -99,9 +105,10 @@ public:
   /// After resume(): the times of the frames kept (frames 0..kept_times().size()-1); else empty.
   const std::vector<double>& kept_times() const;
 
+  struct Impl; ///< (opaque)
+
 private:
   H5mdWriter(); // an empty writer for resume() to fill
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -12,6 +12,8 @@
 
 #include <hdf5.h>
 
+#include "output/safe_file.hpp"
+
 namespace fluidem::hdf5 {
 
 // The innermost message of the HDF5 error stack (e.g. "unable to open file: ... errno = 2 ...").
@@ -26,6 +28,16 @@ inline std::string hdf5_error_detail() {
       },
       &detail);
   H5Eclear2(H5E_DEFAULT);
+  // A failed system call: HDF5's message quotes the system's, keep that one ("No space left on
+  // device") with its errno.
+  const std::size_t m = detail.find("error message = '");
+  if (m != std::string::npos) {
+    const std::size_t from = m + 17, to = detail.find('\'', from);
+    const std::size_t e = detail.find("errno = ");
+    std::string errno_text;
+    if (e != std::string::npos) errno_text = detail.substr(e, detail.find(',', e) - e);
+    detail = detail.substr(from, to - from) + (errno_text.empty() ? "" : ", " + errno_text);
+  }
   return detail;
 }
 
@@ -34,7 +46,7 @@ inline std::string hdf5_error_detail() {
   if (!object.empty()) msg += " '" + object + "'";
   const std::string detail = hdf5_error_detail();
   if (!detail.empty()) msg += " (" + detail + ")";
-  throw std::runtime_error(msg);
+  throw OutputError(msg);
 }
 
 inline hid_t check_id(hid_t id, const std::string& path, const char* op,
@@ -206,12 +218,15 @@ inline void append_frame(hid_t dset, int rank, const hsize_t* inner, hsize_t fra
 
 // ---- Resume: reopen an existing file, check it, drop frames written after a checkpoint. ----
 
-// Open the existing file `path` read-write without file locking (as the writers create theirs).
-// No file, or not an HDF5 file: std::runtime_error starting with `who`.
-inline Handle open_existing(const std::string& path, const std::string& who) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
+// Open the existing file `path` without file locking (as the writers create theirs), read-write
+// or read-only. No file, a symbolic link, or not an HDF5 file: std::runtime_error starting with
+// `who`.
+inline Handle open_existing(const std::string& path, const std::string& who, bool write = true) {
+  const safe_file::Kind kind = safe_file::kind(path);
+  if (kind == safe_file::Kind::missing)
     throw std::runtime_error(who + ": cannot resume, the file does not exist");
+  if (kind != safe_file::Kind::regular)
+    throw std::runtime_error(who + ": cannot resume, it is " + safe_file::to_string(kind));
   const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
   const std::string detail = hdf5_error_detail();
   if (is_hdf5 <= 0)
@@ -223,7 +238,21 @@ inline Handle open_existing(const std::string& path, const std::string& who) {
     (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7)
   check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
 #endif
-  return {check_id(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), path, "open file for resume"),
+  return {check_id(H5Fopen(path.c_str(), write ? H5F_ACC_RDWR : H5F_ACC_RDONLY, fapl.get()), path,
+                   write ? "open file for resume" : "open file"),
+          H5Fclose};
+}
+
+// Create `path` for writing: an existing regular file there is replaced, anything else (a link,
+// dangling or not, a directory) refused; the file is then created exclusively (H5F_ACC_EXCL:
+// open(2) with O_EXCL, which never follows a link).
+inline Handle create_file(const std::string& path, hid_t fapl) {
+  const safe_file::Kind kind = safe_file::kind(path);
+  if (kind != safe_file::Kind::missing && kind != safe_file::Kind::regular)
+    throw std::runtime_error("cannot create '" + path + "': it is " + safe_file::to_string(kind) +
+                             " (fluidem does not write through links or over other files)");
+  if (kind == safe_file::Kind::regular) safe_file::remove_quietly(path);
+  return {check_id(H5Fcreate(path.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl), path, "create file"),
           H5Fclose};
 }
 
@@ -297,12 +326,76 @@ inline void shrink_frames(hid_t dset, hsize_t frames, const std::string& path,
   check(H5Dset_extent(dset, dims.data()), path, "shrink dataset", name);
 }
 
-// How many leading frames to keep on resume: those with time <= t_keep, and no more than
-// `complete` (the frames that every time-dependent dataset of the file holds).
-inline hsize_t frames_to_keep(const std::vector<double>& times, hsize_t complete, double t_keep) {
-  hsize_t k = 0;
-  while (k < complete && k < times.size() && times[k] <= t_keep) ++k;
-  return k;
+// How many leading frames a resumed file keeps: exactly the frames the checkpoint's run had
+// written (`expected`, their times), which the file must hold complete (`complete`: the frames
+// every time-dependent dataset holds) with bitwise the same times. Otherwise std::runtime_error
+// starting with `who`: the file stops short of the checkpoint (a gap), or holds other frames
+// (the output of another run).
+inline hsize_t frames_to_keep(const std::vector<double>& times, hsize_t complete,
+                              const std::vector<double>& expected, const std::string& who) {
+  const auto at = [](const std::vector<double>& t, std::size_t k) {
+    return std::to_string(t[k]) + " s";
+  };
+  const hsize_t have = std::min<hsize_t>(complete, times.size());
+  if (have < expected.size())
+    throw std::runtime_error(
+        who + ": the file holds " + std::to_string(have) + " complete frames" +
+        (have > 0 ? " (the last at t = " + at(times, have - 1) + ")" : std::string()) +
+        ", the checkpoint's run had written " + std::to_string(expected.size()) +
+        " (the last at t = " + at(expected, expected.size() - 1) +
+        "): the outputs do not reach the checkpoint, continuing them would leave a gap");
+  for (std::size_t k = 0; k < expected.size(); ++k)
+    if (times[k] != expected[k])
+      throw std::runtime_error(who + ": frame " + std::to_string(k) + " is at t = " +
+                               at(times, k) + " in the file and at t = " + at(expected, k) +
+                               " in the checkpoint's record: the file holds another run's frames");
+  return expected.size();
+}
+
+// A scalar string attribute (as Builder::string_attr writes it); empty when there is none.
+inline std::string read_string_attr(hid_t obj, const char* name, const std::string& path) {
+  if (H5Aexists(obj, name) <= 0) {
+    hdf5_error_detail(); // clear the stack of the lookup
+    return {};
+  }
+  Handle attr = open_attr(obj, name, path);
+  Handle type{check_id(H5Aget_type(attr.get()), path, "get type of attribute", name), H5Tclose};
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) != 0)
+    throw std::runtime_error("'" + path + "': attribute '" + name +
+                             "' is not a fixed-length string");
+  std::vector<char> buffer(H5Tget_size(type.get()) + 1, '\0');
+  check(H5Aread(attr.get(), type.get(), buffer.data()), path, "read attribute", name);
+  return std::string(buffer.data());
+}
+
+// The run id attribute of `obj` must be `run_id` (std::runtime_error starting with `who`).
+inline void check_run_id(hid_t obj, const std::string& run_id, const std::string& path,
+                         const std::string& who) {
+  const std::string in_file = read_string_attr(obj, "run_id", path);
+  if (in_file != run_id)
+    throw std::runtime_error(
+        who + ": the file belongs to " +
+        (in_file.empty() ? std::string("a run without an id") : "run " + in_file) +
+        ", the checkpoint to run " + run_id + ": it cannot be continued by this checkpoint");
+}
+
+// Drops frames from the existing file `path` without ever leaving it half-edited: a copy
+// ("<path>.resume.tmp") is edited by `edit(file)`, flushed, synced and renamed over `path`.
+template <class Edit>
+void edit_copy(const std::string& path, Edit&& edit) {
+  const std::string tmp = path + ".resume.tmp";
+  safe_file::copy(path, tmp);
+  try {
+    Handle file = open_existing(tmp, "resume", true);
+    edit(file.get(), tmp);
+    check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), tmp, "flush file");
+    check(file.reset(), tmp, "close file");
+    safe_file::sync_close(safe_file::open_read(tmp), tmp);
+  } catch (...) {
+    safe_file::remove_quietly(tmp);
+    throw;
+  }
+  safe_file::rename_over(tmp, path);
 }
 
 // a == b up to rounding (for grid and box geometry written as doubles and read back).

@@ -1,5 +1,7 @@
 #include "output/series_writer.hpp"
 
+#include "output/safe_file.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -55,83 +57,65 @@ void SeriesWriter::check_columns() const {
 SeriesWriter::SeriesWriter(const std::string& path, std::vector<std::string> columns)
     : path_(path), columns_(std::move(columns)) {
   check_columns();
-  file_ = std::fopen(path_.c_str(), "wb");
-  if (file_ == nullptr)
-    throw std::runtime_error("cannot create '" + path_ + "': " + std::strerror(errno));
-  for (std::size_t i = 0; i < columns_.size(); ++i) {
-    if (i > 0) line_ += ',';
-    line_ += columns_[i];
-  }
+  // A new file: whatever regular file was there goes, a link is refused (never written through).
+  const safe_file::Kind kind = safe_file::kind(path_);
+  if (kind != safe_file::Kind::missing && kind != safe_file::Kind::regular)
+    throw OutputError("cannot create '" + path_ + "': it is " + safe_file::to_string(kind) +
+                      " (fluidem does not write through links or over other files)");
+  file_ = safe_file::create_exclusive(path_);
+  line_ = header();
   write_line();
 }
 
+std::string SeriesWriter::header() const {
+  std::string h;
+  for (std::size_t i = 0; i < columns_.size(); ++i) h += (i > 0 ? "," : "") + columns_[i];
+  return h;
+}
+
 SeriesWriter SeriesWriter::resume(const std::string& path, std::vector<std::string> columns,
-                                  double t_keep) {
+                                  const Mark& mark, bool check_only) {
   SeriesWriter w;
   w.path_ = path;
   w.columns_ = std::move(columns);
   w.check_columns();
-  const std::string who = "SeriesWriter::resume('" + path + "')";
-  if (std::isnan(t_keep)) throw std::invalid_argument(who + ": t_keep is NaN");
-
+  const std::string who = "cannot continue '" + path + "'";
   std::string text;
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(who + ": cannot read the file: " + std::strerror(errno));
-    std::ostringstream s;
-    s << in.rdbuf();
-    if (in.bad()) throw std::runtime_error(who + ": cannot read the file");
-    text = std::move(s).str();
+  try {
+    text = safe_file::read_all(path);
+  } catch (const OutputError& e) {
+    throw std::runtime_error(who + ": " + e.what());
   }
-  std::string header;
-  for (std::size_t i = 0; i < w.columns_.size(); ++i) header += (i > 0 ? "," : "") + w.columns_[i];
-  const std::size_t header_end = text.find('\n');
-  if (header_end == std::string::npos)
-    throw std::runtime_error(who + ": the file has no complete header line");
-  if (text.compare(0, header_end, header) != 0)
-    throw std::runtime_error(who + ": the header does not match the run: '" +
-                             text.substr(0, header_end) + "' in the file, '" + header +
-                             "' in the run");
-
-  // Keep whole lines up to the first row later than t_keep; a last line without '\n' is a row
-  // cut short by a crash and goes too.
-  std::size_t keep_end = header_end + 1;
-  std::size_t line_number = 1;
-  while (keep_end < text.size()) {
-    const std::size_t eol = text.find('\n', keep_end);
-    if (eol == std::string::npos) break; // incomplete last line
-    ++line_number;
-    const std::string_view line(text.data() + keep_end, eol - keep_end);
-    const std::size_t fields =
-        static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
-    const std::string first(line.substr(0, line.find(',')));
-    char* end = nullptr;
-    const double t = first.empty() ? 0.0 : std::strtod(first.c_str(), &end);
-    if (fields != w.columns_.size() || first.empty() || end != first.c_str() + first.size())
-      throw std::runtime_error(who + ": line " + std::to_string(line_number) + " is not a row of " +
-                               std::to_string(w.columns_.size()) + " numbers: '" +
-                               std::string(line) + "'");
-    if (!(t <= t_keep)) break;
-    keep_end = eol + 1;
-    ++w.kept_rows_;
+  const std::string header = w.header() + "\n";
+  if (text.compare(0, header.size(), header) != 0) {
+    const std::string first = text.substr(0, text.find('\n'));
+    throw std::runtime_error(who + ": its header '" + first + "' is not the run's, '" +
+                             w.header() + "'");
   }
-
-  // Rewrite atomically: the kept part into a temporary file, synced, renamed over the original;
-  // the temporary's stream then goes on appending.
-  const std::string tmp = path + ".resume.tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr)
-    throw std::runtime_error(who + ": cannot create '" + tmp + "': " + std::strerror(errno));
-  const bool ok = std::fwrite(text.data(), 1, keep_end, f) == keep_end && std::fflush(f) == 0 &&
-                  ::fsync(::fileno(f)) == 0;
-  const int write_errno = errno;
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int e = ok ? errno : write_errno;
-    std::fclose(f);
-    std::remove(tmp.c_str());
-    throw std::runtime_error(who + ": cannot rewrite the file: " + std::strerror(e));
+  if (text.size() < mark.bytes) {
+    const std::size_t last = text.rfind('\n', text.empty() ? 0 : text.size() - 2);
+    const std::string last_row = text.substr(last == std::string::npos ? 0 : last + 1);
+    throw std::runtime_error(who + ": it holds " + std::to_string(text.size()) +
+                             " bytes (its last row '" + last_row.substr(0, last_row.find('\n')) +
+                             "'), the checkpoint's run had written " + std::to_string(mark.bytes) +
+                             ": the outputs do not reach the checkpoint, continuing them would "
+                             "leave a gap");
   }
-  w.file_ = f;
+  if (mark.bytes < header.size() ||
+      safe_file::fnv1a(std::string_view(text).substr(0, mark.bytes)) != mark.hash ||
+      text[mark.bytes - 1] != '\n')
+    throw std::runtime_error(who + ": its rows up to the checkpoint are not those the "
+                                   "checkpoint's run wrote (the file holds another run's rows)");
+  if (check_only) return SeriesWriter();
+  try {
+    safe_file::cut(path, mark.bytes); // atomically: a copy of the kept rows renamed over it
+    w.file_ = safe_file::open_append(path);
+  } catch (const OutputError& e) {
+    throw std::runtime_error(who + ": " + e.what());
+  }
+  w.mark_ = mark;
+  w.kept_rows_ = static_cast<std::size_t>(
+      std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(mark.bytes), '\n') - 1);
   return w;
 }
 
@@ -141,7 +125,8 @@ SeriesWriter::~SeriesWriter() {
 
 SeriesWriter::SeriesWriter(SeriesWriter&& o) noexcept
     : path_(std::move(o.path_)), columns_(std::move(o.columns_)),
-      file_(std::exchange(o.file_, nullptr)), line_(std::move(o.line_)), kept_rows_(o.kept_rows_) {}
+      file_(std::exchange(o.file_, nullptr)), line_(std::move(o.line_)), kept_rows_(o.kept_rows_),
+      mark_(o.mark_) {}
 
 SeriesWriter& SeriesWriter::operator=(SeriesWriter&& o) noexcept {
   if (this != &o) {
@@ -151,6 +136,7 @@ SeriesWriter& SeriesWriter::operator=(SeriesWriter&& o) noexcept {
     file_ = std::exchange(o.file_, nullptr);
     line_ = std::move(o.line_);
     kept_rows_ = o.kept_rows_;
+    mark_ = o.mark_;
   }
   return *this;
 }
@@ -171,15 +157,16 @@ void SeriesWriter::write_row(const std::vector<double>& values) {
 
 void SeriesWriter::write_line() {
   line_ += '\n';
-  if (std::fwrite(line_.data(), 1, line_.size(), file_) != line_.size() || std::fflush(file_) != 0)
-    throw std::runtime_error("cannot write '" + path_ + "': " + std::strerror(errno));
+  safe_file::write_all(file_, line_, path_);
+  mark_.bytes += line_.size();
+  mark_.hash = safe_file::fnv1a(line_, mark_.hash);
 }
 
 void SeriesWriter::close() {
   if (file_ == nullptr) return;
   std::FILE* f = std::exchange(file_, nullptr);
   if (std::fclose(f) != 0)
-    throw std::runtime_error("cannot close '" + path_ + "': " + std::strerror(errno));
+    throw OutputError("cannot close '" + path_ + "': " + std::strerror(errno));
 }
 
 } // namespace fluidem

@@ -3,12 +3,15 @@
 // Numbers: an integral value (|v| < 2^53) is written as an integer ("12", not "12.0"); any other
 // value with 10 significant digits ("%.10g"); non-finite values as nan, inf, -inf.
 //
-// Resume (continuing a run from a checkpoint, SeriesWriter::resume): the header of the existing
-// file must equal the run's columns; the leading rows whose first column (the time) is <= t_keep
-// are kept byte for byte, everything after them (rows written after the checkpoint, and an
-// incomplete last line left by a crash mid-write) is dropped. The file is rewritten atomically (a
-// temporary file next to it, synced, then renamed over it) and write_row appends from there.
+// Resume (continuing a run from a checkpoint, SeriesWriter::resume): the checkpoint records how
+// many bytes the run had written and their FNV-1a hash (mark()); the file must start with those
+// very bytes (the run's header and rows up to the checkpoint), else it belongs to another run or
+// stops short of the checkpoint (a gap) and is refused. Everything after them (rows written
+// after the checkpoint, an incomplete last line left by a crash) is dropped: the kept bytes are
+// copied to a temporary file, synced and renamed over the file, which write_row then appends to.
+// No file is ever written through a symbolic link.
 #pragma once
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -17,20 +20,23 @@ namespace fluidem {
 
 class SeriesWriter {
 public:
-  /// Create (truncate) `path` and write the header. Column names must be non-empty and must not
-  /// contain ',', '"' or a line break (std::invalid_argument). I/O errors: std::runtime_error.
+  /// What the file holds so far: its size and the FNV-1a hash of its bytes (for checkpoints).
+  struct Mark {
+    std::uint64_t bytes = 0;
+    std::uint64_t hash = 14695981039346656037ull; ///< FNV-1a offset basis: no bytes
+  };
+  /// Create `path` (a regular file there is replaced; a link or anything else is refused with
+  /// OutputError) and write the header. Column names must be non-empty and must not contain
+  /// ',', '"' or a line break (std::invalid_argument). I/O errors: OutputError.
   SeriesWriter(const std::string& path, std::vector<std::string> columns);
-  /// Continue the existing file `path` after a restart from a checkpoint: check that its header
-  /// is `columns` joined by ',' (else std::runtime_error naming the file, with both headers), keep
-  /// the leading complete rows whose first column is <= t_keep (the caller passes the checkpoint
-  /// time plus half a time step), drop the rest and any incomplete last line (no '\n'), rewrite
-  /// the file atomically (`path` + ".resume.tmp", then a rename), and append from there.
-  /// std::runtime_error naming the file: it does not exist or cannot be read or rewritten; it has
-  /// no complete header line; a complete kept line does not have columns.size() fields or its
-  /// first field is not a number (the message gives the line number). Bad column names, NaN
-  /// t_keep: std::invalid_argument.
+  /// Continue the existing file `path` after a restart from a checkpoint whose run had written
+  /// `mark`: the file must start with exactly those bytes, beginning with `columns` joined by
+  /// ',' (std::runtime_error naming the file and what differs: another header, another run's
+  /// rows, fewer bytes than the checkpoint's); later bytes are dropped atomically and write_row
+  /// appends from there. `check_only`: only check, and return a closed writer. Bad column
+  /// names: std::invalid_argument.
   static SeriesWriter resume(const std::string& path, std::vector<std::string> columns,
-                             double t_keep);
+                             const Mark& mark, bool check_only = false);
   ~SeriesWriter();
   SeriesWriter(SeriesWriter&& other) noexcept;
   SeriesWriter& operator=(SeriesWriter&& other) noexcept;
@@ -46,6 +52,8 @@ public:
   const std::string& path() const { return path_; }
   /// After resume(): how many data rows were kept (0 for a new file).
   std::size_t kept_rows() const { return kept_rows_; }
+  /// The bytes written to the file so far (the header included) and their hash.
+  const Mark& mark() const { return mark_; }
 
   /// How write_row prints one value (exposed for tests).
   static std::string format_value(double v);
@@ -53,6 +61,7 @@ public:
 private:
   SeriesWriter() = default; // for resume()
   void check_columns() const;
+  std::string header() const;
   void write_line();
 
   std::string path_;
@@ -60,6 +69,7 @@ private:
   std::FILE* file_ = nullptr;
   std::string line_; // reused for every row
   std::size_t kept_rows_ = 0;
+  Mark mark_;
 };
 
 } // namespace fluidem

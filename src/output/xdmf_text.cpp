@@ -1,5 +1,7 @@
 #include "output/xdmf_text.hpp"
 
+#include "output/safe_file.hpp"
+
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -45,25 +47,7 @@ std::string shortest(double v) {
 }
 
 void write_file_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) throw std::runtime_error("cannot write '" + tmp + "': " + std::strerror(errno));
-  const std::size_t written = std::fwrite(text.data(), 1, text.size(), f);
-  const bool write_failed = written != text.size();
-  const int write_errno = errno;
-  if (std::fclose(f) != 0 || write_failed) {
-    const int err = write_failed ? write_errno : errno;
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("cannot write '" + tmp + "': " + std::strerror(err));
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("cannot rename '" + tmp + "' to '" + path + "': " + ec.message());
-  }
+  safe_file::replace(path, text);
 }
 
 } // namespace fluidem::xdmf_text

@@ -8,8 +8,9 @@ namespace fluidem::xdmf_text {
 std::string xml_escape(const std::string& s);
 /// Shortest text that reads back as the same double.
 std::string shortest(double v);
-/// Writes `text` to `path` atomically: a temporary file `path.tmp`, then a rename, so that a
-/// reader never sees a half-written index. std::runtime_error naming the file on failure.
+/// Writes `text` to `path` atomically (safe_file::replace: a temporary file `path.tmp`, synced,
+/// then a rename; never through a link), so that a reader never sees a half-written index.
+/// OutputError naming the file on failure.
 void write_file_atomically(const std::string& path, const std::string& text);
 
 } // namespace fluidem::xdmf_text

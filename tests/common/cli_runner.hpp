@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -77,6 +78,47 @@ inline Result fluidem(const std::vector<std::string>& args, const fs::path& cwd)
   std::string cmd = quote(FLUIDEM_BINARY);
   for (const auto& a : args) cmd += " " + quote(a);
   return run_command(cmd, cwd);
+}
+
+/// Starts `fluidem ARGS...` in `cwd` with stdout/stderr to cwd/.stdout, .stderr; returns the pid.
+inline pid_t start_fluidem(const std::vector<std::string>& args, const fs::path& cwd) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (::chdir(cwd.c_str()) != 0) ::_exit(127);
+    const std::string out = (cwd / ".stdout").string(), err = (cwd / ".stderr").string();
+    if (!std::freopen(out.c_str(), "w", stdout) || !std::freopen(err.c_str(), "w", stderr))
+      ::_exit(127);
+    std::vector<char*> argv;
+    std::string bin = FLUIDEM_BINARY;
+    argv.push_back(bin.data());
+    std::vector<std::string> copy = args;
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(bin.c_str(), argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+/// Waits for a process of start_fluidem and collects its exit code (-1: killed) and streams.
+inline Result finish(pid_t pid, const fs::path& cwd) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  Result r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(cwd / ".stdout");
+  r.err = read_file(cwd / ".stderr");
+  return r;
+}
+
+/// The first column (time) of every row of a CSV file.
+inline std::vector<double> series_times(const fs::path& csv) {
+  std::istringstream in(read_file(csv));
+  std::string line;
+  std::vector<double> t;
+  std::getline(in, line); // header
+  while (std::getline(in, line)) t.push_back(std::stod(line.substr(0, line.find(','))));
+  return t;
 }
 
 inline bool contains(const std::string& text, const std::string& what) {

@@ -41,47 +41,12 @@ struct TempDir : fluidem::test::TempDir {
   TempDir() : fluidem::test::TempDir("fluidem_safety") {}
 };
 
-/// Starts `fluidem ARGS...` in `cwd` with stdout/stderr to files; returns the pid.
-pid_t start(const std::vector<std::string>& args, const fs::path& cwd) {
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    if (::chdir(cwd.c_str()) != 0) ::_exit(127);
-    const std::string out = (cwd / ".stdout").string(), err = (cwd / ".stderr").string();
-    if (!std::freopen(out.c_str(), "w", stdout) || !std::freopen(err.c_str(), "w", stderr))
-      ::_exit(127);
-    std::vector<char*> argv;
-    std::string bin = FLUIDEM_BINARY;
-    argv.push_back(bin.data());
-    std::vector<std::string> copy = args;
-    for (auto& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ::execv(bin.c_str(), argv.data());
-    ::_exit(127);
-  }
-  return pid;
-}
-
-Result finish(pid_t pid, const fs::path& cwd) {
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  Result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(cwd / ".stdout");
-  r.err = read_file(cwd / ".stderr");
-  return r;
-}
+using fluidem::test::finish;
+using fluidem::test::series_times;
+using fluidem::test::start_fluidem;
 
 Result fluidem(const std::vector<std::string>& args, const fs::path& cwd) {
-  return finish(start(args, cwd), cwd);
-}
-
-std::vector<double> series_times(const fs::path& csv) {
-  std::istringstream in(read_file(csv));
-  std::string line;
-  std::vector<double> t;
-  std::getline(in, line); // header
-  while (std::getline(in, line)) t.push_back(std::stod(line.substr(0, line.find(','))));
-  return t;
+  return finish(start_fluidem(args, cwd), cwd);
 }
 
 // Ten discs bouncing in a 2-D box for a long time (so that a signal finds the run going).
@@ -161,7 +126,7 @@ void signal_stops_and_restart_continues(int sig, int expected_code, const char* 
   TempDir dir;
   const fs::path c = dir.write("long.toml", kLong);
   const fs::path out = dir.path / "out";
-  const pid_t pid = start({"run", c.string(), "--out", out.string(), "--threads", "1"}, dir.path);
+  const pid_t pid = start_fluidem({"run", c.string(), "--out", out.string(), "--threads", "1"}, dir.path);
   // Wait until the run has written some rows (at most 60 s), then signal it.
   const auto t0 = std::chrono::steady_clock::now();
   while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60)) {

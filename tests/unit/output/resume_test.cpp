@@ -1,7 +1,9 @@
 // Resume of the output writers after a restart from a checkpoint: H5mdWriter::resume,
-// FieldsWriter::resume and SeriesWriter::resume keep exactly the frames/rows with time <= t_keep,
-// drop the rest (also frames or lines cut short by a crash), append after them, and refuse files
-// that do not match the run, naming the file. The XDMF indexes rewritten from the kept times
+// FieldsWriter::resume and SeriesWriter::resume keep exactly what the checkpoint recorded (the
+// frames' times and the run id; the CSV bytes and their hash), drop the rest (also frames or
+// lines cut short by a crash) in a copy renamed over the file, append after them, and refuse
+// files that do not match the run, belong to another run or stop short of the checkpoint,
+// naming the file and changing nothing. The XDMF indexes rewritten from the kept times
 // reference exactly the frames in the files (and, where pvpython is installed, ParaView reads
 // them).
 #include <gtest/gtest.h>
@@ -205,8 +207,18 @@ void expect_h5md_holds(const std::string& file, std::size_t n, const std::vector
   }
 }
 
-void write_old_run(const std::string& file, std::size_t n, int frames) {
-  H5mdWriter w(file, n, 2, "test", kBox, "tester");
+const std::string kRun = "0123456789abcdef0123456789abcdef";
+
+// The times of frames 0..count-1: what a checkpoint taken at frame count-1 records.
+std::vector<double> kept(int count) {
+  std::vector<double> t;
+  for (int k = 0; k < count; ++k) t.push_back(frame_time(k));
+  return t;
+}
+
+void write_old_run(const std::string& file, std::size_t n, int frames,
+                   const std::string& run = kRun) {
+  H5mdWriter w(file, n, 2, "test", kBox, "tester", false, run);
   for (int k = 0; k < frames; ++k) w.write_frame(100 * k, frame_time(k), make_frame(n, k, 0));
   w.close();
 }
@@ -267,8 +279,8 @@ void expect_fields_hold(const std::string& file, const std::vector<Frame>& frame
   }
 }
 
-void write_old_fields(const std::string& file, int frames) {
-  FieldsWriter w(file, small_grid(), kScalars, kVectors, "test");
+void write_old_fields(const std::string& file, int frames, const std::string& run = kRun) {
+  FieldsWriter w(file, small_grid(), kScalars, kVectors, "test", run);
   for (int k = 0; k < frames; ++k) write_fields_frame(w, k, 0);
   w.close();
 }
@@ -277,25 +289,31 @@ void write_old_fields(const std::string& file, int frames) {
 std::vector<Frame> expected_after_resume() {
   return {{0, 0}, {0, 1}, {0, 2}, {1, 3}, {1, 4}, {1, 5}, {1, 6}};
 }
-const double kKeep = 0.5 * (frame_time(2) + frame_time(3)); // checkpoint + half a step
+
+/// No file named `path` + anything ending in ".tmp" is left in its directory.
+void expect_no_temporaries(const std::string& path) {
+  for (const auto& e : fs::directory_iterator(fs::path(path).parent_path()))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+}
 
 } // namespace
 
 // ---- H5MD ----
 
-TEST(H5mdResume, KeepsFramesUpToTKeepThenAppends) {
+TEST(H5mdResume, KeepsTheCheckpointsFramesThenAppends) {
   TempDir dir;
   const std::string file = dir.file("particles.h5");
   const std::size_t n = 5;
   write_old_run(file, n, 6);
   // Resumed and closed at once (a crash before the next frame): only the kept frames remain.
-  H5mdWriter::resume(file, kKeep, n, 2, kBox).close();
+  H5mdWriter::resume(file, kept(3), kRun, n, 2, kBox).close();
   expect_h5md_holds(file, n, {{0, 0}, {0, 1}, {0, 2}});
+  expect_no_temporaries(file);
   {
-    H5mdWriter w = H5mdWriter::resume(file, kKeep, n, 2, kBox);
+    H5mdWriter w = H5mdWriter::resume(file, kept(3), kRun, n, 2, kBox);
     EXPECT_EQ(w.frames(), 3u);
     EXPECT_EQ(w.n_particles(), n);
-    EXPECT_EQ(w.kept_times(), (std::vector<double>{frame_time(0), frame_time(1), frame_time(2)}));
+    EXPECT_EQ(w.kept_times(), kept(3));
     for (int k = 3; k <= 6; ++k) w.write_frame(100 * k, frame_time(k), make_frame(n, k, 1));
     EXPECT_EQ(w.frames(), 7u);
     w.close();
@@ -313,16 +331,21 @@ TEST(H5mdResume, TwiceAndAtTheEdges) {
   const std::string file = dir.file("particles.h5");
   const std::size_t n = 3;
   write_old_run(file, n, 4);
-  // t_keep after the last frame keeps everything; appending continues the run.
+  const std::string bytes = slurp(file);
+  // A checkpoint at the last frame keeps everything, without rewriting the file.
   {
-    H5mdWriter w = H5mdWriter::resume(file, 1.0, n, 2, kBox);
+    H5mdWriter w = H5mdWriter::resume(file, kept(4), kRun, n, 2, kBox, false, true);
+    EXPECT_EQ(slurp(file), bytes);
+  }
+  {
+    H5mdWriter w = H5mdWriter::resume(file, kept(4), kRun, n, 2, kBox);
     EXPECT_EQ(w.frames(), 4u);
     w.write_frame(400, frame_time(4), make_frame(n, 4, 0));
   }
   expect_h5md_holds(file, n, {{0, 0}, {0, 1}, {0, 2}, {0, 3}, {0, 4}});
-  // t_keep before the first frame keeps none.
+  // A checkpoint before the first frame keeps none.
   {
-    H5mdWriter w = H5mdWriter::resume(file, -1.0, n, 2, kBox);
+    H5mdWriter w = H5mdWriter::resume(file, {}, kRun, n, 2, kBox);
     EXPECT_EQ(w.frames(), 0u);
     EXPECT_TRUE(w.kept_times().empty());
     w.write_frame(0, frame_time(0), make_frame(n, 0, 1));
@@ -339,7 +362,7 @@ TEST(H5mdResume, DropsAFrameCutShortByACrash) {
   extend_by_one(file, "/particles/all/position/step");
   extend_by_one(file, "/particles/all/position/time");
   {
-    H5mdWriter w = H5mdWriter::resume(file, 1.0, n, 2, kBox);
+    H5mdWriter w = H5mdWriter::resume(file, kept(3), kRun, n, 2, kBox);
     EXPECT_EQ(w.frames(), 3u);
     EXPECT_EQ(w.kept_times().size(), 3u);
     w.write_frame(300, frame_time(3), make_frame(n, 3, 1));
@@ -351,44 +374,74 @@ TEST(H5mdResume, MismatchIsAnErrorNamingTheFileAndWhatDiffers) {
   TempDir dir;
   const std::string file = dir.file("particles.h5");
   write_old_run(file, 5, 2);
-  std::string msg =
-      error_of<std::runtime_error>([&] { H5mdWriter::resume(file, 1.0, 6, 2, kBox); });
+  const std::string bytes = slurp(file);
+  const auto resume = [&](const std::vector<double>& times, const std::string& run,
+                          std::size_t n, int dim, const H5mdBox& box) {
+    return error_of<std::runtime_error>(
+        [&] { H5mdWriter::resume(file, times, run, n, dim, box); });
+  };
+  std::string msg = resume(kept(2), kRun, 6, 2, kBox);
   EXPECT_NE(msg.find(file), std::string::npos) << msg;
   EXPECT_NE(msg.find("5 particles in the file, 6 in the run"), std::string::npos) << msg;
-  msg = error_of<std::runtime_error>([&] { H5mdWriter::resume(file, 1.0, 5, 3, kBox); });
+  msg = resume(kept(2), kRun, 5, 3, kBox);
   EXPECT_NE(msg.find(file), std::string::npos) << msg;
   EXPECT_NE(msg.find("dimension 2 in the file, 3 in the run"), std::string::npos) << msg;
   H5mdBox other = kBox;
   other.hi[2] = 0.2;
-  msg = error_of<std::runtime_error>([&] { H5mdWriter::resume(file, 1.0, 5, 2, other); });
+  msg = resume(kept(2), kRun, 5, 2, other);
   EXPECT_NE(msg.find("box size along z"), std::string::npos) << msg;
   other = kBox;
   other.periodic[0] = false;
-  msg = error_of<std::runtime_error>([&] { H5mdWriter::resume(file, 1.0, 5, 2, other); });
+  msg = resume(kept(2), kRun, 5, 2, other);
   EXPECT_NE(msg.find("box boundary along x"), std::string::npos) << msg;
+  // Another run's file, a file that stops short of the checkpoint (a gap), other frames.
+  msg = resume(kept(2), "ffff", 5, 2, kBox);
+  EXPECT_NE(msg.find("belongs to run " + kRun + ", the checkpoint to run ffff"),
+            std::string::npos)
+      << msg;
+  msg = resume(kept(3), kRun, 5, 2, kBox);
+  EXPECT_NE(msg.find("holds 2 complete frames"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("gap"), std::string::npos) << msg;
+  msg = resume({frame_time(0), frame_time(2)}, kRun, 5, 2, kBox);
+  EXPECT_NE(msg.find("frame 1 is at t = "), std::string::npos) << msg;
   // The failed attempts changed nothing.
-  expect_h5md_holds(file, 5, {{0, 0}, {0, 1}});
+  EXPECT_EQ(slurp(file), bytes);
+  expect_no_temporaries(file);
 }
 
-TEST(H5mdResume, MissingOrNonHdf5FileIsAnErrorNamingTheFile) {
+TEST(H5mdResume, MissingOrNonHdf5FileOrALinkIsAnErrorNamingTheFile) {
   TempDir dir;
   const std::string missing = dir.file("missing.h5");
-  std::string msg =
-      error_of<std::runtime_error>([&] { H5mdWriter::resume(missing, 1.0, 5, 2, kBox); });
+  std::string msg = error_of<std::runtime_error>(
+      [&] { H5mdWriter::resume(missing, kept(1), kRun, 5, 2, kBox); });
   EXPECT_NE(msg.find(missing), std::string::npos) << msg;
   EXPECT_NE(msg.find("does not exist"), std::string::npos) << msg;
   const std::string text = dir.file("text.h5");
   { std::ofstream(text) << "not hdf5\n"; }
-  msg = error_of<std::runtime_error>([&] { H5mdWriter::resume(text, 1.0, 5, 2, kBox); });
+  msg = error_of<std::runtime_error>(
+      [&] { H5mdWriter::resume(text, kept(1), kRun, 5, 2, kBox); });
   EXPECT_NE(msg.find(text), std::string::npos) << msg;
   EXPECT_NE(msg.find("not a readable HDF5 file"), std::string::npos) << msg;
   // An HDF5 file of another kind (a fields file): the missing layout is named.
   const std::string fields = dir.file("fields.h5");
   write_old_fields(fields, 1);
-  msg = error_of<std::runtime_error>([&] { H5mdWriter::resume(fields, 1.0, 5, 2, kBox); });
+  msg = error_of<std::runtime_error>(
+      [&] { H5mdWriter::resume(fields, kept(1), kRun, 5, 2, kBox); });
   EXPECT_NE(msg.find(fields), std::string::npos) << msg;
   EXPECT_NE(msg.find("parameters"), std::string::npos) << msg;
-  EXPECT_THROW(H5mdWriter::resume(fields, std::nan(""), 5, 2, kBox), std::invalid_argument);
+  // A link to a good file is not followed.
+  const std::string real = dir.file("real.h5"), link = dir.file("link.h5");
+  write_old_run(real, 5, 2);
+  fs::create_symlink(real, link);
+  msg = error_of<std::runtime_error>(
+      [&] { H5mdWriter::resume(link, kept(2), kRun, 5, 2, kBox); });
+  EXPECT_NE(msg.find("symbolic link"), std::string::npos) << msg;
+  // Nor does a new file write through one (dangling or not).
+  const std::string dangling = dir.file("dangling.h5");
+  fs::create_symlink(dir.file("target.h5"), dangling);
+  msg = error_of<std::runtime_error>([&] { H5mdWriter w(dangling, 5, 2, "test", kBox); });
+  EXPECT_NE(msg.find("symbolic link"), std::string::npos) << msg;
+  EXPECT_FALSE(fs::exists(dir.file("target.h5")));
 }
 
 TEST(H5mdResume, XdmfFromTheKeptTimesReferencesEveryFrame) {
@@ -398,7 +451,7 @@ TEST(H5mdResume, XdmfFromTheKeptTimesReferencesEveryFrame) {
   const std::size_t n = 4;
   std::vector<double> times;
   {
-    H5mdWriter w(file, n, 2, "test", kBox, "tester");
+    H5mdWriter w(file, n, 2, "test", kBox, "tester", false, kRun);
     for (int k = 0; k < 6; ++k) {
       w.write_frame(100 * k, frame_time(k), make_frame(n, k, 0));
       times.push_back(frame_time(k));
@@ -406,7 +459,7 @@ TEST(H5mdResume, XdmfFromTheKeptTimesReferencesEveryFrame) {
     }
   }
   {
-    H5mdWriter w = H5mdWriter::resume(file, kKeep, n, 2, kBox);
+    H5mdWriter w = H5mdWriter::resume(file, kept(3), kRun, n, 2, kBox);
     times = w.kept_times();
     fluidem::write_particles_xdmf(xmf, "particles.h5", n, times);
     EXPECT_EQ(count(slurp(xmf), "<Time Value="), 3u);
@@ -450,17 +503,18 @@ print("ok")
 
 // ---- fields ----
 
-TEST(FieldsResume, KeepsFramesUpToTKeepThenAppends) {
+TEST(FieldsResume, KeepsTheCheckpointsFramesThenAppends) {
   TempDir dir;
   const std::string file = dir.file("fields.h5");
   write_old_fields(file, 6);
   // Resumed and closed at once (a crash before the next frame): only the kept frames remain.
-  FieldsWriter::resume(file, kKeep, small_grid(), kScalars, kVectors).close();
+  FieldsWriter::resume(file, kept(3), kRun, small_grid(), kScalars, kVectors).close();
   expect_fields_hold(file, {{0, 0}, {0, 1}, {0, 2}});
+  expect_no_temporaries(file);
   {
-    FieldsWriter w = FieldsWriter::resume(file, kKeep, small_grid(), kScalars, kVectors);
+    FieldsWriter w = FieldsWriter::resume(file, kept(3), kRun, small_grid(), kScalars, kVectors);
     EXPECT_EQ(w.frames(), 3u);
-    EXPECT_EQ(w.kept_times(), (std::vector<double>{frame_time(0), frame_time(1), frame_time(2)}));
+    EXPECT_EQ(w.kept_times(), kept(3));
     EXPECT_EQ(w.scalar_names(), kScalars);
     for (int k = 3; k <= 6; ++k) write_fields_frame(w, k, 1);
     EXPECT_EQ(w.frames(), 7u);
@@ -482,9 +536,9 @@ TEST(FieldsResume, DropsAFrameCutShortByACrash) {
     H5Dclose(d);
     H5Fclose(f);
   }
-  extend_by_one(file, "/fields/time"); // and a time with a fill value 0 (<= t_keep)
+  extend_by_one(file, "/fields/time"); // and a time with a fill value 0
   {
-    FieldsWriter w = FieldsWriter::resume(file, 1.0, small_grid(), kScalars, kVectors);
+    FieldsWriter w = FieldsWriter::resume(file, kept(3), kRun, small_grid(), kScalars, kVectors);
     EXPECT_EQ(w.frames(), 3u);
     write_fields_frame(w, 3, 1);
   }
@@ -495,32 +549,41 @@ TEST(FieldsResume, MismatchIsAnErrorNamingTheFileAndWhatDiffers) {
   TempDir dir;
   const std::string file = dir.file("fields.h5");
   write_old_fields(file, 2);
+  const std::string bytes = slurp(file);
+  const auto resume = [&](const FieldGrid& g, const std::vector<std::string>& scalars,
+                          const std::vector<std::string>& vectors,
+                          const std::vector<double>& times = kept(2),
+                          const std::string& run = kRun) {
+    return error_of<std::runtime_error>(
+        [&] { FieldsWriter::resume(file, times, run, g, scalars, vectors); });
+  };
   FieldGrid g = small_grid();
   g.cells[0] = 4;
-  std::string msg =
-      error_of<std::runtime_error>([&] { FieldsWriter::resume(file, 1.0, g, kScalars, kVectors); });
+  std::string msg = resume(g, kScalars, kVectors);
   EXPECT_NE(msg.find(file), std::string::npos) << msg;
   EXPECT_NE(msg.find("grid cells along x: 3 in the file, 4 in the run"), std::string::npos) << msg;
   g = small_grid();
   g.spacing[2] *= 1.001;
-  msg =
-      error_of<std::runtime_error>([&] { FieldsWriter::resume(file, 1.0, g, kScalars, kVectors); });
+  msg = resume(g, kScalars, kVectors);
   EXPECT_NE(msg.find("grid spacing along z"), std::string::npos) << msg;
-  msg = error_of<std::runtime_error>([&] {
-    FieldsWriter::resume(file, 1.0, small_grid(), {"pressure", "porosity"}, kVectors);
-  });
+  msg = resume(small_grid(), {"pressure", "porosity"}, kVectors);
   EXPECT_NE(msg.find(file), std::string::npos) << msg;
   EXPECT_NE(msg.find("scalar fields [porosity, pressure] in the file, [pressure, porosity]"),
             std::string::npos)
       << msg;
-  msg = error_of<std::runtime_error>(
-      [&] { FieldsWriter::resume(file, 1.0, small_grid(), kScalars, {}); });
+  msg = resume(small_grid(), kScalars, {});
   EXPECT_NE(msg.find("vector fields [gas_velocity] in the file, [] in the run"), std::string::npos)
       << msg;
+  msg = resume(small_grid(), kScalars, kVectors, kept(2), "ffff");
+  EXPECT_NE(msg.find("belongs to run"), std::string::npos) << msg;
+  msg = resume(small_grid(), kScalars, kVectors, kept(4));
+  EXPECT_NE(msg.find("gap"), std::string::npos) << msg;
   const std::string missing = dir.file("missing.h5");
-  msg = error_of<std::runtime_error>(
-      [&] { FieldsWriter::resume(missing, 1.0, small_grid(), kScalars, kVectors); });
+  msg = error_of<std::runtime_error>([&] {
+    FieldsWriter::resume(missing, kept(1), kRun, small_grid(), kScalars, kVectors);
+  });
   EXPECT_NE(msg.find(missing), std::string::npos) << msg;
+  EXPECT_EQ(slurp(file), bytes);
   expect_fields_hold(file, {{0, 0}, {0, 1}});
 }
 
@@ -531,7 +594,7 @@ TEST(FieldsResume, XdmfFromTheKeptTimesReferencesEveryFrame) {
   write_old_fields(file, 6);
   std::vector<double> times;
   {
-    FieldsWriter w = FieldsWriter::resume(file, kKeep, small_grid(), kScalars, kVectors);
+    FieldsWriter w = FieldsWriter::resume(file, kept(3), kRun, small_grid(), kScalars, kVectors);
     times = w.kept_times();
     for (int k = 3; k <= 6; ++k) {
       write_fields_frame(w, k, 1);
@@ -548,73 +611,85 @@ TEST(FieldsResume, XdmfFromTheKeptTimesReferencesEveryFrame) {
 
 // ---- series ----
 
-TEST(SeriesResume, KeepsRowsUpToTKeepThenAppends) {
+// A series of 6 rows; `mark` gets what the file held after 3 (a checkpoint there).
+void write_old_series(const std::string& file, const std::vector<std::string>& columns,
+                      SeriesWriter::Mark& mark) {
+  SeriesWriter s(file, columns);
+  for (int k = 0; k < 6; ++k) {
+    s.write_row({frame_time(k), 0.5 * k, static_cast<double>(k)});
+    if (k == 2) mark = s.mark();
+  }
+}
+
+TEST(SeriesResume, KeepsTheCheckpointsBytesThenAppends) {
   TempDir dir;
   const std::string file = dir.file("series.csv");
   const std::vector<std::string> columns{"time", "e_kin", "n"};
+  SeriesWriter::Mark mark;
+  write_old_series(file, columns, mark);
+  const std::string kept_text =
+      "time,e_kin,n\n0,0,0\n0.0003333333333,0.5,1\n0.0006666666667,1,2\n";
+  EXPECT_EQ(mark.bytes, kept_text.size());
   {
-    SeriesWriter s(file, columns);
-    for (int k = 0; k < 6; ++k) s.write_row({frame_time(k), 0.5 * k, static_cast<double>(k)});
-  }
-  {
-    SeriesWriter s = SeriesWriter::resume(file, columns, kKeep);
+    SeriesWriter s = SeriesWriter::resume(file, columns, mark);
     EXPECT_EQ(s.kept_rows(), 3u);
     EXPECT_EQ(s.columns(), columns);
-    EXPECT_EQ(slurp(file), "time,e_kin,n\n0,0,0\n0.0003333333333,0.5,1\n0.0006666666667,1,2\n");
+    EXPECT_EQ(slurp(file), kept_text);
     for (int k = 3; k <= 4; ++k) s.write_row({frame_time(k), -1.0 * k, 10.0 * k});
     s.close();
+    // The mark goes on from the checkpoint's: a second restart finds the same bytes.
+    EXPECT_EQ(s.mark().bytes, slurp(file).size());
   }
-  EXPECT_EQ(slurp(file), "time,e_kin,n\n0,0,0\n0.0003333333333,0.5,1\n0.0006666666667,1,2\n"
-                         "0.001,-3,30\n0.001333333333,-4,40\n");
-  EXPECT_FALSE(fs::exists(file + ".resume.tmp"));
+  EXPECT_EQ(slurp(file), kept_text + "0.001,-3,30\n0.001333333333,-4,40\n");
+  expect_no_temporaries(file);
 }
 
 TEST(SeriesResume, DropsATruncatedLastLine) {
   TempDir dir;
   const std::string file = dir.file("probes.csv");
-  { std::ofstream(file, std::ios::binary) << "time,p1\n0,1.5\n0.1,2.5\n0.2,3"; }
+  SeriesWriter::Mark mark;
   {
-    SeriesWriter s = SeriesWriter::resume(file, {"time", "p1"}, 1.0);
+    SeriesWriter s(file, {"time", "p1"});
+    s.write_row({0.0, 1.5});
+    s.write_row({0.1, 2.5});
+    mark = s.mark();
+  }
+  { std::ofstream(file, std::ios::app | std::ios::binary) << "0.2,3"; } // a crash mid-row
+  {
+    SeriesWriter s = SeriesWriter::resume(file, {"time", "p1"}, mark);
     EXPECT_EQ(s.kept_rows(), 2u);
     s.write_row({0.2, 3.5});
   }
   EXPECT_EQ(slurp(file), "time,p1\n0,1.5\n0.1,2.5\n0.2,3.5\n");
-  // A line cut inside its first field is dropped too, even with t_keep far away.
-  { std::ofstream(file, std::ios::binary) << "time,p1\n0,1.5\n0."; }
-  {
-    SeriesWriter s = SeriesWriter::resume(file, {"time", "p1"}, 1.0);
-    EXPECT_EQ(s.kept_rows(), 1u);
-  }
-  EXPECT_EQ(slurp(file), "time,p1\n0,1.5\n");
-  // Only a header.
-  { std::ofstream(file, std::ios::binary) << "time,p1\n"; }
-  EXPECT_EQ(SeriesWriter::resume(file, {"time", "p1"}, 1.0).kept_rows(), 0u);
-  EXPECT_EQ(slurp(file), "time,p1\n");
 }
 
-TEST(SeriesResume, WrongHeaderOrBadRowIsAnErrorNamingTheFile) {
+TEST(SeriesResume, AnotherRunsRowsAGapOrAnotherHeaderIsAnErrorNamingTheFile) {
   TempDir dir;
   const std::string file = dir.file("series.csv");
-  const std::string content = "time,e_kin\n0,1\n0.1,2\n";
-  { std::ofstream(file, std::ios::binary) << content; }
-  std::string msg = error_of<std::runtime_error>([&] {
-    SeriesWriter::resume(file, {"time", "e_kin", "e_rot"}, 1.0);
-  });
+  const std::vector<std::string> columns{"time", "e_kin", "n"};
+  SeriesWriter::Mark mark;
+  write_old_series(file, columns, mark);
+  const std::string content = slurp(file);
+  std::string msg = error_of<std::runtime_error>(
+      [&] { SeriesWriter::resume(file, {"time", "e_kin", "e_rot"}, mark); });
   EXPECT_NE(msg.find(file), std::string::npos) << msg;
-  EXPECT_NE(msg.find("'time,e_kin' in the file, 'time,e_kin,e_rot' in the run"), std::string::npos)
+  EXPECT_NE(msg.find("its header 'time,e_kin,n' is not the run's, 'time,e_kin,e_rot'"),
+            std::string::npos)
       << msg;
-  EXPECT_EQ(slurp(file), content); // untouched
-  { std::ofstream(file, std::ios::binary) << "time,e_kin\n0,1\nx,2\n0.2,3\n"; }
-  msg = error_of<std::runtime_error>([&] { SeriesWriter::resume(file, {"time", "e_kin"}, 1.0); });
-  EXPECT_NE(msg.find(file), std::string::npos) << msg;
-  EXPECT_NE(msg.find("line 3"), std::string::npos) << msg;
-  { std::ofstream(file, std::ios::binary) << "time,e_ki"; }
-  msg = error_of<std::runtime_error>([&] { SeriesWriter::resume(file, {"time", "e_kin"}, 1.0); });
-  EXPECT_NE(msg.find("no complete header line"), std::string::npos) << msg;
+  // One digit of a kept row changed: another run's rows.
+  std::string other = content;
+  other[other.find("0.5,1")] = '9';
+  { std::ofstream(file, std::ios::binary) << other; }
+  msg = error_of<std::runtime_error>([&] { SeriesWriter::resume(file, columns, mark); });
+  EXPECT_NE(msg.find("another run's rows"), std::string::npos) << msg;
+  EXPECT_EQ(slurp(file), other); // untouched
+  // Cut before the checkpoint's rows end: a gap.
+  { std::ofstream(file, std::ios::binary) << content.substr(0, mark.bytes - 5); }
+  msg = error_of<std::runtime_error>([&] { SeriesWriter::resume(file, columns, mark); });
+  EXPECT_NE(msg.find("gap"), std::string::npos) << msg;
   const std::string missing = dir.file("missing.csv");
-  msg = error_of<std::runtime_error>([&] {
-    SeriesWriter::resume(missing, {"time", "e_kin"}, 1.0);
-  });
+  msg = error_of<std::runtime_error>([&] { SeriesWriter::resume(missing, columns, mark); });
   EXPECT_NE(msg.find(missing), std::string::npos) << msg;
   EXPECT_FALSE(fs::exists(missing));
+  expect_no_temporaries(file);
 }
