@@ -25,7 +25,7 @@ for f in cases/*/*.toml bench/cases/*.toml; do
   cp "$f" "$work/corpus/seed-$i-$(basename "$f")"
   i=$((i + 1))
 done
-# The reader only checks that an insert file exists: empty stand-ins in the fuzzer's folder let
+# The reader only checks that an insert file is a readable file: empty stand-ins in the fuzzer's folder let
 # the seeds with placement = "file" get past [[insert]] to [gas] and [coupling].
 for name in $(sed -n 's/^ *file *= *"\([A-Za-z0-9_.-]*\)".*/\1/p' cases/*/*.toml bench/cases/*.toml |
   sort -u); do

@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "contact/hertz_damping.hpp"
 #include "contact/kernels/normal_force.hpp"
 #include "core/material_mixing.hpp"
@@ -42,7 +44,7 @@ double auto_characteristic_velocity(const CaseSpec& spec) {
 
 } // namespace
 
-ContactTable::ContactTable(const CaseSpec& spec)
+ContactTable::ContactTable(const CaseSpec& spec, std::vector<bool> with_particles)
     : n_(static_cast<int>(spec.species.size())), normal_(spec.contact.normal),
       tangential_(spec.contact.tangential), rolling_(spec.contact.rolling) {
   const auto& c = spec.contact;
@@ -92,41 +94,61 @@ ContactTable::ContactTable(const CaseSpec& spec)
     return p;
   };
 
-  pp_.resize(n_ * n_);
-  pw_.resize(n_ * 6);
+  // Only species with particles meet: the others get no coefficients, no durations and no say
+  // in the time step.
+  used_ = std::move(with_particles);
+  if (used_.empty()) used_.assign(n_, true);
+  const std::vector<bool>& used = used_;
+  pp_.resize(static_cast<std::size_t>(n_) * n_);
+  pw_.resize(static_cast<std::size_t>(n_) * 6);
   t_contact_min_ = std::numeric_limits<double>::infinity();
   for (int i = 0; i < n_; ++i) {
     const auto& si = spec.species[i];
     const double ri = 0.5 * si.diameter, mi = sphere_mass(ri, si.density);
-    for (int j = 0; j < n_; ++j) {
+    for (int j = 0; j < n_ && used[i]; ++j) {
+      if (!used[j]) continue;
       const auto& sj = spec.species[j];
       pp_[i * n_ + j] =
           make(si.material, sj.material, false, "species[" + std::to_string(j) + "].restitution");
       if (j < i) continue;
       const double rj = 0.5 * sj.diameter, mj = sphere_mass(rj, sj.density);
-      const double t = contact_duration(mi * mj / (mi + mj), ri * rj / (ri + rj), pp_[i * n_ + j]);
-      rows_.push_back({si.name + "-" + sj.name, t});
+      const double t =
+          contact_duration(mi * mj / (mi + mj), ri * rj / (ri + rj), pp_[i * n_ + j], false);
+      rows_.push_back({si.name + "-" + sj.name, t, i, j, -1});
       t_contact_min_ = std::min(t_contact_min_, t);
     }
+    // Every species has its wall coefficients (6 per species: the contact loop compares them to
+    // find walls alike for all species).
     for (int f = 0; f < 6; ++f) {
       pw_[i * 6 + f] = make(si.material, spec.domain.wall_material[f], true,
                             std::string("walls.") + kFaceNames[f] + ".restitution");
-      if (spec.domain.periodic[f / 2]) continue;
+      if (!used[i] || spec.domain.periodic[f / 2]) continue;
       if (spec.simulation.dimension == 2 && f / 2 == 1) continue; // no y walls for discs
-      const double t = contact_duration(mi, ri, pw_[i * 6 + f]);
-      rows_.push_back({si.name + "-wall " + kFaceNames[f], t});
+      const double t = contact_duration(mi, ri, pw_[i * 6 + f], true);
+      rows_.push_back({si.name + "-wall " + kFaceNames[f], t, i, i, f});
       t_contact_min_ = std::min(t_contact_min_, t);
     }
   }
 }
 
-double ContactTable::contact_duration(double m_eff, double r_eff, const PairParams& p) const {
+MemoryShare ContactTable::memory_share(const CaseSpec& spec) {
+  const auto n = static_cast<double>(spec.species.size());
+  return {"species",
+          fmt::format("the contact coefficients of {:.0f} species ({:.3g} pairs)", n, n * n),
+          n * n * static_cast<double>(sizeof(PairParams)) +
+              n * 6.0 * static_cast<double>(sizeof(PairParams))};
+}
+
+double ContactTable::contact_duration(double m_eff, double r_eff, const PairParams& p,
+                                      bool wall) const {
   if (normal_ == NormalModel::Linear) {
     const double le = p.restitution > 0.0 ? std::log(p.restitution) : 0.0;
     // [Deen07 eq. 41]; for e = 0 the critically damped limit is taken as pi sqrt(m/k).
     return std::sqrt(m_eff * (std::numbers::pi * std::numbers::pi + le * le) / p.kn);
   }
-  return hertz_contact_duration(m_eff, p.kn * std::sqrt(r_eff), p.normal_damping, v_char_);
+  // Hertz [Johnson 1985, eq. 11.24 for e = 1]: a pair's relative speed, not one particle's.
+  return hertz_contact_duration(m_eff, p.kn * std::sqrt(r_eff), p.normal_damping,
+                                impact_speed(wall));
 }
 
 } // namespace fluidem

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/case_spec.hpp"
+#include "core/memory_budget.hpp"
 
 namespace fluidem {
 
@@ -30,30 +31,49 @@ class ContactTable {
 public:
   /// Build from the case. Throws InputError (naming the key) for a model that is named but
   /// not implemented, or parameters the model cannot accept (Hertz with e = 0).
-  explicit ContactTable(const CaseSpec& spec);
+  /// `with_particles[s]` is false for a species no particle has (empty: every species has
+  /// some): it gets no pair coefficients (they are never read), no durations and no say in the
+  /// time step.
+  explicit ContactTable(const CaseSpec& spec, std::vector<bool> with_particles = {});
 
   const PairParams& pair(int si, int sj) const { return pp_[si * n_ + sj]; }
   const PairParams& wall(int s, int face) const { return pw_[s * 6 + face]; }
   int species_count() const { return n_; }
+  /// Whether species s has coefficients with the other species (the constructor's
+  /// with_particles).
+  bool has_particles(int s) const { return used_[s]; }
   NormalModel normal() const { return normal_; }
   TangentialModel tangential() const { return tangential_; }
   RollingModel rolling() const { return rolling_; }
 
-  /// The impact speed used for Hertz contact durations, m/s (case value or the automatic one:
-  /// free fall over the domain height plus the fastest insertion speed, at least 0.1 m/s).
+  /// The speed of a particle used for Hertz contact durations, m/s (case value or the automatic
+  /// one: free fall over the domain height plus the fastest insertion speed, at least 0.1 m/s).
   double characteristic_velocity() const { return v_char_; }
+  /// The impact speed of a Hertz contact duration, m/s: a particle at the characteristic
+  /// velocity hits a wall at that speed, and two such particles meet head-on at twice it.
+  double impact_speed(bool wall) const { return wall ? v_char_ : 2.0 * v_char_; }
 
-  /// Normal contact duration of a head-on impact at the characteristic velocity, s:
-  /// linear [Deen07 eq. 41]; Hertz from the damped impact (contact/hertz_damping.hpp).
-  double contact_duration(double m_eff, double r_eff, const PairParams& p) const;
-  /// Shortest contact duration over all species pairs and walls, s.
+  /// Normal contact duration of a head-on impact, s: linear [Deen07 eq. 41]; Hertz from the
+  /// damped impact (contact/hertz_damping.hpp) at impact_speed(wall).
+  double contact_duration(double m_eff, double r_eff, const PairParams& p, bool wall) const;
+  /// Shortest contact duration over the species pairs and walls that can meet, s.
   double shortest_contact_duration() const { return t_contact_min_; }
 
   struct DurationRow {
-    std::string pair; ///< e.g. "glass-glass" or "glass-wall z_lo"
-    double duration;  ///< s
+    std::string pair;  ///< e.g. "glass-glass" or "glass-wall z_lo"
+    double duration;   ///< s
+    int species_a = 0; ///< the pair's species (indices into CaseSpec::species)
+    int species_b = 0; ///< (the same as species_a for a wall)
+    int face = -1;     ///< the wall face (0..5), -1 for a particle pair
   };
+  /// The contact durations of the pairs that can meet: the species with particles with each
+  /// other and with the walls.
   const std::vector<DurationRow>& durations() const { return rows_; }
+
+  /// The memory of the table for the case's species, bytes: every species pair has its
+  /// coefficients (the contact loop indexes them by species), so it grows with the square of
+  /// the species count.
+  static MemoryShare memory_share(const CaseSpec& spec);
 
 private:
   int n_ = 0;
@@ -63,6 +83,7 @@ private:
   double v_char_ = 1.0;
   double t_contact_min_ = 0.0;
   std::vector<PairParams> pp_, pw_;
+  std::vector<bool> used_;
   std::vector<DurationRow> rows_;
 };
 

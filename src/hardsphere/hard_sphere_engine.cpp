@@ -116,11 +116,8 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
   for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, p.radius[i]);
   const double cell_size = 2.0 * rmax + skin_;
   std::array<double, 3> inv_cell{};
-  for (int a = 0; a < 3; ++a) {
-    const double l = box_.length(a);
-    ncell_[a] = std::clamp(static_cast<int>(std::floor(l / cell_size)), 1, 1 << 20);
-    inv_cell[a] = ncell_[a] / l;
-  }
+  ncell_ = grid_cells(box_, cell_size);
+  for (int a = 0; a < 3; ++a) inv_cell[a] = ncell_[a] / box_.length(a);
   const std::size_t ncells = static_cast<std::size_t>(ncell_[0]) * ncell_[1] * ncell_[2];
   particle_cell_.resize(n);
   const std::array<const double*, 3> pos{p.x.data(), p.y.data(), p.z.data()};

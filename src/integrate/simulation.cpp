@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -15,6 +16,8 @@
 #include "core/nearest_integer.hpp"
 #include "core/parallel.hpp"
 #include "fluidem_version.hpp"
+#include "integrate/contact_time_limit.hpp"
+#include "integrate/memory_estimate.hpp"
 #include "io/case_writer.hpp"
 #include "neighbour/spatial_order.hpp"
 #include "output/fields_writer.hpp"
@@ -126,7 +129,17 @@ Simulation::Simulation(CaseSpec spec) : Simulation(std::move(spec), nullptr) {}
 
 Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std::move(spec)) {
   const bool hard = spec_.simulation.engine == Engine::HardSphere;
-  if (!hard) table_ = std::make_unique<ContactTable>(spec_);
+  // Memory first: no table, particle or grid is allocated for a case that cannot fit.
+  require_memory(spec_, case_memory_shares(spec_));
+  if (!hard) {
+    // The species with particles: those of the [[insert]] blocks (a restart's particles were
+    // inserted by the same blocks).
+    std::vector<bool> used(spec_.species.size(), false);
+    for (const InsertSpec& ins : spec_.inserts)
+      if (const int s = spec_.species_index(ins.species); s >= 0) used[s] = true;
+    table_ = std::make_unique<ContactTable>(spec_, std::move(used));
+    check_contact_durations(spec_, *table_, kMinStepsPerContact, kMaxSteps);
+  }
   if (initial) {
     p_ = *initial;
   } else {
@@ -149,6 +162,20 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
   for (const auto& s : spec_.species) dmax = std::max(dmax, s.diameter);
   for (const double im : p_.inv_mass) max_inv_mass_ = std::max(max_inv_mass_, im);
   const double skin = spec_.neighbour.skin ? *spec_.neighbour.skin : 0.2 * dmax;
+  if (table_)
+    for (const int s : p_.species) // (every particle's species has its contact coefficients)
+      if (!table_->has_particles(s))
+        throw std::logic_error("a particle of species " + spec_.species[s].name +
+                               ", which no [[insert]] names");
+  {
+    // With the particles known: the cell grid of the lists (the event-driven engine's skin
+    // changes with its steps: cells as narrow as the largest diameter bound it).
+    double rmax = 0.0;
+    for (const double r : p_.radius) rmax = std::max(rmax, r);
+    auto shares = case_memory_shares(spec_, static_cast<double>(p_.size()));
+    shares.push_back(cell_grid_share(spec_, box_from(spec_), 2.0 * rmax + (hard ? 0.0 : skin)));
+    require_memory(spec_, shares);
+  }
 
   if (spec_.output.collisions) {
     CollisionStatistics::Settings cs;

@@ -1,7 +1,9 @@
 #include "io/case_reader.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -10,8 +12,10 @@
 #include <set>
 #include <sstream>
 #include <toml++/toml.h>
+#include <unordered_map>
 #include <utility>
 
+#include "core/input_file.hpp"
 #include "io/case_writer.hpp"
 #include "io/key_suggest.hpp"
 
@@ -1005,6 +1009,7 @@ private:
   void read_species(const toml::table& root) {
     const toml::array& arr =
         table_array(root, "species", "each with a name, a diameter and a density");
+    std::unordered_map<std::string, int> index; // names seen: the check is linear in the count
     for (std::size_t i = 0; i < arr.size(); ++i) {
       const toml::table* t = arr.get(i)->as_table();
       const std::string p = "species[" + std::to_string(i) + "]";
@@ -1015,8 +1020,9 @@ private:
       s.name = str_value(*name, p + ".name", name_rule);
       if (s.name.empty())
         throw InputError(name->where, p + ".name", "is empty (allowed: " + name_rule + ")");
-      const int other = spec_.species_index(s.name);
-      if (other >= 0)
+      const auto [seen, fresh] = index.emplace(s.name, static_cast<int>(i));
+      const int other = seen->second;
+      if (!fresh)
         throw InputError(name->where, p + ".name",
                          "duplicate species name " + in_quotes(s.name) + ", also species[" +
                              std::to_string(other) + "] at " +
@@ -1083,9 +1089,14 @@ private:
         if (path.is_relative()) path = base_ / path;
         std::error_code ec;
         path = fs::absolute(path, ec).lexically_normal();
-        if (ec || !fs::is_regular_file(path, ec))
+        if (ec)
           throw InputError(file->where, p + ".file",
                            "file not found: " + path.string() + " (allowed: " + rule + ")");
+        if (const auto problem = input_file_problem(path.string()))
+          throw InputError(file->where, p + ".file",
+                           (*problem == "does not exist" ? "file not found: " + path.string()
+                                                         : path.string() + " " + *problem) +
+                               " (allowed: " + rule + ")");
         in.file = path.string();
       }
 
@@ -1773,16 +1784,17 @@ CaseSpec read_case_string(const std::string& text, const std::string& source_nam
 }
 
 CaseSpec read_case_file(const std::string& path, const std::vector<std::string>& overrides) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec))
-    throw InputError(SourceLocation{path, 0, 0}, "",
-                     "is a folder, not a case file (allowed: a TOML case file)");
+  const std::string allowed = " (allowed: a readable TOML case file)";
+  if (const auto problem = input_file_problem(path, /*allow_pipe=*/true))
+    throw InputError(SourceLocation{path, 0, 0}, "", *problem + allowed);
+  errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw InputError(SourceLocation{path, 0, 0}, "",
-                     "cannot open the case file (allowed: a readable TOML file)");
+                     "cannot be opened: " + std::string(std::strerror(errno)) + allowed);
   std::ostringstream ss;
   ss << in.rdbuf();
+  if (in.bad()) throw InputError(SourceLocation{path, 0, 0}, "", read_failure(errno) + allowed);
   return read_case_string(ss.str(), path, overrides);
 }
 

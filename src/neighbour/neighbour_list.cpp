@@ -28,15 +28,17 @@ bool NeighbourList::needs_rebuild(const ParticleStore& p) const {
                       [&](std::size_t i) { return moved_far(i, p.x[i], p.y[i], p.z[i]); });
 }
 
+std::array<int, 3> grid_cells(const BoxGeometry& box, double cell_size) {
+  std::array<int, 3> n{};
+  for (int a = 0; a < 3; ++a) // (in double first: a tiny cell would overflow the int)
+    n[a] = static_cast<int>(std::clamp(std::floor(box.length(a) / cell_size), 1.0, 1048576.0));
+  return n;
+}
+
 void NeighbourList::build_cells(const ParticleStore& p, double cell_size) {
   const std::size_t n = p.size();
-  for (int a = 0; a < 3; ++a) {
-    const double l = box_.length(a);
-    int nc = static_cast<int>(std::floor(l / cell_size));
-    nc = std::clamp(nc, 1, 1 << 20);
-    ncell_[a] = nc;
-    inv_cell_[a] = nc / l;
-  }
+  ncell_ = grid_cells(box_, cell_size);
+  for (int a = 0; a < 3; ++a) inv_cell_[a] = ncell_[a] / box_.length(a);
   const std::size_t ncells = static_cast<std::size_t>(ncell_[0]) * ncell_[1] * ncell_[2];
   particle_cell_.resize(n);
   const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};

@@ -26,6 +26,11 @@ struct BoxGeometry {
   double length(int a) const { return hi[a] - lo[a]; }
 };
 
+/// Cells along each axis of a grid of cells at least `cell_size` wide over the box: the grid the
+/// lists bin particles in (at least 1 and at most 2^20 per axis). Their product is refused
+/// before a run when the cells would not fit in memory or in a 32-bit cell index.
+std::array<int, 3> grid_cells(const BoxGeometry& box, double cell_size);
+
 class NeighbourList {
 public:
   /// history_width: doubles of history per contact (0, 3 or 6).

@@ -1,15 +1,17 @@
 #include "particles/insertion.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <random>
 #include <sstream>
 #include <unordered_map>
 
 #include <fmt/format.h>
+
+#include "core/input_file.hpp"
+#include "core/memory_budget.hpp"
 
 namespace fluidem {
 
@@ -63,8 +65,9 @@ struct Candidate {
 
 std::vector<Candidate> read_lammps_data(const CaseSpec& spec, const InsertSpec& ins,
                                         const std::string& key, double density) {
+  if (const auto problem = input_file_problem(ins.file))
+    throw InputError(spec.where(key + ".file"), key + ".file", ins.file + " " + *problem);
   std::ifstream in(ins.file);
-  if (!in) throw InputError(spec.where(key + ".file"), key + ".file", "cannot open " + ins.file);
   std::string line;
   long natoms = -1;
   std::vector<Candidate> out;
@@ -104,6 +107,42 @@ std::vector<Candidate> read_lammps_data(const CaseSpec& spec, const InsertSpec& 
   return out;
 }
 
+/// Refuses at once a random insertion that cannot fit: more particles than random sequential
+/// addition places in the region before it jams (docs/case-file.md, [[insert]]). The bound is
+/// the jamming fraction of an unbounded space, an area fraction of 0.547069 for discs
+/// [Hinrichsen, Feder & Jossang, J. Stat. Phys. 44 (1986) 793] and a volume fraction of 0.384131
+/// for spheres [Zhang & Torquato, Phys. Rev. E 88 (2013) 053312], of the region's area
+/// (volume), plus one particle per diameter of its edge (d^2 of its surface) for the packing
+/// against the edges, which can exceed the bulk fraction in a region a few diameters wide
+/// (tools/rsa_limit.py: in no region tried does random addition reach the bound).
+void check_random_fill(const CaseSpec& spec, const InsertSpec& ins, const std::string& key,
+                       double d, bool two_d) {
+  std::vector<double> sides;
+  for (int a = 0; a < 3; ++a)
+    if (!(two_d && a == 1)) sides.push_back((ins.region_hi[a] - ins.region_lo[a]) / d);
+  double size = 1.0, edge = 0.0; // in diameters: area or volume, perimeter or surface
+  for (std::size_t a = 0; a < sides.size(); ++a) {
+    size *= sides[a];
+    edge += two_d ? 2.0 * sides[a] : 2.0 * sides[a] * sides[(a + 1) % 3];
+  }
+  const double jamming = two_d ? 0.547069 : 0.384131;
+  const double particle = two_d ? std::numbers::pi / 4.0 : std::numbers::pi / 6.0; // d = 1
+  const double limit = std::floor(jamming * size / particle + edge);
+  if (static_cast<double>(ins.count) <= limit) return;
+  const double fill = static_cast<double>(ins.count) * particle / size;
+  throw InputError(
+      spec.where(key + ".count"), key + ".count",
+      fmt::format("{} {} of diameter {} m would cover {:.3g}{} the region's {} of {:.3g} {}; "
+                  "random insertion jams at {} [{}]: no more than {:.0f} fit in this region (that "
+                  "fraction of it, plus one particle per diameter of its edge) (allowed: at most "
+                  "{:.0f}; enlarge the region, or use placement = \"lattice\")",
+                  ins.count, two_d ? "discs" : "spheres", d, fill, fill > 1.0 ? " times" : " of",
+                  two_d ? "area" : "volume", size * (two_d ? d * d : d * d * d),
+                  two_d ? "m^2" : "m^3",
+                  two_d ? "an area fraction of 0.547" : "a volume fraction of 0.384",
+                  two_d ? "Hinrichsen et al. 1986" : "Zhang & Torquato 2013", limit, limit));
+}
+
 } // namespace
 
 void insert_particles(const CaseSpec& spec, ParticleStore& store) {
@@ -114,20 +153,7 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
   for (const auto& s : spec.species) dmax = std::max(dmax, s.diameter);
   InsertionGrid grid(std::max(dmax, 1e-12));
   const double tol = spec.simulation.insertion_overlap_tolerance;
-  // Memory: about 1 kB per particle in a run (arrays, neighbour list, contact history, output
-  // buffers); more particles than the machine's memory holds is an input error, not a crash.
-  {
-    double requested = 0.0;
-    for (const auto& ins : spec.inserts)
-      if (ins.placement != Placement::File) requested += static_cast<double>(ins.count);
-    const double ram = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
-                       static_cast<double>(::sysconf(_SC_PAGE_SIZE));
-    if (ram > 0.0 && requested * 1000.0 > ram)
-      throw InputError(spec.where("insert"), "insert.count",
-                       fmt::format("{:.3g} particles need about {:.3g} GB of memory, this "
-                                   "machine has {:.3g} GB",
-                                   requested, requested * 1e-6, ram * 1e-9));
-  }
+  require_memory(spec, {particle_memory_share(spec)});
 
   for (std::size_t k = 0; k < spec.inserts.size(); ++k) {
     const auto& ins = spec.inserts[k];
@@ -166,6 +192,7 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
     };
 
     if (ins.placement == Placement::Random) {
+      check_random_fill(spec, ins, key, sp.diameter, two_d);
       const long max_attempts = 2000 * ins.count + 100000;
       long placed = 0, attempts = 0;
       while (placed < ins.count && attempts < max_attempts) {
@@ -258,6 +285,19 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
     }
     check.add(i, x);
   }
+}
+
+MemoryShare particle_memory_share(const CaseSpec& spec) {
+  double requested = 0.0, largest = -1.0;
+  std::string key = "insert";
+  for (std::size_t k = 0; k < spec.inserts.size(); ++k) {
+    const auto& ins = spec.inserts[k];
+    if (ins.placement == Placement::File) continue;
+    const auto count = static_cast<double>(ins.count);
+    requested += count;
+    if (count > largest) largest = count, key = "insert[" + std::to_string(k) + "].count";
+  }
+  return {key, fmt::format("{:.3g} particles", requested), requested * kBytesPerParticle};
 }
 
 } // namespace fluidem

@@ -3,6 +3,7 @@
 // id type diameter density x y z). In 2-D every centre lies at the mid-plane y.
 #pragma once
 #include "core/case_spec.hpp"
+#include "core/memory_budget.hpp"
 #include "particles/particle_store.hpp"
 
 namespace fluidem {
@@ -11,5 +12,12 @@ namespace fluidem {
 /// particles do not fit, a file is malformed, a particle lies outside the domain, or two
 /// particles overlap by more than simulation.insertion_overlap_tolerance x the smaller diameter.
 void insert_particles(const CaseSpec& spec, ParticleStore& store);
+
+/// Memory of a run per particle, bytes: the particle arrays, the neighbour list and its contact
+/// history, the output buffers (a run reports what it used: "memory N bytes per particle").
+inline constexpr double kBytesPerParticle = 1000.0;
+/// The share of the particles the [[insert]] blocks ask for (a file's are counted as it is read),
+/// keyed to the block asking the most.
+MemoryShare particle_memory_share(const CaseSpec& spec);
 
 } // namespace fluidem

@@ -87,5 +87,29 @@ TEST(FuzzRegressions, OverflowingCountAndDomainWidthAreInputErrors) {
   }
 }
 
+// Issue 32, item 10: an insert file that is a directory or a device was "file not found". (The
+// other inputs of items 9-10 in the corpus read as valid cases: what they ask for is refused
+// when the run is set up, app/bad_input_test.cpp.)
+TEST(FuzzRegressions, InsertFileThatIsNotARegularFileSaysWhatItIs) {
+  const fs::path dir = fs::path(FLUIDEM_SOURCE_DIR) / "tests" / "data" / "fuzz";
+  const std::pair<const char*, const char*> cases[] = {
+      {"insert_file_directory.toml", "is a directory, not a file (allowed: a LAMMPS data file"},
+      {"insert_file_dev_zero.toml",
+       "insert[0].file: /dev/zero is a character device, not a regular file"}};
+  for (const auto& [file, message] : cases) {
+    SCOPED_TRACE(file);
+    const Outcome o = read_like_the_fuzzer(slurp(dir / file));
+    EXPECT_FALSE(o.valid);
+    EXPECT_NE(o.error.find(message), std::string::npos) << o.error;
+  }
+  for (const char* file : {"memory_gas_cells_1e10.toml", "memory_continuum_cells_1e10.toml",
+                           "memory_domain_1000m_cell_grid.toml", "species_1000_unused.toml",
+                           "insert_random_100000_discs.toml", "species_diameter_1e-300.toml",
+                           "contact_stiffness_1e300.toml"}) {
+    SCOPED_TRACE(file);
+    EXPECT_TRUE(read_like_the_fuzzer(slurp(dir / file)).valid);
+  }
+}
+
 } // namespace
 } // namespace fluidem

@@ -1,0 +1,83 @@
+#include "integrate/memory_estimate.hpp"
+
+#include <cstdint>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "contact/contact_table.hpp"
+#include "hardsphere/collision_operator.hpp"
+#include "particles/insertion.hpp"
+
+namespace fluidem {
+
+namespace {
+
+/// A coupled run per gas cell, bytes: the solver's fields and matrices, hypre's multigrid
+/// hierarchy, porosity and exchange fields, the fields writer. Measured: maximum resident size
+/// of `fluidem run` (3-D, model A, ideal gas, 10 particles) at 40^3, 80^3 and 100^3 cells:
+/// 84, 406 and 750 MB, i.e. 723-728 bytes per cell (2026-12, this tree).
+constexpr double kGasBytesPerCell = 750.0;
+/// A run with [output.continuum] per averaging cell, bytes: the 36 running sums, the 35 fields
+/// of a result and the writer's copy. Measured as above at 40^3 and 100^3 cells: 110 and 899 MB,
+/// 864 bytes per cell.
+constexpr double kContinuumBytesPerCell = 870.0;
+/// A cell grid of the neighbour lists per cell, bytes: the start of its particles and a fill
+/// counter (NeighbourList::build_cells, HardSphereEngine::build_list), 32 bits each.
+constexpr double kCellGridBytesPerCell = 2.0 * sizeof(std::uint32_t);
+
+double product(const std::array<int, 3>& n) {
+  return static_cast<double>(n[0]) * static_cast<double>(n[1]) * static_cast<double>(n[2]);
+}
+
+} // namespace
+
+std::vector<MemoryShare> case_memory_shares(const CaseSpec& spec, std::optional<double> particles) {
+  std::vector<MemoryShare> shares;
+  MemoryShare p = particle_memory_share(spec);
+  if (particles) {
+    p.what = fmt::format("{:.3g} particles", *particles);
+    p.bytes = *particles * kBytesPerParticle;
+  }
+  shares.push_back(p);
+  if (spec.simulation.engine == Engine::HardSphere) {
+    const auto n = static_cast<double>(spec.species.size());
+    shares.push_back({"species",
+                      fmt::format("the collision laws of {:.0f} species ({:.3g} pairs)", n, n * n),
+                      n * (n + 6.0) * static_cast<double>(sizeof(hardsphere::CollisionLaw))});
+  } else {
+    shares.push_back(ContactTable::memory_share(spec));
+  }
+  if (spec.gas) {
+    const double cells = product(spec.gas->cells);
+    shares.push_back({"gas.cells", fmt::format("the gas grid of {:.3g} cells", cells),
+                      cells * kGasBytesPerCell});
+  }
+  if (spec.output.continuum) {
+    const double cells = product(spec.output.continuum->cells);
+    shares.push_back({"output.continuum.cells",
+                      fmt::format("the continuum averaging grid of {:.3g} cells", cells),
+                      cells * kContinuumBytesPerCell});
+  }
+  return shares;
+}
+
+MemoryShare cell_grid_share(const CaseSpec& spec, const BoxGeometry& box, double cell_size) {
+  const std::array<int, 3> n = grid_cells(box, cell_size);
+  const double cells = product(n);
+  const std::string what =
+      fmt::format("the neighbour-list cell grid of {:.3g} cells ({} x {} x {} of {:.3g} m: the "
+                  "largest diameter plus the skin) over the domain",
+                  cells, n[0], n[1], n[2], cell_size);
+  // The cell of a particle is a 32-bit index (and the grid's starts count to cells + 1).
+  const double max_cells = static_cast<double>(std::numeric_limits<std::uint32_t>::max()) - 1.0;
+  if (cells > max_cells)
+    throw InputError(spec.where("domain.hi"), "domain.hi",
+                     fmt::format("{} has more cells than its 32-bit cell index counts (allowed: "
+                                 "at most {:.0f} cells; a smaller domain, larger particles or a "
+                                 "larger neighbour.skin)",
+                                 what, max_cells));
+  return {"domain.hi", what, cells * kCellGridBytesPerCell};
+}
+
+} // namespace fluidem
