@@ -4,10 +4,11 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string>
 
 #include <fmt/format.h>
 
-#include "contact/hertz_damping.hpp"
+#include "contact/kernels/normal_damping.hpp"
 #include "contact/kernels/normal_force.hpp"
 #include "core/material_mixing.hpp"
 #include "particles/particle_store.hpp"
@@ -16,12 +17,21 @@ namespace fluidem {
 
 namespace {
 
+// A rigid wall (youngs_modulus = inf) adds nothing: the particle's compliance alone remains.
 double inv_e_part(const MaterialSpec& m) {
   return (1.0 - m.poisson_ratio * m.poisson_ratio) / m.youngs_modulus;
 }
 double inv_g_part(const MaterialSpec& m) {
-  const double g = m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
-  return (2.0 - m.poisson_ratio) / g;
+  return (2.0 - m.poisson_ratio) / shear_modulus_of(m);
+}
+
+/// Why a soft-sphere contact refuses e = 0 (docs/contact.md).
+std::string plastic_limit_message() {
+  return "e = 0 (a fully plastic impact) cannot be reached by a soft-sphere contact (allowed: "
+         "(0, 1]): its normal force never pulls, so a damped impact always rebounds, and e goes "
+         "to 0 only as the damping grows without bound (e = 0.01 needs the damping ratio 4.8, "
+         "e = 0.001 needs 16). Give a small e such as 0.01 for a nearly plastic impact "
+         "(docs/contact.md), or use simulation.engine = \"hard_sphere\", which takes e = 0 exactly";
 }
 
 double auto_characteristic_velocity(const CaseSpec& spec) {
@@ -56,12 +66,19 @@ ContactTable::ContactTable(const CaseSpec& spec, std::vector<bool> with_particle
   v_char_ =
       c.characteristic_velocity ? *c.characteristic_velocity : auto_characteristic_velocity(spec);
 
+  if (normal_ == NormalModel::Hertz && c.stiffness_ratio) {
+    throw InputError(spec.where("contact.stiffness_ratio"), "contact.stiffness_ratio",
+                     "not allowed with normal = \"hertz\" (Mindlin's k_t = 8 G* sqrt(R* delta) "
+                     "follows from the materials: set poisson_ratio or shear_modulus per "
+                     "species and wall)");
+  }
   auto make = [&](const MaterialSpec& a, const MaterialSpec& b, bool wall, const std::string& key) {
     PairParams p;
     const MixedCoefficients mixed = wall ? wall_coefficients(b) : mix_pair(a, b);
     const double e = mixed.restitution;
     const double beta0 = mixed.tangential_restitution;
-    p.mu = mixed.friction;
+    if (!(e > 0.0)) throw InputError(spec.where(key), key, plastic_limit_message());
+    p.mu = mixed.friction; // inf: never sliding (tangential_spring)
     p.mu_r = mixed.rolling_friction;
     p.restitution = e;
     p.e_star = 1.0 / (inv_e_part(a) + inv_e_part(b));
@@ -69,26 +86,21 @@ ContactTable::ContactTable(const CaseSpec& spec, std::vector<bool> with_particle
     p.rolling_damping = kernels::restitution_damping_factor(e);
     if (normal_ == NormalModel::Linear) {
       p.kn = c.stiffness;
-      p.normal_damping = kernels::restitution_damping_factor(e);
-      // [Deen07 eq. 43]: equal normal and tangential contact durations.
+      p.normal_damping = kernels::linear_damping_factor(e);
+      // [Deen07 eq. 43]: equal normal and tangential contact durations [Deen07 eq. 41-42] (for
+      // a force that may pull; kept as published).
       const double lb = beta0 > 0.0 ? std::log(beta0) : 0.0;
-      const double le = e > 0.0 ? std::log(e) : 0.0;
+      const double le = std::log(e);
       const double pi2 = std::numbers::pi * std::numbers::pi;
       const double ratio =
           c.stiffness_ratio ? *c.stiffness_ratio : 2.0 / 7.0 * (pi2 + lb * lb) / (pi2 + le * le);
       p.kt = ratio * p.kn;
     } else {
-      if (e <= 0.0) {
-        throw InputError(spec.where(key), key,
-                         "the Hertz model needs restitution > 0 (allowed: (0, 1]); use "
-                         "contact.normal = \"linear\" for e = 0");
-      }
       p.kn = 4.0 / 3.0 * p.e_star;
-      p.normal_damping = hertz_damping_alpha(e);
-      // Mindlin k_t = 8 G* sqrt(R* delta) [Chang08 eq. 2.16]; a given ratio multiplies the
-      // tangent normal stiffness dF/d(delta) = 2 E* sqrt(R* delta).
-      p.kt = c.stiffness_ratio ? *c.stiffness_ratio * 2.0 * p.e_star
-                               : 8.0 / (inv_g_part(a) + inv_g_part(b));
+      p.normal_damping = kernels::hertz_damping_alpha(e);
+      // Mindlin k_t = 8 G* sqrt(R* delta) [Chang08 eq. 2.16], 1/G* = (2 - nu_a)/G_a +
+      // (2 - nu_b)/G_b [Zhu07 Table 1].
+      p.kt = 8.0 / (inv_g_part(a) + inv_g_part(b));
     }
     p.tangential_root = std::sqrt(2.0 * p.kt / (7.0 * p.kn));
     return p;
@@ -119,15 +131,23 @@ ContactTable::ContactTable(const CaseSpec& spec, std::vector<bool> with_particle
     }
     // Every species has its wall coefficients (6 per species: the contact loop compares them to
     // find walls alike for all species).
+    int first_wall = -1;
     for (int f = 0; f < 6; ++f) {
+      // A face on a periodic axis (or a y face of discs) has no contacts: its material is not
+      // checked, and it takes the parameters of a face that has (walls_uniform in the loop).
+      if (spec.domain.periodic[f / 2]) continue;
+      if (spec.simulation.dimension == 2 && f / 2 == 1) continue; // no y walls for discs
       pw_[i * 6 + f] = make(si.material, spec.domain.wall_material[f], true,
                             std::string("walls.") + kFaceNames[f] + ".restitution");
-      if (!used[i] || spec.domain.periodic[f / 2]) continue;
-      if (spec.simulation.dimension == 2 && f / 2 == 1) continue; // no y walls for discs
+      if (first_wall < 0) first_wall = f;
+      if (!used[i]) continue;
       const double t = contact_duration(mi, ri, pw_[i * 6 + f], true);
       rows_.push_back({si.name + "-wall " + kFaceNames[f], t, i, i, f});
       t_contact_min_ = std::min(t_contact_min_, t);
     }
+    for (int f = 0; f < 6 && first_wall >= 0; ++f)
+      if (spec.domain.periodic[f / 2] || (spec.simulation.dimension == 2 && f / 2 == 1))
+        pw_[i * 6 + f] = pw_[i * 6 + first_wall];
   }
 }
 
@@ -141,14 +161,13 @@ MemoryShare ContactTable::memory_share(const CaseSpec& spec) {
 
 double ContactTable::contact_duration(double m_eff, double r_eff, const PairParams& p,
                                       bool wall) const {
-  if (normal_ == NormalModel::Linear) {
-    const double le = p.restitution > 0.0 ? std::log(p.restitution) : 0.0;
-    // [Deen07 eq. 41]; for e = 0 the critically damped limit is taken as pi sqrt(m/k).
-    return std::sqrt(m_eff * (std::numbers::pi * std::numbers::pi + le * le) / p.kn);
-  }
-  // Hertz [Johnson 1985, eq. 11.24 for e = 1]: a pair's relative speed, not one particle's.
-  return hertz_contact_duration(m_eff, p.kn * std::sqrt(r_eff), p.normal_damping,
-                                impact_speed(wall));
+  // The force pulse, which ends when the floored force vanishes (normal_damping.hpp): shorter
+  // than the time the overlap lasts ([Deen07 eq. 41] for a force that may pull). Hertz at
+  // impact_speed(wall): a pair's relative speed, not one particle's.
+  if (normal_ == NormalModel::Linear)
+    return kernels::linear_contact_duration(m_eff, p.kn, p.normal_damping);
+  return kernels::hertz_contact_duration(m_eff, p.kn * std::sqrt(r_eff), p.normal_damping,
+                                         impact_speed(wall));
 }
 
 } // namespace fluidem

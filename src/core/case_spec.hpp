@@ -18,13 +18,19 @@ namespace fluidem {
 
 /// Contact material of a species or a wall [Zhu07 Table 1; Deen07 eq. 11-21, 43].
 struct MaterialSpec {
-  double youngs_modulus = 1.0e7;       ///< E, Pa
-  double poisson_ratio = 0.25;         ///< nu, -
-  double restitution = 0.9;            ///< e_n in [0,1]
-  double friction = 0.3;               ///< Coulomb mu >= 0
+  double youngs_modulus = 1.0e7;       ///< E, Pa; +inf: a rigid wall (walls only)
+  double poisson_ratio = 0.25;         ///< nu, - (from shear_modulus when that is given)
+  std::optional<double> shear_modulus; ///< G, Pa, when given instead of nu (nu = E/(2G) - 1)
+  double restitution = 0.9;            ///< e_n in [0,1] (soft spheres: (0, 1])
+  double friction = 0.3;               ///< Coulomb mu >= 0; +inf: never sliding
   double tangential_restitution = 0.0; ///< beta_0 in [0,1] [Deen07 eq. 19, 43]
   double rolling_friction = 0.0;       ///< mu_r >= 0, dimensionless (torque = mu_r R* |F_n|)
 };
+
+/// G of a material: the given one, or E / (2 (1 + nu)) (+inf for a rigid wall).
+inline double shear_modulus_of(const MaterialSpec& m) {
+  return m.shear_modulus ? *m.shear_modulus : m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
+}
 
 struct SpeciesSpec {
   std::string name;

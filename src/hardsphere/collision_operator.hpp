@@ -10,7 +10,8 @@
 //   J_n = -(1 + e_n) m_n (v_ab,0 . n),                1/m_n = 1/m_a + 1/m_b          [eq. 20]
 //   J_t = -(1 + beta_0) m_t (v_ab,0 . t)  (sticking), 1/m_t = 1/m_n + R_a^2/I_a + R_b^2/I_b
 //   J_t = -mu J_n                          (sliding, if mu J_n < (1 + beta_0) m_t |v_t|) [eq. 21]
-// For solid spheres m_t = 2/7 m_ab, which is [Deen07 eq. 21] as printed.
+// For solid spheres m_t = 2/7 m_ab, which is [Deen07 eq. 21] as printed. mu = inf (friction =
+// inf in the case) is the sticking limit: mu J_n = inf for every approaching pair (J_n > 0).
 #pragma once
 #include <cmath>
 

@@ -70,8 +70,9 @@ const Keys& domain_keys() {
   return k;
 }
 const Keys& material_keys() {
-  static const Keys k = {"youngs_modulus", "poisson_ratio",          "restitution",
-                         "friction",       "tangential_restitution", "rolling_friction"};
+  static const Keys k = {"youngs_modulus",  "poisson_ratio", "shear_modulus",
+                         "restitution",     "friction",      "tangential_restitution",
+                         "rolling_friction"};
   return k;
 }
 const Keys& face_keys() {
@@ -271,7 +272,17 @@ std::string describe(const toml::node& n) {
 // ---------------------------------------------------------------------------------------------
 // Number rules: the allowed range of a real-valued key, and its unit.
 
-enum class Bound { Any, Positive, NonNegative, AtLeastOne, Unit, Poisson, OpenUnit, HalfOpenUnit };
+enum class Bound {
+  Any,
+  Positive,
+  NonNegative,
+  NonNegativeOrInf, ///< >= 0, or +inf (friction: never sliding)
+  AtLeastOne,
+  Unit,
+  Poisson,
+  OpenUnit,
+  HalfOpenUnit
+};
 
 struct NumRule {
   Bound bound;
@@ -285,6 +296,7 @@ bool in_bound(double x, Bound b) {
   case Bound::Positive:
     return x > 0;
   case Bound::NonNegative:
+  case Bound::NonNegativeOrInf:
     return x >= 0;
   case Bound::AtLeastOne:
     return x >= 1;
@@ -311,6 +323,9 @@ std::string allowed(NumRule r) {
     break;
   case Bound::NonNegative:
     s = "a number >= 0";
+    break;
+  case Bound::NonNegativeOrInf:
+    s = "a number >= 0, or inf";
     break;
   case Bound::AtLeastOne:
     s = "a number >= 1";
@@ -679,7 +694,8 @@ private:
     else
       throw InputError(e.where, path,
                        "expected a number, got " + describe(n) + " (allowed: " + allowed(r) + ")");
-    if (!std::isfinite(x) || !in_bound(x, r.bound))
+    const bool inf_allowed = r.bound == Bound::NonNegativeOrInf && x > 0.0;
+    if (std::isnan(x) || (std::isinf(x) && !inf_allowed) || !in_bound(x, r.bound))
       throw InputError(e.where, path,
                        format_double(x) + " is out of range (allowed: " + allowed(r) + ")");
     return x;
@@ -846,11 +862,65 @@ private:
     }
   }
 
+  /// The material keys of `t` (prefix: "species[i]", "walls" or "walls.FACE") over `m` (the
+  /// defaults, or a face's [walls] values). Walls may be rigid (youngs_modulus = "rigid").
   void read_material(const toml::table* t, const std::string& prefix, MaterialSpec& m) {
-    opt_number(t, prefix, "youngs_modulus", {Bound::Positive, "Pa"}, m.youngs_modulus);
-    opt_number(t, prefix, "poisson_ratio", {Bound::Poisson, ""}, m.poisson_ratio);
+    const bool wall = prefix.starts_with("walls");
+    const NumRule modulus{Bound::Positive, "Pa"};
+    std::optional<Entry> e_entry, nu_entry, g_entry;
+    if (t != nullptr) {
+      e_entry = find(*t, "youngs_modulus", prefix + ".youngs_modulus");
+      nu_entry = find(*t, "poisson_ratio", prefix + ".poisson_ratio");
+      g_entry = find(*t, "shear_modulus", prefix + ".shear_modulus");
+    }
+    if (e_entry) {
+      const std::string path = prefix + ".youngs_modulus";
+      const std::string rule = allowed(modulus) + (wall ? ", or \"rigid\" (infinitely stiff)"
+                                                        : " (only walls can be "
+                                                          "\"rigid\")");
+      if (const auto s = e_entry->node->value_exact<std::string>()) {
+        if (!wall || *s != "rigid")
+          throw InputError(e_entry->where, path,
+                           "expected a number, got " + describe(*e_entry->node) +
+                               " (allowed: " + rule + ")");
+        m.youngs_modulus = std::numeric_limits<double>::infinity();
+      } else {
+        m.youngs_modulus = number(*e_entry, path, modulus);
+      }
+    }
+    if (nu_entry && g_entry)
+      throw InputError(g_entry->where, prefix + ".shear_modulus",
+                       "not allowed together with poisson_ratio (at " + nu_entry->where.str() +
+                           "): give one of them (G = E / (2 (1 + nu)))");
+    if (nu_entry) {
+      m.poisson_ratio = number(*nu_entry, prefix + ".poisson_ratio", {Bound::Poisson, ""});
+      m.shear_modulus.reset();
+    }
+    if (g_entry) m.shear_modulus = number(*g_entry, prefix + ".shear_modulus", modulus);
+    if (m.shear_modulus) {
+      // nu from E and G; a face that inherits G from [walls] and overrides E is checked too.
+      const auto& at = g_entry ? g_entry : e_entry;
+      const SourceLocation where = at ? at->where : spec_.where(prefix + ".shear_modulus");
+      const std::string path =
+          prefix + (g_entry || !e_entry ? ".shear_modulus" : ".youngs_modulus");
+      const double g = *m.shear_modulus, e = m.youngs_modulus;
+      if (std::isinf(e))
+        throw InputError(where, path,
+                         "a rigid wall (youngs_modulus = \"rigid\") takes no shear_modulus: it has "
+                         "no compliance (allowed: a finite youngs_modulus with the shear_modulus, "
+                         "or \"rigid\" alone)");
+      const double nu = e / (2.0 * g) - 1.0;
+      if (!(nu >= 0.0 && nu < 0.5))
+        throw InputError(where, path,
+                         "shear_modulus G = " + format_double(g) +
+                             " Pa with youngs_modulus E = " + format_double(e) +
+                             " Pa gives poisson_ratio E/(2G) - 1 = " + format_double(nu) +
+                             " (allowed: G in (E/3, E/2], i.e. poisson_ratio in "
+                             "[0, 0.5))");
+      m.poisson_ratio = nu;
+    }
     opt_number(t, prefix, "restitution", {Bound::Unit, ""}, m.restitution);
-    opt_number(t, prefix, "friction", {Bound::NonNegative, ""}, m.friction);
+    opt_number(t, prefix, "friction", {Bound::NonNegativeOrInf, ""}, m.friction);
     opt_number(t, prefix, "tangential_restitution", {Bound::Unit, ""}, m.tangential_restitution);
     opt_number(t, prefix, "rolling_friction", {Bound::NonNegative, ""}, m.rolling_friction);
   }
@@ -1154,6 +1224,12 @@ private:
         t, p, "tangential",
         {{"history", TangentialModel::History}, {"none", TangentialModel::None}}, c.tangential);
     auto_number(t, p, "stiffness_ratio", {Bound::Positive, ""}, c.stiffness_ratio);
+    if (c.normal == NormalModel::Hertz && c.stiffness_ratio)
+      throw InputError(spec_.where(p + ".stiffness_ratio"), p + ".stiffness_ratio",
+                       "not allowed with normal = \"hertz\" (allowed: \"auto\"): Mindlin's "
+                       "k_t = 8 G* sqrt(R* delta) follows from the materials; set poisson_ratio or "
+                       "shear_modulus per species and wall");
+    if (c.normal == NormalModel::Linear) check_linear_materials();
     opt_enum<RollingModel>(t, p, "rolling",
                            {{"none", RollingModel::None},
                             {"constant_torque", RollingModel::ConstantTorque},
@@ -1162,6 +1238,36 @@ private:
     auto_number(t, p, "characteristic_velocity", {Bound::Positive, "m/s"},
                 c.characteristic_velocity);
     opt_number(t, p, "max_overlap", {Bound::OpenUnit, ""}, c.max_overlap);
+  }
+
+  /// The linear model's stiffnesses are contact keys, the same for every contact: refuse the
+  /// material keys that would only act with Hertz (a shear modulus, a rigid wall) instead of
+  /// ignoring them. (youngs_modulus and poisson_ratio, which every material has, are unused.)
+  void check_linear_materials() const {
+    const std::string why = "not allowed with contact.normal = \"linear\", whose stiffnesses are "
+                            "contact.stiffness and contact.stiffness_ratio for every contact, "
+                            "walls included (the materials' elastic constants act only with "
+                            "normal = \"hertz\")";
+    for (std::size_t i = 0; i < spec_.species.size(); ++i)
+      if (spec_.species[i].material.shear_modulus) {
+        const std::string key = "species[" + std::to_string(i) + "].shear_modulus";
+        throw InputError(spec_.where(key), key, why);
+      }
+    for (int f = 0; f < 6; ++f) {
+      if (spec_.domain.periodic[f / 2] || (spec_.simulation.dimension == 2 && f / 2 == 1))
+        continue; // no contacts on this face
+      const MaterialSpec& m = spec_.domain.wall_material[f];
+      // The face's own key, or the [walls] one it inherits.
+      auto key_of = [&](const std::string& k) {
+        const std::string face = std::string("walls.") + kFaceNames[f] + "." + k;
+        return spec_.locations.contains(face) ? face : "walls." + k;
+      };
+      if (m.shear_modulus)
+        throw InputError(spec_.where(key_of("shear_modulus")), key_of("shear_modulus"), why);
+      if (std::isinf(m.youngs_modulus))
+        throw InputError(spec_.where(key_of("youngs_modulus")), key_of("youngs_modulus"),
+                         "= \"rigid\" " + why);
+    }
   }
 
   void read_neighbour(const toml::table* t) {

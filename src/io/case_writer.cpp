@@ -1,6 +1,7 @@
 #include "io/case_writer.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -69,15 +70,23 @@ std::string auto_or(const std::optional<double>& v) {
 
 bool same(const MaterialSpec& a, const MaterialSpec& b) {
   return a.youngs_modulus == b.youngs_modulus && a.poisson_ratio == b.poisson_ratio &&
-         a.restitution == b.restitution && a.friction == b.friction &&
-         a.tangential_restitution == b.tangential_restitution &&
+         a.shear_modulus == b.shear_modulus && a.restitution == b.restitution &&
+         a.friction == b.friction && a.tangential_restitution == b.tangential_restitution &&
          a.rolling_friction == b.rolling_friction;
 }
 
 void write_material(std::ostream& os, const MaterialSpec& m) {
-  os << "youngs_modulus = " << format_double(m.youngs_modulus) << "  # Pa\n"
-     << "poisson_ratio = " << format_double(m.poisson_ratio) << "\n"
-     << "restitution = " << format_double(m.restitution) << "\n"
+  // A rigid wall as the reader takes it; the shear modulus when it was given (poisson_ratio
+  // follows from it), else the Poisson ratio; friction = inf reads back as TOML's inf.
+  if (std::isinf(m.youngs_modulus))
+    os << "youngs_modulus = \"rigid\"\n";
+  else
+    os << "youngs_modulus = " << format_double(m.youngs_modulus) << "  # Pa\n";
+  if (m.shear_modulus)
+    os << "shear_modulus = " << format_double(*m.shear_modulus) << "  # Pa\n";
+  else
+    os << "poisson_ratio = " << format_double(m.poisson_ratio) << "\n";
+  os << "restitution = " << format_double(m.restitution) << "\n"
      << "friction = " << format_double(m.friction) << "\n"
      << "tangential_restitution = " << format_double(m.tangential_restitution) << "\n"
      << "rolling_friction = " << format_double(m.rolling_friction) << "\n";

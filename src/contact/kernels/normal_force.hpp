@@ -1,15 +1,20 @@
 // Normal contact force kernels: stateless, inlined into the pair loop, tested one by one.
 //
-// Linear spring-dashpot [Deen07 eq. 24-27]:
-//   F_n = -k_n delta n - eta_n v_n,   eta_n = -2 ln(e) sqrt(m* k_n) / sqrt(pi^2 + ln^2 e)
+// Linear spring-dashpot [Deen07 eq. 24-26]:
+//   F_n = max(0, k_n delta + eta_n v_n) (repulsive, along -n on particle i),  eta_n = f sqrt(m*
+//   k_n)
 // Hertz with Tsuji's damping [Zhu07 Table 1; Chang08 eq. 2.15, 2.22]:
-//   F_n = -K delta^{3/2} n - alpha sqrt(m* K) delta^{1/4} v_n,   K = 4/3 E* sqrt(R*)
-//   where alpha(e) is calibrated once per run (contact/hertz_damping.hpp) so that a head-on
-//   impact rebounds with exactly the requested e, independent of the impact velocity.
-//   Written with the Hertz contact radius a = sqrt(R* delta) (delta = a^2 / R*): K delta^{3/2} =
-//   k_n a delta, sqrt(m* K) delta^{1/4} = sqrt(m* k_n a), dF/d(delta) = 3/2 k_n a (k_n = 4/3 E*):
-//   two square roots per contact instead of four (sqrt R*, sqrt delta, its root, sqrt(m* K));
-//   the contact loop is bound by the divider (square roots and divisions) on wide vectors.
+//   F_n = max(0, K delta^{3/2} + alpha sqrt(m* K) delta^{1/4} v_n),   K = 4/3 E* sqrt(R*)
+// The force never pulls (floored_normal_force): the dashpot would make it tensile at the end of a
+// damped contact, and friction, bounded by the compressive force, would then not match the
+// normal impulse [Schwager & Poeschel 2008]. f(e) and alpha(e) are calibrated for this floor once
+// per run (contact/kernels/normal_damping.hpp), so that a head-on impact rebounds with exactly the
+// requested e, independent of the impact velocity.
+// The Hertz spring is written with the contact radius a = sqrt(R* delta) (delta = a^2 / R*):
+//   K delta^{3/2} = k_n a delta, sqrt(m* K) delta^{1/4} = sqrt(m* k_n a), dF/d(delta) = 3/2 k_n a
+//   (k_n = 4/3 E*): two square roots per contact instead of four (sqrt R*, sqrt delta, its root,
+//   sqrt(m* K)); the contact loop is bound by the divider (square roots and divisions) on wide
+//   vectors.
 #pragma once
 #include <cmath>
 #include <numbers>
@@ -30,14 +35,16 @@ struct NormalResponse {
   double contact_radius;
 };
 
-/// Damping factor -2 ln e / sqrt(pi^2 + ln^2 e) (2 for e = 0) [Deen07 eq. 27, 30].
+/// Damping factor -2 ln e / sqrt(pi^2 + ln^2 e) (2 for e = 0) [Deen07 eq. 27, 30]: the
+/// tangential dashpot's (from beta0) and the rolling dashpot's (from e). (The normal dashpot,
+/// whose force is floored at zero, takes contact/kernels/normal_damping.hpp's calibration instead.)
 inline double restitution_damping_factor(double e) {
   if (e <= 0.0) return 2.0;
   const double l = std::log(e);
   return -2.0 * l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
 }
 
-/// Linear spring [Deen07 eq. 24, 27]. `damping_factor` from restitution_damping_factor().
+/// Linear spring [Deen07 eq. 24, 26]. `damping_factor` f from linear_damping_factor(e).
 inline NormalResponse linear_normal(double k, double damping_factor, double m_eff, double delta) {
   const double scale = std::sqrt(m_eff * k);
   return {k * delta, damping_factor * scale, k, 0.5 * k * delta * delta, scale, 0.0};
@@ -51,6 +58,21 @@ inline NormalResponse hertz_normal(double k_n, double r_eff, double alpha, doubl
   const double elastic = k_n * a * delta;          // K delta^{3/2}
   const double scale = std::sqrt(m_eff * k_n * a); // sqrt(m* K) delta^{1/4}
   return {elastic, alpha * scale, 1.5 * k_n * a, 0.4 * elastic * delta, scale, a};
+}
+
+/// The normal force of a response at the approach speed v_n (> 0 approaching): its magnitude
+/// pushing the pair apart, never negative, and the part of it that is not the spring's.
+struct NormalForce {
+  double magnitude;       ///< max(0, elastic + damping_coeff v_n), N
+  double nonconservative; ///< magnitude - elastic, N: the dashpot's, or -elastic when floored
+};
+
+/// [Schwager & Poeschel 2008]: a contact never pulls; once the dashpot outweighs the spring the
+/// force is zero, and the spring's energy leaves through the non-conservative part.
+inline NormalForce floored_normal_force(const NormalResponse& r, double v_n) {
+  const double dashpot = r.damping_coeff * v_n;
+  const double f = r.elastic + dashpot;
+  return f > 0.0 ? NormalForce{f, dashpot} : NormalForce{0.0, -r.elastic};
 }
 
 } // namespace fluidem::kernels

@@ -34,7 +34,8 @@ inline TangentialResult tangential_spring(Vec3& delta_t, const Vec3& v_t, double
   const Vec3 f_spring = -k_t * delta_t;
   Vec3 f = f_spring - eta_t * v_t;
   const double f2 = norm2(f);
-  const double fmax = mu * fn_abs;
+  // mu = inf (never sliding): no limit under load, none without (not inf * 0 = NaN).
+  const double fmax = fn_abs > 0.0 ? mu * fn_abs : 0.0;
   if (f2 <= fmax * fmax) {
     return {f, -eta_t * v_t, 0.0, 0.5 * k_t * norm2(delta_t), false};
   }

@@ -293,6 +293,25 @@ TEST(CollisionOperator, ObliqueSlidingTangentialImpulseIsMuJn) {
   }
 }
 
+TEST(CollisionOperator, InfiniteFrictionSticksAtAnyAngle) {
+  // friction = inf: the sticking limit of the operator (perfectly rough spheres for beta0 = 1).
+  // A grazing impact, |u_t| / |u_n| = 1000, would slide with any finite mu below 2/7 (1 + beta0)
+  // * 1000 / (1 + e) = 188; with mu = inf the contact point's tangential velocity is reversed by
+  // -beta0 (the reference's sticking branch, in pairs and on a wall).
+  for (const double beta0 : {0.0, 0.4, 1.0}) {
+    SCOPED_TRACE(fmt::format("beta0 = {}", beta0));
+    for (const Frame& f : {kX, kSkew}) {
+      const Sphere a = ball(kM, kR, f(-0.01, 10.0, 0.0)), b = ball(2.0 * kM, kR, {});
+      const auto out = check_collision(a, b, f.n, {0.9, kInf, beta0});
+      EXPECT_FALSE(out.res.sliding);
+      const Vec3 u1 = contact_velocity_of(out.a, out.b, f.n);
+      EXPECT_NEAR(dot(u1, f.t1), -beta0 * 10.0, 1e-12 * 10.0) << "u_t' = -beta0 u_t";
+      const auto wall = check_collision(a, a_wall(), f.n, {0.9, kInf, beta0});
+      EXPECT_FALSE(wall.res.sliding);
+    }
+  }
+}
+
 TEST(CollisionOperator, BothSidesOfTheStickingSlidingBoundary) {
   // Critical tangential speed: mu (1 + e) m_ab |u_n| = 2/7 (1 + beta0) m_ab |u_t*|. Just below it
   // the collision sticks, just above it slides; the two impulses differ by the relative margin

@@ -613,6 +613,65 @@ TEST(CaseReaderErrors, NotAllowedCombinations) {
   expect_error_at(t, "[[insert]]", "insert[0].file", "missing required key");
 }
 
+TEST(CaseReaderErrors, ElasticConstantsForTheNormalModel) {
+  // Which material keys each normal model takes (docs/case-file.md "[contact]"): Hertz-Mindlin
+  // takes its k_t from the materials, so contact.stiffness_ratio is refused there; the linear
+  // model's stiffnesses are contact keys, so a shear modulus or a rigid wall (which it would
+  // ignore) is refused there.
+  std::string t = minimal() + "[contact]\nnormal = \"hertz\"\nstiffness_ratio = 0.4\n";
+  expect_error_at(t, "stiffness_ratio", "contact.stiffness_ratio",
+                  "not allowed with normal = \"hertz\" (allowed: \"auto\")");
+  const std::string linear = "[contact]\nnormal = \"linear\"\nstiffness = 1e4\n";
+  t = kSimulation + kDomain + kSpecies + "shear_modulus = 4e6\n" + kInsert + linear;
+  expect_error_at(t, "shear_modulus", "species[0].shear_modulus",
+                  "not allowed with contact.normal = \"linear\"");
+  t = kSimulation + kDomain + "[walls]\nyoungs_modulus = \"rigid\"\n" + kSpecies + kInsert + linear;
+  expect_error_at(t, "rigid", "walls.youngs_modulus",
+                  "not allowed with contact.normal = \"linear\"");
+  t = kSimulation + kDomain + "[walls.z_lo]\nshear_modulus = 4e6\n" + kSpecies + kInsert + linear;
+  expect_error_at(t, "shear_modulus", "walls.z_lo.shear_modulus", "contact.stiffness_ratio");
+  // The same keys with Hertz are read.
+  t = kSimulation + kDomain + "[walls]\nyoungs_modulus = \"rigid\"\n" + kSpecies +
+      "shear_modulus = 4e6\n" + kInsert;
+  const CaseSpec c = read_case_string(t, "case.toml");
+  EXPECT_TRUE(std::isinf(c.domain.wall_material[4].youngs_modulus));
+  EXPECT_EQ(c.species[0].material.shear_modulus, 4e6);
+  EXPECT_EQ(c.species[0].material.poisson_ratio, 1e7 / 8e6 - 1.0);
+}
+
+TEST(CaseReaderErrors, ShearModulusRigidWallsAndInfiniteFriction) {
+  auto species_with = [](const std::string& keys) {
+    return kSimulation + kDomain + kSpecies + keys + kInsert;
+  };
+  // One of poisson_ratio and shear_modulus; G in (E/3, E/2].
+  expect_error_at(species_with("poisson_ratio = 0.3\nshear_modulus = 4e6\n"), "shear_modulus",
+                  "species[0].shear_modulus", "not allowed together with poisson_ratio");
+  expect_error_at(species_with("shear_modulus = 6e6\n"), "shear_modulus",
+                  "species[0].shear_modulus", "gives poisson_ratio E/(2G) - 1 = -0.1666");
+  expect_error_at(species_with("shear_modulus = 3e6\n"), "shear_modulus",
+                  "species[0].shear_modulus", "G in (E/3, E/2]");
+  expect_error_at(species_with("shear_modulus = 0\n"), "shear_modulus", "species[0].shear_modulus",
+                  "> 0");
+  // Only walls can be rigid; a rigid wall takes no shear modulus (inherited or its own).
+  expect_error_at(species_with("youngs_modulus = \"rigid\"\n"), "rigid",
+                  "species[0].youngs_modulus", "only walls can be \"rigid\"");
+  std::string t =
+      kSimulation + kDomain + "[walls]\nyoungs_modulus = \"soft\"\n" + kSpecies + kInsert;
+  expect_error_at(t, "soft", "walls.youngs_modulus", "or \"rigid\"");
+  t = kSimulation + kDomain + "[walls]\nshear_modulus = 4e6\n[walls.z_lo]\n" +
+      "youngs_modulus = \"rigid\"\n" + kSpecies + kInsert;
+  expect_error_at(t, "rigid", "walls.z_lo.youngs_modulus", "takes no shear_modulus");
+  // friction = inf is the sticking limit; -inf and nan are refused, and inf elsewhere too.
+  const CaseSpec c = read_case_string(species_with("friction = inf\n"), "case.toml");
+  EXPECT_TRUE(std::isinf(c.species[0].material.friction));
+  expect_error_at(species_with("friction = -inf\n"), "friction", "species[0].friction",
+                  "a number >= 0, or inf");
+  expect_error_at(species_with("friction = nan\n"), "friction", "species[0].friction",
+                  "a number >= 0, or inf");
+  expect_error_at(species_with("rolling_friction = inf\n"), "rolling_friction",
+                  "species[0].rolling_friction", "a number >= 0");
+}
+
 TEST(CaseReaderErrors, MissingInsertFile) {
   const TempDir dir("missing_file");
   const std::string t = kSimulation + kDomain + kSpecies +

@@ -41,6 +41,7 @@ void expect_same(const std::optional<double>& a, const std::optional<double>& b,
 void expect_same(const MaterialSpec& a, const MaterialSpec& b, const std::string& what) {
   EXPECT_TRUE(same_bits(a.youngs_modulus, b.youngs_modulus)) << what;
   EXPECT_TRUE(same_bits(a.poisson_ratio, b.poisson_ratio)) << what;
+  expect_same(a.shear_modulus, b.shear_modulus, what + " shear_modulus");
   EXPECT_TRUE(same_bits(a.restitution, b.restitution)) << what;
   EXPECT_TRUE(same_bits(a.friction, b.friction)) << what;
   EXPECT_TRUE(same_bits(a.tangential_restitution, b.tangential_restitution)) << what;
@@ -361,6 +362,36 @@ TEST(CaseWriter, RoundTripEachEngine) {
     expect_same(a, b);
     EXPECT_EQ(write_case_toml(b), text);
   }
+}
+
+TEST(CaseWriter, RoundTripRigidWallsShearModulusAndInfiniteFriction) {
+  // Hertz: a rigid floor (its own Poisson ratio replaces the inherited shear modulus), walls
+  // given by their shear modulus (x_hi overrides E: its nu follows from both), a species given by
+  // E and G, friction = inf (never sliding) on the particles.
+  const std::string minimal = "[simulation]\nend_time = 1\n"
+                              "[domain]\nlo = [0, 0, 0]\nhi = [1, 1, 1]\n"
+                              "[walls]\nshear_modulus = 3.9e6\n"
+                              "[walls.z_lo]\nyoungs_modulus = \"rigid\"\npoisson_ratio = 0.3\n"
+                              "[walls.x_hi]\nyoungs_modulus = 9e6\n"
+                              "[[species]]\nname = \"s\"\ndiameter = 0.1\ndensity = 1\n"
+                              "shear_modulus = 4.1e10\nyoungs_modulus = 1e11\nfriction = inf\n"
+                              "[[insert]]\nspecies = \"s\"\ncount = 1\n";
+  const CaseSpec a = read_case_string(minimal, "case.toml");
+  const auto& zlo = a.domain.wall_material[static_cast<int>(Face::ZLo)];
+  const auto& xhi = a.domain.wall_material[static_cast<int>(Face::XHi)];
+  const auto& ylo = a.domain.wall_material[static_cast<int>(Face::YLo)];
+  ASSERT_TRUE(std::isinf(zlo.youngs_modulus));
+  ASSERT_FALSE(zlo.shear_modulus.has_value());
+  ASSERT_EQ(xhi.shear_modulus, 3.9e6);
+  ASSERT_EQ(xhi.poisson_ratio, 9e6 / 7.8e6 - 1.0);
+  ASSERT_EQ(ylo.poisson_ratio, 1e7 / 7.8e6 - 1.0);
+  ASSERT_TRUE(std::isinf(a.species[0].material.friction));
+  const std::string out = write_case_toml(a);
+  EXPECT_NE(out.find("youngs_modulus = \"rigid\""), std::string::npos) << out;
+  EXPECT_NE(out.find("friction = inf"), std::string::npos) << out;
+  const CaseSpec b = read_case_string(out, "resolved.toml");
+  expect_same(a, b);
+  EXPECT_EQ(write_case_toml(b), out);
 }
 
 TEST(CaseWriter, InsertFileWrittenAbsolute) {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "contact/kernels/history_rotation.hpp"
+#include "contact/kernels/normal_damping.hpp"
 #include "contact/kernels/normal_force.hpp"
 #include "contact/kernels/rolling_torque.hpp"
 #include "contact/kernels/tangential_force.hpp"
@@ -106,8 +107,11 @@ Outputs normal_outputs(const kernels::NormalResponse& r, double v_n) {
   o.scalars["damping_coeff"] = r.damping_coeff;
   o.scalars["stiffness"] = r.stiffness;
   o.scalars["energy"] = r.energy;
-  // Magnitude pushing the pair apart (normal_force.hpp: damping force = -eta_n v_n).
-  o.scalars["normal_force"] = r.elastic + r.damping_coeff * v_n;
+  // Magnitude pushing the pair apart, floored at zero, and its non-conservative part
+  // (normal_force.hpp: the damping force is -eta_n v_n).
+  const kernels::NormalForce f = kernels::floored_normal_force(r, v_n);
+  o.scalars["normal_force"] = f.magnitude;
+  o.scalars["nonconservative"] = f.nonconservative;
   return o;
 }
 
@@ -118,10 +122,34 @@ const std::map<std::string, Kernel>& kernel_table() {
   static const std::map<std::string, Kernel> table = {
       {"linear_normal",
        [](Inputs& in) {
-         const double f = kernels::restitution_damping_factor(in.num("restitution"));
+         const double f = in.num("damping_factor");
          const double k = in.num("k"), m = in.num("m_eff"), delta = in.num("delta");
-         Outputs o = normal_outputs(kernels::linear_normal(k, f, m, delta), in.num("v_n"));
-         o.scalars["damping_factor"] = f;
+         return normal_outputs(kernels::linear_normal(k, f, m, delta), in.num("v_n"));
+       }},
+      {"restitution_damping_factor",
+       [](Inputs& in) {
+         Outputs o;
+         o.scalars["damping_factor"] = kernels::restitution_damping_factor(in.num("restitution"));
+         return o;
+       }},
+      {"normal_damping",
+       [](Inputs& in) {
+         const double e = in.num("restitution");
+         Outputs o;
+         o.scalars["damping_ratio"] = kernels::floored_damping_ratio(e);
+         o.scalars["linear_damping_factor"] = kernels::linear_damping_factor(e);
+         o.scalars["linear_pulse"] =
+             kernels::linear_contact_duration(1.0, 1.0, kernels::linear_damping_factor(e));
+         o.scalars["hertz_alpha"] = kernels::hertz_damping_alpha(e);
+         return o;
+       }},
+      {"hertz_impact",
+       [](Inputs& in) {
+         const kernels::HertzImpact h = kernels::scaled_hertz_impact(in.num("alpha"));
+         Outputs o;
+         o.scalars["restitution"] = h.restitution;
+         o.scalars["duration"] = h.duration;
+         o.scalars["max_overlap"] = h.max_overlap;
          return o;
        }},
       {"hertz_normal",
@@ -373,11 +401,12 @@ TEST(ContactModelFiles, EveryKernelHasAFile) {
   }
   for (const auto& [name, n] : files_per_kernel)
     EXPECT_GT(n, 0) << "no tests/models/*.toml file for kernel " << name;
-  // The six sub-models of the contact law, plus the history rotation.
+  // The six sub-models of the contact law, the history rotation, the dashpots' calibrations.
   for (const char* f :
        {"linear_normal.toml", "hertz_normal.toml", "tangential_spring_sticking.toml",
         "tangential_spring_sliding.toml", "rolling_constant_torque.toml",
-        "rolling_spring_dashpot.toml", "history_rotation.toml"})
+        "rolling_spring_dashpot.toml", "history_rotation.toml", "normal_damping.toml",
+        "hertz_impact.toml", "restitution_damping_factor.toml"})
     EXPECT_TRUE(fs::exists(model_dir() / f)) << f;
 }
 
@@ -399,7 +428,7 @@ TEST(ContactModelFiles, CheckerRejectsWrongValuesAndTypos) {
   c.name = "inline";
   c.tolerance = 1e-12;
   c.table = toml::parse(R"(
-    restitution = 1.0
+    damping_factor = 0.0
     k = 1000.0
     m_eff = 1e-3
     delta = 1e-3

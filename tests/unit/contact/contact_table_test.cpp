@@ -1,0 +1,141 @@
+// The ContactTable's coefficients from the materials, against values worked out by hand from the
+// mixing rules of [Zhu07 Table 1] (E* = 1/((1-nu_a^2)/E_a + (1-nu_b^2)/E_b), Mindlin's
+// 1/G* = (2-nu_a)/G_a + (2-nu_b)/G_b, k_t = 8 G* sqrt(R* delta) [Chang08 eq. 2.16]; Di Renzo &
+// Di Maio 2004), a rigid wall (the particle's own compliance alone), infinite friction, and the
+// refusals: e = 0 (no dashpot whose force never pulls reaches it, docs/contact.md) and
+// contact.stiffness_ratio with Hertz (k_t follows from the materials). Exact to round-off:
+// relative 1e-14.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "../../common/contact_case.hpp"
+#include "contact/contact_table.hpp"
+#include "contact/kernels/normal_damping.hpp"
+#include "contact/kernels/tangential_force.hpp"
+
+namespace fluidem {
+namespace {
+
+constexpr double kTol = 1e-14;
+
+CaseSpec two_species(NormalModel normal) {
+  CaseSpec s;
+  s.domain.lo = {0.0, 0.0, 0.0};
+  s.domain.hi = {0.1, 0.1, 0.1};
+  s.species.push_back(test::glass_species_spec("glass"));
+  s.species.push_back(test::glass_species_spec("steel"));
+  s.contact.normal = normal;
+  s.contact.stiffness = 1000.0;
+  return s;
+}
+
+TEST(ContactTable, MindlinShearStiffnessMixesGivenShearModuli) {
+  CaseSpec s = two_species(NormalModel::Hertz);
+  MaterialSpec& a = s.species[0].material;
+  MaterialSpec& b = s.species[1].material;
+  // glass: E = 6e10, G = 2.5e10 (nu = E/(2G) - 1 = 0.2); steel: E = 2e11, nu = 0.3 (G = 2e11/2.6).
+  a.youngs_modulus = 6e10, a.shear_modulus = 2.5e10, a.poisson_ratio = 0.2;
+  b.youngs_modulus = 2e11, b.poisson_ratio = 0.3;
+  const ContactTable t(s);
+  const double ga = 2.5e10, gb = 2e11 / 2.6;
+  const double g_star = 1.0 / ((2.0 - 0.2) / ga + (2.0 - 0.3) / gb);
+  const double e_star = 1.0 / ((1.0 - 0.04) / 6e10 + (1.0 - 0.09) / 2e11);
+  EXPECT_NEAR(t.pair(0, 1).kt, 8.0 * g_star, kTol * 8.0 * g_star);
+  EXPECT_NEAR(t.pair(1, 0).kt, 8.0 * g_star, kTol * 8.0 * g_star);
+  EXPECT_NEAR(t.pair(0, 1).e_star, e_star, kTol * e_star);
+  EXPECT_NEAR(t.pair(0, 1).kn, 4.0 / 3.0 * e_star, kTol * e_star);
+  // Like materials: G* = G/(2 (2 - nu)).
+  EXPECT_NEAR(t.pair(0, 0).kt, 8.0 * ga / 3.6, kTol * 8.0 * ga);
+}
+
+TEST(ContactTable, RigidWallLeavesTheParticlesOwnStiffness) {
+  CaseSpec s = two_species(NormalModel::Hertz);
+  MaterialSpec& p = s.species[0].material;
+  p.youngs_modulus = 6e10, p.poisson_ratio = 0.2;
+  for (auto& w : s.domain.wall_material) w.youngs_modulus = std::numeric_limits<double>::infinity();
+  s.domain.wall_material[2].youngs_modulus = 1e25; // the old work-around, for comparison
+  const ContactTable t(s);
+  const double e_star = 6e10 / (1.0 - 0.04), g = 6e10 / 2.4;
+  for (int f : {0, 4}) {
+    EXPECT_EQ(t.wall(0, f).e_star, e_star) << f;
+    EXPECT_NEAR(t.wall(0, f).kt, 8.0 * g / (2.0 - 0.2), kTol * 8.0 * g) << f;
+  }
+  EXPECT_NEAR(t.wall(0, 2).e_star, e_star, 1e-14 * e_star + 6e10 * 6e10 / 1e25);
+}
+
+TEST(ContactTable, InfiniteFrictionNeverSlidesAndVanishesWithoutLoad) {
+  CaseSpec s = two_species(NormalModel::Linear);
+  s.species[0].material.friction = std::numeric_limits<double>::infinity();
+  for (auto& w : s.domain.wall_material) w.friction = std::numeric_limits<double>::infinity();
+  const ContactTable t(s);
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(t.pair(0, 1).mu, inf); // the mean of inf and 0.4
+  EXPECT_EQ(t.pair(1, 1).mu, 0.4);
+  EXPECT_EQ(t.wall(1, 4).mu, inf);
+  // A huge tangential force sticks under any load; without load there is no friction (and no
+  // NaN from inf * 0).
+  Vec3 delta{1.0, 0.0, 0.0};
+  const auto stuck =
+      kernels::tangential_spring(delta, {0.0, 0.0, 0.0}, 1e12, 0.0, t.pair(0, 1).mu, 1e-300, 1e-6);
+  EXPECT_FALSE(stuck.sliding);
+  EXPECT_EQ(stuck.force.x, -1e12);
+  Vec3 delta0{1.0, 0.0, 0.0};
+  const auto unloaded =
+      kernels::tangential_spring(delta0, {0.0, 0.0, 0.0}, 1e12, 0.0, t.pair(0, 1).mu, 0.0, 1e-6);
+  EXPECT_EQ(unloaded.force.x, 0.0);
+  EXPECT_EQ(delta0.x, 0.0);
+}
+
+TEST(ContactTable, NormalDampingIsCalibratedForTheFlooredForce) {
+  for (NormalModel m : {NormalModel::Linear, NormalModel::Hertz}) {
+    CaseSpec s = two_species(m);
+    s.species[0].material.restitution = 0.3;
+    s.species[1].material.restitution = 0.7;
+    s.domain.wall_material[4].restitution = 0.9;
+    const ContactTable t(s);
+    const double scale = m == NormalModel::Linear ? 2.0 : std::sqrt(5.0);
+    EXPECT_EQ(t.pair(0, 1).normal_damping, scale * kernels::floored_damping_ratio(0.5));
+    EXPECT_EQ(t.wall(0, 4).normal_damping, scale * kernels::floored_damping_ratio(0.9));
+  }
+}
+
+TEST(ContactTable, RefusesFullyPlasticContactsWithTheReason) {
+  for (NormalModel m : {NormalModel::Linear, NormalModel::Hertz}) {
+    CaseSpec s = two_species(m);
+    s.species[1].material.restitution = 0.0;
+    s.species[0].material.restitution = 0.0;
+    try {
+      const ContactTable t(s);
+      ADD_FAILURE() << "e = 0 accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("species[0].restitution"), std::string::npos) << what;
+      EXPECT_NE(what.find("never pulls"), std::string::npos) << what;
+      EXPECT_NE(what.find("hard_sphere"), std::string::npos) << what;
+    }
+    // A wall of e = 0 too; but not on a face that has no contacts (periodic axis).
+    CaseSpec w = two_species(m);
+    w.domain.wall_material[0].restitution = 0.0;
+    EXPECT_THROW(ContactTable{w}, InputError);
+    w.domain.periodic[0] = true;
+    const ContactTable ok(w);
+    EXPECT_EQ(std::memcmp(&ok.wall(0, 0), &ok.wall(0, 2), sizeof(PairParams)), 0);
+  }
+}
+
+TEST(ContactTable, RefusesAStiffnessRatioWithHertz) {
+  CaseSpec s = two_species(NormalModel::Hertz);
+  s.contact.stiffness_ratio = 0.5;
+  EXPECT_THROW(ContactTable{s}, InputError);
+  s.contact.normal = NormalModel::Linear;
+  const ContactTable t(s);
+  EXPECT_EQ(t.pair(0, 1).kt, 500.0);
+  EXPECT_EQ(t.wall(0, 4).kt, 500.0);
+}
+
+} // namespace
+} // namespace fluidem
