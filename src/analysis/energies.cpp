@@ -11,6 +11,7 @@ Energies particle_energies(const ParticleStore& p, const std::array<double, 3>& 
   const std::size_t n = p.size();
   // Fixed-order serial sums: results independent of the thread count.
   for (std::size_t i = 0; i < n; ++i) {
+    if (p.fixed(i)) continue; // held in place: part of the walls, not of the moving bed
     const double m = p.mass[i];
     ek += 0.5 * m * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
     er += 0.5 / p.inv_inertia[i] * (p.wx[i] * p.wx[i] + p.wy[i] * p.wy[i] + p.wz[i] * p.wz[i]);

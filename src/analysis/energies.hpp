@@ -14,6 +14,7 @@ struct Energies {
   double potential = 0.0;  ///< -sum m g.x, J
 };
 
+/// Over the moving particles: fixed ones (ParticleStore::fix) never move and count as walls.
 Energies particle_energies(const ParticleStore& p, const std::array<double, 3>& gravity);
 
 /// Height of a settled 2-D bed's surface above z_lo: the mean over columns of width

@@ -146,8 +146,9 @@ struct ContactBatch {
   int params[kSize];                          ///< index of the contact's parameters
   // inputs: pairs: the separation j - i; walls: the normal, the overlap and the gap
   Column d[3], wall_gap;
-  // inputs: radii, masses, v_i - v_j, angular velocities, 1/I_i + 1/I_j (walls: v_i, w_i, 1/I_i)
-  Column ri, rj, mi, mj, dv[3], wi[3], wj[3], inv_inertia_sum;
+  // inputs: radii, inverse masses, v_i - v_j, angular velocities, 1/I_i + 1/I_j (walls: v_i,
+  // w_i, 1/I_i)
+  Column ri, rj, inv_mi, inv_mj, dv[3], wi[3], wj[3], inv_inertia_sum;
   Column hist[HistoryWidth > 0 ? HistoryWidth : 1]; ///< in: before the step; out: after it
   // outputs (ContactOutput's fields) and the unit normal and overlap (inputs for walls)
   Column force[3], torque_unit[3], torque_roll[3], nc_force[3], nc_torque_unit[3],
@@ -164,23 +165,27 @@ enum class Uniformity {
   PerContact, ///< nothing: each contact's parameters through b.params
   Params,     ///< the parameters params[0] (one species; walls of one material)
   Particles,  ///< those, and every particle has the same radius and mass (a monodisperse bed):
-              ///< the batch's radius and mass columns are not filled (bed10k: +5.8%)
+              ///< the batch's radius and inverse mass columns are not filled (bed10k: +5.8%)
 };
 
 /// Pass 2 of the contact loop: evaluate the batch's contacts, several at once (see compute()).
 /// Pairs [Deen07 eq. 12]: relative contact-point velocity from both particles; walls: a partner
-/// of infinite mass and radius at rest, whose normal never turns.
+/// of infinite mass and radius at rest, whose normal never turns. The effective mass from the
+/// inverse masses, 1/m* = 1/m_i + 1/m_j: a fixed particle (1/m = 0) is a partner of infinite
+/// mass like a wall, m* = m_i (the list holds no pair of two fixed particles, and no wall entry
+/// of one: NeighbourList::build).
 /// U: what every contact of the batch has alike (Uniformity); with Uniformity::Particles the
-/// particles' radius and mass are r0 and m0, and their columns are not read.
+/// particles' radius and inverse mass are r0 and im0, and their columns are not read.
 template <NormalModel Normal, bool Tangential, RollingModel Rolling, bool Wall, Uniformity U,
           int HW>
 FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* params, double r0,
-                                        double m0, double dt) {
+                                        double im0, double dt) {
   const int n = b.n;
   constexpr bool same_particles = U == Uniformity::Particles;
 #pragma GCC ivdep
   for (int k = 0; k < n; ++k) {
-    const double ri = same_particles ? r0 : b.ri[k], mi = same_particles ? m0 : b.mi[k];
+    const double ri = same_particles ? r0 : b.ri[k];
+    const double inv_mi = same_particles ? im0 : b.inv_mi[k];
     const Vec3 dv{b.dv[0][k], b.dv[1][k], b.dv[2][k]};
     const Vec3 wi{b.wi[0][k], b.wi[1][k], b.wi[2][k]};
     ContactInput c;
@@ -192,13 +197,14 @@ FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* p
       c.v_rel = dv + cross(wi * ri, c.n);
       c.w_rel = wi;
       c.r_eff = ri;
-      c.m_eff = mi;
+      c.m_eff = 1.0 / inv_mi;
     } else {
       const Vec3 dvec{b.d[0][k], b.d[1][k], b.d[2][k]};
-      const double rj = same_particles ? r0 : b.rj[k], mj = same_particles ? m0 : b.mj[k];
-      const double rsum = ri + rj, msum = mi + mj, rm = rsum * msum;
+      const double rj = same_particles ? r0 : b.rj[k];
+      const double inv_mj = same_particles ? im0 : b.inv_mj[k];
+      const double rsum = ri + rj, inv_msum = inv_mi + inv_mj, rm = rsum * inv_msum;
       const double d = std::sqrt(norm2(dvec));
-      // 1/d and 1/(rsum msum) from one division (the divider bounds this loop).
+      // 1/d and 1/(rsum (1/mi + 1/mj)) from one division (the divider bounds this loop).
       const double inv_drm = 1.0 / (d * rm);
       const double inv_d = rm * inv_drm;
       c.n = Vec3{dvec.x * inv_d, dvec.y * inv_d, dvec.z * inv_d};
@@ -206,9 +212,9 @@ FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* p
       const Vec3 wj{b.wj[0][k], b.wj[1][k], b.wj[2][k]};
       c.v_rel = dv + cross(wi * ri + wj * rj, c.n);
       c.w_rel = wi - wj;
-      const double inv = d * inv_drm; // r* = ri rj / rsum, m* = mi mj / (mi + mj)
-      c.r_eff = ri * rj * msum * inv;
-      c.m_eff = mi * mj * rsum * inv;
+      const double inv = d * inv_drm;     // 1/(rsum (1/mi + 1/mj))
+      c.r_eff = ri * rj * inv_msum * inv; // r* = ri rj / rsum
+      c.m_eff = rsum * inv;               // m* = 1 / (1/mi + 1/mj)
       // Separation one step earlier: positions moved by v dt with the current velocities.
       c.d_prev = dvec + dv * dt;
     }
@@ -580,22 +586,23 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   }();
   // Every particle of one radius and mass (NeighbourList::generation() keys the check: the
   // radii and masses change only with the particles, and any change of those rebuilds the list).
+  // Fixed particles (1/m = 0) differ from the others.
   if (nc.same_particles_generation != nl.generation() || nc.same_particles_count != n ||
-      (n > 0 && (p.radius[0] != nc.same_radius || p.mass[0] != nc.same_mass))) {
+      (n > 0 && (p.radius[0] != nc.same_radius || p.inv_mass[0] != nc.same_inv_mass))) {
     nc.same_particles = n > 0;
     for (std::size_t i = 1; i < n && nc.same_particles; ++i)
-      nc.same_particles = p.radius[i] == p.radius[0] && p.mass[i] == p.mass[0];
+      nc.same_particles = p.radius[i] == p.radius[0] && p.inv_mass[i] == p.inv_mass[0];
     nc.same_radius = n > 0 ? p.radius[0] : 0.0;
-    nc.same_mass = n > 0 ? p.mass[0] : 0.0;
+    nc.same_inv_mass = n > 0 ? p.inv_mass[0] : 0.0;
     nc.same_particles_generation = nl.generation();
     nc.same_particles_count = n;
   }
   // Uniformity::Particles for the pairs, for the walls (it needs their parameters uniform).
   const bool pairs_same = pairs_uniform && nc.same_particles;
   const bool walls_same = walls_uniform && nc.same_particles;
-  const double r0 = nc.same_radius, m0 = nc.same_mass;
+  const double r0 = nc.same_radius, im0 = nc.same_inv_mass;
   auto flush = [&, view, acc_f, pairs_uniform, walls_uniform, pairs_same, walls_same, r0,
-                m0](Batch& b, auto wall_kind, ContactStats& acc, std::vector<ContactSample>* buf) {
+                im0](Batch& b, auto wall_kind, ContactStats& acc, std::vector<ContactSample>* buf) {
     constexpr bool wall = decltype(wall_kind)::value;
     // The batch's radius and mass columns are filled unless the kernel does not read them.
     const bool same_particles = wall ? walls_same : pairs_same;
@@ -606,7 +613,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       __builtin_prefetch(target, 1);
       __builtin_prefetch(target + 8, 1);
       const double* pi = view + ContactScratch::kView * b.i[k];
-      if (!same_particles) b.ri[k] = pi[3], b.mi[k] = pi[7];
+      if (!same_particles) b.ri[k] = pi[3], b.inv_mi[k] = pi[7];
       for (int a = 0; a < 3; ++a) b.wi[a][k] = pi[8 + a];
       if constexpr (wall) {
         for (int a = 0; a < 3; ++a) b.dv[a][k] = pi[4 + a];
@@ -625,7 +632,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       } else {
         const double* pj = view + ContactScratch::kView * b.j[k];
         if (!pairs_uniform) b.params[k] = species_of[b.i[k]] * n_species + species_of[b.j[k]];
-        if (!same_particles) b.rj[k] = pj[3], b.mj[k] = pj[7];
+        if (!same_particles) b.rj[k] = pj[3], b.inv_mj[k] = pj[7];
         for (int a = 0; a < 3; ++a) {
           b.dv[a][k] = pi[4 + a] - pj[4 + a];
           b.wj[a][k] = pj[8 + a];
@@ -637,12 +644,12 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     }
     const PairParams* params = wall ? wall_params : pair_params;
     if (!(wall ? walls_uniform : pairs_uniform))
-      evaluate_batch<Normal, Tangential, Rolling, wall, Uniformity::PerContact>(b, params, r0, m0,
+      evaluate_batch<Normal, Tangential, Rolling, wall, Uniformity::PerContact>(b, params, r0, im0,
                                                                                 dt);
     else if (!same_particles)
-      evaluate_batch<Normal, Tangential, Rolling, wall, Uniformity::Params>(b, params, r0, m0, dt);
+      evaluate_batch<Normal, Tangential, Rolling, wall, Uniformity::Params>(b, params, r0, im0, dt);
     else
-      evaluate_batch<Normal, Tangential, Rolling, wall, Uniformity::Particles>(b, params, r0, m0,
+      evaluate_batch<Normal, Tangential, Rolling, wall, Uniformity::Particles>(b, params, r0, im0,
                                                                                dt);
     // The sums and the deepest overlap in registers (the accumulator's stores could alias
     // them), in the same order.

@@ -28,8 +28,9 @@ struct ContactStats {
 };
 
 /// Working arrays of the contact loop, kept between steps (nothing is allocated per step).
-/// `view` packs what the pair loop reads of each particle (position, radius, velocity, mass,
-/// angular velocity, inverse inertia: kView doubles, one base pointer instead of twelve);
+/// `view` packs what the pair loop reads of each particle (position, radius, velocity, inverse
+/// mass, angular velocity, inverse inertia: kView doubles, one base pointer instead of twelve;
+/// the inverses are 0 for a fixed particle, ParticleStore::fix);
 /// `acc` packs what it adds: contact force, torque, and their non-conservative parts (dashpots,
 /// sliding friction, rolling resistance). The work of the non-conservative parts, evaluated by
 /// the integrator with the full-step velocities, is the energy the contacts dissipate: with
@@ -39,7 +40,7 @@ struct ContactStats {
 /// kept nowhere else. Between a run's steps the view is also where the particles' positions and
 /// velocities live (Simulation::sync_particles copies them into the particle store when read).
 struct ContactScratch {
-  static constexpr std::size_t kView = 12; ///< x y z r | vx vy vz m | wx wy wz 1/I
+  static constexpr std::size_t kView = 12; ///< x y z r | vx vy vz 1/m | wx wy wz 1/I
   static constexpr std::size_t kAcc = 12;  ///< f | t | f_nc | t_nc
   std::vector<double> view, acc;
   std::vector<ContactStats> slab_stats, wall_stats; ///< per slab / wall chunk, summed in order
@@ -60,10 +61,10 @@ struct ContactScratch {
   /// list of generation chunk_groups_generation.
   std::vector<int> chunk_group_lo, chunk_group_hi;
   std::uint64_t chunk_groups_generation = ~std::uint64_t{0};
-  /// Whether every particle has the radius same_radius and the mass same_mass, found for the
-  /// list of generation same_particles_generation and that many particles.
+  /// Whether every particle has the radius same_radius and the inverse mass same_inv_mass,
+  /// found for the list of generation same_particles_generation and that many particles.
   bool same_particles = false;
-  double same_radius = 0.0, same_mass = 0.0;
+  double same_radius = 0.0, same_inv_mass = 0.0;
   std::uint64_t same_particles_generation = ~std::uint64_t{0};
   std::size_t same_particles_count = 0;
   /// Pack the view from p and zero the sums.
@@ -72,17 +73,17 @@ struct ContactScratch {
   /// each particle right after its drift, while its data are in the cache, instead of in a
   /// second pass over all of them.
   void pack(const ParticleStore& p, std::size_t i) {
-    pack(i, {p.x[i], p.y[i], p.z[i], p.radius[i], p.vx[i], p.vy[i], p.vz[i], p.mass[i], p.wx[i],
+    pack(i, {p.x[i], p.y[i], p.z[i], p.radius[i], p.vx[i], p.vy[i], p.vz[i], p.inv_mass[i], p.wx[i],
              p.wy[i], p.wz[i], p.inv_inertia[i]});
   }
-  /// pack() with particle i's values given (x y z r | vx vy vz m | wx wy wz 1/I), as the
+  /// pack() with particle i's values given (x y z r | vx vy vz 1/m | wx wy wz 1/I), as the
   /// integrator has them in registers after its kick and drift.
   [[gnu::always_inline]] void pack(std::size_t i, const std::array<double, kView>& v) {
     double* vi = view.data() + kView * i;
     for (std::size_t k = 0; k < kView; ++k) vi[k] = v[k];
     zero_sums(i);
   }
-  /// pack() of the positions and velocities alone (x y z | vx vy vz | wx wy wz), radius, mass
+  /// pack() of the positions and velocities alone (x y z | vx vy vz | wx wy wz), radius, 1/m
   /// and 1/I being in the view already.
   [[gnu::always_inline]] void pack_state(std::size_t i, const std::array<double, 9>& s) {
     double* vi = view.data() + kView * i;

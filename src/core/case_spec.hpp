@@ -63,6 +63,10 @@ struct InsertSpec {
   std::string file;                        ///< LAMMPS data file (id type diameter density x y z)
   std::array<double, 3> velocity{0, 0, 0}; ///< m/s
   double velocity_spread = 0.0;            ///< m/s, uniform in [-s, s] per component
+  /// rad/s; 2-D (discs in the x-z plane): only the y component (spin in the plane)
+  std::array<double, 3> angular_velocity{0, 0, 0};
+  /// The particles are held in place (infinite mass and inertia, ParticleStore::fix)
+  bool fixed = false;
   std::uint64_t seed = 1;
 };
 

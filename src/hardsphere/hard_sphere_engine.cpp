@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "core/material_mixing.hpp"
 #include "core/simd_clones.hpp"
+#include "hardsphere/fixed_partner_time.hpp"
 
 namespace fluidem {
 
@@ -56,8 +57,10 @@ struct PairLanes {
                                        ///< special case, left to it), else 0
   /// Zeros in lanes m.. (pairs that never meet).
   void clear_from(int m) {
-    for (int k = m; k < kLanes; ++k) rx[k] = ry[k] = rz[k] = vx[k] = vy[k] = vz[k] = sigma[k] = 0.0;
+    for (int k = m; k < kLanes; ++k) clear(k);
   }
+  /// Zeros in lane k (a pair that never meets, or one with a fixed particle: computed apart).
+  void clear(int k) { rx[k] = ry[k] = rz[k] = vx[k] = vy[k] = vz[k] = sigma[k] = 0.0; }
   double time_to_contact(int k, double horizon) const {
     return fluidem::time_to_contact(Vec3{rx[k], ry[k], rz[k]}, Vec3{vx[k], vy[k], vz[k]}, sigma[k],
                                     horizon);
@@ -167,11 +170,12 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
     };
     for (std::size_t i = i0; i < i1; ++i) {
       const double xi = px[i], yi = py[i], zi = pz[i], ri = pr[i];
+      const bool fixed_i = p.fixed(i); // two fixed particles never meet: no pair of them
       const std::size_t before = rows.size();
       for_each_cell_around(particle_cell_[i], ncell_, box_.periodic, [&](std::uint32_t cell) {
         for (std::uint32_t k = start[cell]; k < start[cell + 1]; ++k) {
           const std::uint32_t j = members[k];
-          if (j == i) continue;
+          if (j == i || (fixed_i && p.fixed(j))) continue;
           const double ddx = image(px[j] - xi, 0);
           const double ddy = image(py[j] - yi, 1);
           const double ddz = image(pz[j] - zi, 2);
@@ -248,7 +252,12 @@ void HardSphereEngine::first_events(double now) {
       for (std::uint32_t base = split_[i]; base < end; base += PairLanes::kLanes) {
         const auto m = static_cast<int>(std::min<std::uint32_t>(PairLanes::kLanes, end - base));
         for (int k = 0; k < m; ++k) {
-          const Kin& kj = kin_[full_partner_[base + static_cast<std::uint32_t>(k)]];
+          const std::uint32_t j = full_partner_[base + static_cast<std::uint32_t>(k)];
+          const Kin& kj = kin_[j];
+          if (any_fixed_ && (fixed_[i] || fixed_[j])) { // the moving one's parabola, below
+            lanes.clear(k);
+            continue;
+          }
           lanes.rx[k] = min_image(ki.x - kj.x, 0);
           lanes.ry[k] = min_image(ki.y - kj.y, 1);
           lanes.rz[k] = min_image(ki.z - kj.z, 2);
@@ -264,12 +273,24 @@ void HardSphereEngine::first_events(double now) {
           if (lanes.touching[k] != 0.0) dt = lanes.time_to_contact(k, t_end_ - now);
           pair_time_[base + static_cast<std::uint32_t>(k)] = dt < none ? now + dt : none;
         }
+        for (int k = 0; k < m && any_fixed_; ++k) { // the pairs with a fixed particle
+          const std::uint32_t j = full_partner_[base + static_cast<std::uint32_t>(k)];
+          if (!fixed_[i] && !fixed_[j]) continue;
+          const Kin& moving = fixed_[i] ? kin_[j] : ki;
+          pair_time_[base + static_cast<std::uint32_t>(k)] =
+              fixed_pair_time(moving, Vec3{moving.x, moving.y, moving.z},
+                              Vec3{moving.vx, moving.vy, moving.vz}, fixed_[i] ? ki : kin_[j], now);
+        }
       }
     }
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       double best = t_end_;
       std::uint32_t partner = kNone;
+      if (any_fixed_ && fixed_[i]) { // no event of its own: its moving partners have them
+        next_[i] = Event{best, static_cast<std::uint32_t>(i), kNone, 0u, 0u};
+        continue;
+      }
       for (std::uint32_t e = full_offset_[i]; e < full_offset_[i + 1]; ++e) {
         const double t = pair_time_[e < split_[i] ? mirror_[e] : e];
         if (t < best) best = t, partner = full_partner_[e];
@@ -362,6 +383,7 @@ void HardSphereEngine::set_event(const Event& ev) {
 HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::uint32_t i,
                                                   double now) const {
   const auto n = static_cast<std::uint32_t>(p.size());
+  if (any_fixed_ && fixed_[i]) return {t_end_, i, kNone, 0u, 0u}; // never moves: no event
   const Kin& ki = kin_[i];
   const double ai = now - ki.t;
   const Vec3 xi{ki.x + (ki.vx + 0.5 * g_.x * ai) * ai, ki.y + (ki.vy + 0.5 * g_.y * ai) * ai,
@@ -375,8 +397,15 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
   PairLanes lanes;
   for (std::uint32_t base = full_offset_[i]; base < end; base += PairLanes::kLanes) {
     const auto m = static_cast<int>(std::min<std::uint32_t>(PairLanes::kLanes, end - base));
+    bool fixed_partners = false;
     for (int k = 0; k < m; ++k) {
-      const Kin& kj = kin_[full_partner_[base + static_cast<std::uint32_t>(k)]];
+      const std::uint32_t j = full_partner_[base + static_cast<std::uint32_t>(k)];
+      const Kin& kj = kin_[j];
+      if (any_fixed_ && fixed_[j]) { // on i's parabola, below
+        lanes.clear(k);
+        fixed_partners = true;
+        continue;
+      }
       const double aj = now - kj.t;
       lanes.rx[k] = min_image(xi.x - (kj.x + (kj.vx + 0.5 * g_.x * aj) * aj), 0);
       lanes.ry[k] = min_image(xi.y - (kj.y + (kj.vy + 0.5 * g_.y * aj) * aj), 1);
@@ -398,6 +427,12 @@ HardSphereEngine::Event HardSphereEngine::predict(const ParticleStore& p, std::u
       const bool earlier_pair = t < best;
       best = earlier_pair ? t : best;
       partner = earlier_pair ? full_partner_[base + static_cast<std::uint32_t>(k)] : partner;
+    }
+    for (int k = 0; k < m && fixed_partners; ++k) {
+      const std::uint32_t j = full_partner_[base + static_cast<std::uint32_t>(k)];
+      if (!fixed_[j]) continue;
+      const double t = fixed_pair_time(ki, xi, vi, kin_[j], now);
+      if (t < best) best = t, partner = j;
     }
   }
   wall_event(ki, xi, vi, now, best, partner);
@@ -439,7 +474,7 @@ double HardSphereEngine::wall_time(double gap, double u, double gn) const {
     // Moving off (or at rest) and pulled back: it returns to the wall after 2 |u| / g_n. A
     // particle at rest on the wall is given a minimal flight, so that it reaches the wall
     // approaching (penetration g_n t^2 / 2, far below round-off of the position).
-    return std::max(-2.0 * u / gn, std::max(1e-3 * opts_.tc_time, 1e-9 * step_dt_));
+    return std::max(-2.0 * u / gn, min_flight());
   }
   // First root of gap - u t - g_n t^2 / 2 = 0 (distance s(t) = u t + g_n t^2/2 covered).
   if (gn == 0.0) return u > 0.0 ? gap / u : never;
@@ -451,14 +486,29 @@ double HardSphereEngine::wall_time(double gap, double u, double gn) const {
   return 2.0 * gap / root;
 }
 
+double HardSphereEngine::min_flight() const {
+  return std::max(1e-3 * opts_.tc_time, 1e-9 * step_dt_);
+}
+
+double HardSphereEngine::fixed_pair_time(const Kin& ka, const Vec3& xa, const Vec3& va,
+                                         const Kin& kb, double now) const {
+  const Vec3 r{min_image(xa.x - kb.x, 0), min_image(xa.y - kb.y, 1), min_image(xa.z - kb.z, 2)};
+  const double dt =
+      hardsphere::time_to_fixed_contact(r, va, g_, ka.r + kb.r, t_end_ - now, min_flight());
+  return dt < std::numeric_limits<double>::infinity() ? now + dt : dt;
+}
+
 void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
   const auto n = static_cast<std::uint32_t>(p.size());
   const std::uint32_t a = ev.a, b = ev.b;
   const bool wall = b >= n;
   auto move_to = [&](std::uint32_t i) {
-    advance_particle(kin_[i], ev.t - kin_[i].t);
+    if (!(any_fixed_ && fixed_[i])) advance_particle(kin_[i], ev.t - kin_[i].t);
     kin_[i].t = ev.t;
   };
+  // A fixed partner (1/m = 0, 1/I = 0) is a body of infinite mass for the collision operator,
+  // like a wall: it keeps no collision time or counter (TC model, stale events) and no event.
+  const bool fixed_b = !wall && any_fixed_ && fixed_[b];
   auto body = [&](std::uint32_t i) {
     return hardsphere::Body{Vec3{kin_[i].vx, kin_[i].vy, kin_[i].vz}, p.angular_velocity(i),
                             p.radius[i], p.inv_mass[i], p.inv_inertia[i]};
@@ -478,7 +528,7 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
                  min_image(kin_[a].z - kin_[b].z, 2)};
     normal = r / norm(r);
     law = pair_law_[p.species[a] * nspecies_ + p.species[b]];
-    recent = recent || ev.t - last_collision_[b] < opts_.tc_time;
+    if (!fixed_b) recent = recent || ev.t - last_collision_[b] < opts_.tc_time;
   } else {
     const int f = static_cast<int>(b - n);
     normal[f / 2] = (f % 2 == 0) ? 1.0 : -1.0; // from the wall into the particle
@@ -507,7 +557,7 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
     p.wx[i] = x.w.x, p.wy[i] = x.w.y, p.wz[i] = x.w.z;
   };
   store(a, ba);
-  if (!wall) store(b, bb);
+  if (!wall && !fixed_b) store(b, bb);
   const double e_after = kinetic(ba, a) + (wall ? 0.0 : kinetic(bb, b));
   stats_.dissipated += e_before - e_after;
   if (tc) {
@@ -524,8 +574,10 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
     ++stats_.wall_collisions_last_step;
   } else {
     ++stats_.pair_collisions_last_step;
-    ++counter_[b];
-    last_collision_[b] = ev.t;
+    if (!fixed_b) {
+      ++counter_[b];
+      last_collision_[b] = ev.t;
+    }
   }
   if (record_) {
     // normal: from b (or the wall) towards a; the contact point is r_a behind a's centre.
@@ -533,7 +585,7 @@ void HardSphereEngine::process(ParticleStore& p, const Event& ev) {
                     Vec3{kin_[a].x, kin_[a].y, kin_[a].z} - normal * p.radius[a]});
   }
   schedule(p, a, ev.t);
-  if (!wall) schedule(p, b, ev.t);
+  if (!wall && !fixed_b) schedule(p, b, ev.t);
 }
 
 void HardSphereEngine::finish_step(ParticleStore& p) {
@@ -557,7 +609,7 @@ void HardSphereEngine::finish_step(ParticleStore& p) {
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       Kin& k = kin_[i];
-      advance_particle(k, t_end_ - k.t);
+      if (!(any_fixed_ && fixed_[i])) advance_particle(k, t_end_ - k.t);
       double* q[3] = {&k.x, &k.y, &k.z};
       for (int ax = 0; ax < 3; ++ax)
         if (box.periodic[ax]) *q[ax] = wrapped(*q[ax], box.lo[ax], box.length(ax));
@@ -601,14 +653,18 @@ void HardSphereEngine::update_neighbour_list(const ParticleStore& p, double time
   // kinematics of the hot loops into kin_ (one cache line per particle, clocks at `time`).
   const std::size_t n = p.size();
   kin_.resize(n);
+  fixed_.resize(n);
   double vmax2 = 0.0, rmin = std::numeric_limits<double>::infinity(), moved2 = 0.0;
+  std::size_t fixed = 0;
   const bool have = built_x_.size() == n;
 #pragma omp parallel for schedule(static) reduction(max                                            \
                                                     : vmax2, moved2)                               \
     reduction(min                                                                                  \
-              : rmin) if (n >= kParallelMin)
+              : rmin) reduction(+ : fixed) if (n >= kParallelMin)
   for (std::size_t i = 0; i < n; ++i) {
     kin_[i] = {p.x[i], p.y[i], p.z[i], time, p.vx[i], p.vy[i], p.vz[i], p.radius[i]};
+    fixed_[i] = p.fixed(i) ? 1 : 0;
+    fixed += fixed_[i];
     vmax2 = std::max(vmax2, p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
     rmin = std::min(rmin, p.radius[i]);
     if (have) {
@@ -619,6 +675,8 @@ void HardSphereEngine::update_neighbour_list(const ParticleStore& p, double time
     }
   }
   rmin_ = rmin;
+  any_fixed_ = fixed > 0;
+  moving_ = n - fixed;
   const double vmax = std::sqrt(vmax2);
   const double step = 1.5 * (vmax + norm(g_) * dt) * dt;
   if (have && std::sqrt(moved2) + step <= 0.5 * skin_) return;
@@ -659,7 +717,9 @@ void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
   if (queue_.size() > 1)
     for (auto k = static_cast<std::uint32_t>((queue_.size() - 2) / kArity + 1); k-- > 0;)
       sift_down(k);
-  const auto limit = static_cast<long>(opts_.max_events_per_particle * static_cast<double>(n));
+  // Per moving particle: fixed ones have no events of their own.
+  const auto limit =
+      static_cast<long>(opts_.max_events_per_particle * static_cast<double>(moving_));
   while (!queue_.empty()) {
     const Event ev = next_[queue_[0].i];
     if (ev.t > t_end_) break;

@@ -8,7 +8,10 @@
 //  - neighbour lists bounded by R_a + R_max + 2 v_max DT [Deen07 eq. 44] (here with a safety
 //    factor 1.5 and gravity's contribution to the velocity), built from the cell grid with a
 //    skin for several steps and rebuilt when the displacements since the build need it;
-//  - pair collision times [Deen07 eq. 45] and wall collision times [Hoomans96 eq. 31];
+//  - pair collision times [Deen07 eq. 45] and wall collision times [Hoomans96 eq. 31]; a fixed
+//    particle (ParticleStore::fix) stays where it is, so a pair with one falls apart: its
+//    collision time is the first root of a quartic (hardsphere/fixed_partner_time.hpp), and
+//    the collision operator takes it as a body of infinite mass (1/m = 1/I = 0), like a wall;
 //  - a priority queue holding each particle's earliest event; events made stale by a collision
 //    are recognised by per-particle collision counters; lazy particle clocks move only the
 //    colliding pair [Deen07 §4];
@@ -108,6 +111,14 @@ private:
   /// Time until a particle at distance `gap` from a wall, moving towards it at `u` and
   /// accelerated towards it at `gn`, touches it (infinity if never).
   double wall_time(double gap, double u, double gn) const;
+  /// The shortest flight before a particle at rest on a wall (or a fixed particle), pushed
+  /// against it, touches it again, s.
+  double min_flight() const;
+  /// The time at which moving particle a (kinematics ka, at `now` at position xa with velocity
+  /// va) meets fixed particle b, on a's parabola (hardsphere/fixed_partner_time.hpp); infinity
+  /// if not before the end of the step.
+  double fixed_pair_time(const Kin& ka, const Vec3& xa, const Vec3& va, const Kin& kb,
+                         double now) const;
   /// The earliest event of particle i after `now` (before the end of the step); partner
   /// kNone if none. Reads only, so it may run for many particles at once.
   Event predict(const ParticleStore& p, std::uint32_t i, double now) const;
@@ -149,6 +160,11 @@ private:
   std::vector<double> pair_time_;             ///< per entry above the split: the pair's time
   std::vector<std::vector<std::uint32_t>> thread_rows_; ///< per-thread rows during a build
   std::vector<Kin> kin_; ///< copied in at the start of a step, out at its end
+  /// Per particle: fixed (ParticleStore::fix: never moves, infinite mass); whether any is, and
+  /// how many are not (copied in with kin_).
+  std::vector<unsigned char> fixed_;
+  bool any_fixed_ = false;
+  std::size_t moving_ = 0;
   std::vector<double> last_collision_;
   std::vector<std::uint32_t> counter_;
   std::vector<Event> next_;         ///< per particle: its current event

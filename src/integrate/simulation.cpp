@@ -73,6 +73,39 @@ BoxGeometry box_from(const CaseSpec& spec) {
   return b;
 }
 
+/// The shortest contact duration of the contacts that can happen, s. Fixed particles
+/// (ParticleStore::fix) meet neither each other nor the walls, and a fixed partner has infinite
+/// mass (m* = the moving particle's mass): the species pairs and walls that only fixed particles
+/// could form do not limit the time step. Durations per species as ContactTable's; without
+/// fixed particles its shortest. Infinity when no contact can happen (no particle moves).
+double shortest_possible_contact(const CaseSpec& spec, const ParticleStore& p,
+                                 const ContactTable& t) {
+  const std::size_t ns = spec.species.size();
+  std::vector<char> moving(ns, 0), fixed(ns, 0);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    (p.fixed(i) ? fixed : moving)[static_cast<std::size_t>(p.species[i])] = 1;
+  if (std::find(fixed.begin(), fixed.end(), 1) == fixed.end()) return t.shortest_contact_duration();
+  double tc = std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < ns; ++a) {
+    const double ra = 0.5 * spec.species[a].diameter;
+    const double ma = sphere_mass(ra, spec.species[a].density);
+    for (std::size_t b = 0; b < ns; ++b) {
+      const double rb = 0.5 * spec.species[b].diameter;
+      const double mb = sphere_mass(rb, spec.species[b].density);
+      const PairParams& pp = t.pair(static_cast<int>(a), static_cast<int>(b));
+      const double r_eff = ra * rb / (ra + rb);
+      if (moving[a] && moving[b] && a <= b)
+        tc = std::min(tc, t.contact_duration(ma * mb / (ma + mb), r_eff, pp));
+      if (moving[a] && fixed[b]) tc = std::min(tc, t.contact_duration(ma, r_eff, pp));
+    }
+    for (int f = 0; f < 6 && moving[a]; ++f) {
+      if (spec.domain.periodic[f / 2] || (spec.simulation.dimension == 2 && f / 2 == 1)) continue;
+      tc = std::min(tc, t.contact_duration(ma, ra, t.wall(static_cast<int>(a), f)));
+    }
+  }
+  return tc;
+}
+
 /// Overlap under the bed's own weight: a bottom particle carries the column above it,
 /// F = m g h / d with h the height the particles fill at packing fraction 0.6 (3-D) or area
 /// fraction 0.82 (2-D); delta = F/k_n (linear) or (F/K)^{2/3} (Hertz, against the floor).
@@ -216,11 +249,12 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
     return;
   }
 
-  // Time step from the contact duration [Deen07 eq. 41-42].
-  const double tc = table_->shortest_contact_duration();
+  // Time step from the contact duration [Deen07 eq. 41-42] of the contacts that can happen.
+  // None (every particle fixed): 1e-4 s, the flow step's default, unless given.
+  const double tc = shortest_possible_contact(spec_, p_, *table_);
   const double dt_limit = tc / kMinStepsPerContact;
   const auto& sim = spec_.simulation;
-  dt_ = sim.time_step ? *sim.time_step : sim.time_step_fraction * tc;
+  dt_ = sim.time_step ? *sim.time_step : std::isfinite(tc) ? sim.time_step_fraction * tc : 1.0e-4;
   // An automatic step is shortened so that a whole number of steps ends exactly at end_time.
   if (!sim.time_step && sim.end_time > 0.0) dt_ = sim.end_time / std::ceil(sim.end_time / dt_);
   if (dt_ > dt_limit && !sim.force_time_step) {
@@ -329,6 +363,9 @@ struct Simulation::Kick {
         a[0] += b[0], a[1] += b[1], a[2] += b[2];
       }
     }
+    // A fixed particle (1/m = 0, 1/I = 0: infinite mass) gets no acceleration at all: its
+    // forces and torques vanish with 1/m and 1/I, gravity and the body force here.
+    if (im == 0.0) a = {0.0, 0.0, 0.0};
     return {h * (fx * im + a[0]), h * (fy * im + a[1]), h * (fz * im + a[2]),
             h * fc[3] * ii,       h * fc[4] * ii,       h * fc[5] * ii};
   }
@@ -378,8 +415,8 @@ void Simulation::step(bool defer_second_kick) {
   const double *const x = p_.x.data(), *const y = p_.y.data(), *const z = p_.z.data();
   const double *const vx = p_.vx.data(), *const vy = p_.vy.data(), *const vz = p_.vz.data();
   const double *const wx = p_.wx.data(), *const wy = p_.wy.data(), *const wz = p_.wz.data();
-  const double* const inv_i = p_.inv_inertia.data();
-  const double *const radius = p_.radius.data(), *const mass = p_.mass.data();
+  const double *const inv_i = p_.inv_inertia.data(), *const inv_m = p_.inv_mass.data();
+  const double* const radius = p_.radius.data();
   double* const view = nc_.view.data();
   const double dt = dt_;
   const bool any_periodic = box.periodic[0] || box.periodic[1] || box.periodic[2];
@@ -417,7 +454,7 @@ void Simulation::step(bool defer_second_kick) {
     if constexpr (FromView) // radius, mass and 1/I are in the view already
       nc_.pack_state(i, {xi, yi, zi, v[0], v[1], v[2], v[3], v[4], v[5]});
     else
-      nc_.pack(i, {xi, yi, zi, radius[i], v[0], v[1], v[2], mass[i], v[3], v[4], v[5], inv_i[i]});
+      nc_.pack(i, {xi, yi, zi, radius[i], v[0], v[1], v[2], inv_m[i], v[3], v[4], v[5], inv_i[i]});
     if constexpr (Check)
       return tracked && list.moved_far(i, xi, yi, zi);
     else
@@ -670,6 +707,7 @@ void Simulation::body_force_kick(double h) {
   if (!spec_.body_force) return;
   const BodyForceSpec& b = *spec_.body_force;
   for (std::size_t i = 0; i < p_.size(); ++i) {
+    if (p_.fixed(i)) continue;
     const auto a = body_acceleration(b, p_.x[i], p_.y[i], p_.z[i]);
     p_.vx[i] += h * a[0];
     p_.vy[i] += h * a[1];

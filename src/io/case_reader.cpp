@@ -96,8 +96,8 @@ const Keys& species_keys() {
   return k;
 }
 const Keys& insert_keys() {
-  static const Keys k = {"species", "count",    "placement",       "file",
-                         "region",  "velocity", "velocity_spread", "seed"};
+  static const Keys k = {"species",  "count",           "placement",        "file",  "region",
+                         "velocity", "velocity_spread", "angular_velocity", "fixed", "seed"};
   return k;
 }
 const Keys& region_keys() {
@@ -1193,6 +1193,31 @@ private:
       }
       opt_vec3(t, p, "velocity", {Bound::Any, "m/s"}, in.velocity);
       opt_number(t, p, "velocity_spread", {Bound::NonNegative, "m/s"}, in.velocity_spread);
+      opt_vec3(t, p, "angular_velocity", {Bound::Any, "rad/s"}, in.angular_velocity);
+      // Discs moving in the x-z plane turn about y only: a spin about x or z would tilt them
+      // out of the plane, which the 2-D run cannot represent.
+      if (spec_.simulation.dimension == 2 &&
+          (in.angular_velocity[0] != 0.0 || in.angular_velocity[2] != 0.0))
+        throw InputError(spec_.where(p + ".angular_velocity"), p + ".angular_velocity",
+                         "[" + format_double(in.angular_velocity[0]) + ", " +
+                             format_double(in.angular_velocity[1]) + ", " +
+                             format_double(in.angular_velocity[2]) +
+                             "] rad/s: in a 2-D run the discs move in the x-z plane and turn "
+                             "about y only (allowed: [0, w_y, 0])");
+      opt_bool(t, p, "fixed", in.fixed);
+      if (in.fixed) { // a fixed particle never moves: no initial motion to give it
+        const auto moving = [](const std::array<double, 3>& v) {
+          return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0;
+        };
+        const char* key = moving(in.velocity)           ? "velocity"
+                          : in.velocity_spread > 0.0    ? "velocity_spread"
+                          : moving(in.angular_velocity) ? "angular_velocity"
+                                                        : nullptr;
+        if (key)
+          throw InputError(spec_.where(p + "." + key), p + "." + key,
+                           std::string("must be 0 with fixed = true (fixed particles never move "
+                                       "or turn)"));
+      }
       if (const auto seed = find(*t, "seed", p + ".seed"))
         in.seed = static_cast<std::uint64_t>(integer(*seed, p + ".seed", 0, "an integer >= 0"));
       spec_.inserts.push_back(in);

@@ -298,6 +298,8 @@ std::string write_case_toml(const CaseSpec& spec) {
     os << "region = { lo = " << vec3(in.region_lo) << ", hi = " << vec3(in.region_hi) << " }  # m\n"
        << "velocity = " << vec3(in.velocity) << "  # m/s\n"
        << "velocity_spread = " << format_double(in.velocity_spread) << "  # m/s\n"
+       << "angular_velocity = " << vec3(in.angular_velocity) << "  # rad/s\n"
+       << "fixed = " << (in.fixed ? "true" : "false") << "\n"
        << "seed = " << in.seed << "\n";
   }
 

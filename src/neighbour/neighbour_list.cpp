@@ -180,12 +180,15 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
     return sj == next(si);
   };
 
-  // Neighbour cells of each cell, deduplicated (periodic axes with fewer than 3 cells).
+  // Neighbour cells of each cell, deduplicated (periodic axes with fewer than 3 cells). Two
+  // fixed particles (ParticleStore::fix) never interact: no pair of them.
   auto for_each_partner = [&](std::size_t i, auto&& visit) {
+    const bool fixed_i = p.fixed(i);
     for_each_cell_around(particle_cell_[i], ncell_, box_.periodic, [&](std::uint32_t cell) {
       for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
         const std::uint32_t j = cell_particles_[k];
         if (j == i || !owns(static_cast<std::uint32_t>(i), j)) continue;
+        if (fixed_i && p.fixed(j)) continue;
         const double dxp = min_image(p.x[j] - p.x[i], 0);
         const double dyp = min_image(p.y[j] - p.y[i], 1);
         const double dzp = min_image(p.z[j] - p.z[i], 2);
@@ -262,10 +265,12 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
     }
   }
 
-  // Wall entries: counted, then filled (the arrays get their exact size).
+  // Wall entries: counted, then filled (the arrays get their exact size). None for a fixed
+  // particle: it does not touch a wall (insertion refuses that) and could not move off one.
   const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
   auto for_each_wall = [&](auto&& visit) {
     for (std::size_t i = 0; i < n; ++i) {
+      if (p.fixed(i)) continue;
       for (int f = 0; f < 6; ++f) {
         if (!box_.wall[f]) continue;
         const int a = f / 2;

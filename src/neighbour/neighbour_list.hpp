@@ -7,7 +7,8 @@
 // runs them in two phases over groups of consecutive slabs, contact_forces.cpp); each entry
 // carries the contact history (tangential displacement, rolling rotation), which is carried over to
 // the rebuilt list for pairs that are in both. Particles near a closed wall get wall entries with
-// their own history. No physics here: the contact module interprets the history.
+// their own history. Fixed particles (ParticleStore::fix) get no wall entries and no pairs with
+// each other. No physics here: the contact module interprets the history.
 #pragma once
 #include <array>
 #include <cstdint>

@@ -61,48 +61,116 @@ private:
 struct Candidate {
   Vec3 x;
   double r, rho;
+  Vec3 v{}, w{}; ///< from the file's Velocities section (zero without one)
 };
 
-std::vector<Candidate> read_lammps_data(const CaseSpec& spec, const InsertSpec& ins,
-                                        const std::string& key, double density) {
+/// What read_lammps_data found: the particles, and whether the file has a Velocities section.
+struct DataFile {
+  std::vector<Candidate> atoms;
+  bool velocities = false;
+};
+
+/// A LAMMPS data file of atom style sphere, as LAMMPS's read_data reads it (docs.lammps.org
+/// read_data; fields of AtomVecSphere: "Atoms" id type diameter density x y z [nx ny nz],
+/// "Velocities" id vx vy vz wx wy wz): the first line is a title; header lines "N atoms" (others
+/// ignored); sections start with a keyword line, Atoms before Velocities, other sections skipped;
+/// '#' starts a comment. Velocities: one line per atom, matched by id, w the angular velocity in
+/// rad/s (LAMMPS's omega). In 2-D the y velocity and the x and z spins are refused (discs in the
+/// x-z plane). Every number finite.
+DataFile read_lammps_data(const CaseSpec& spec, const InsertSpec& ins, const std::string& key,
+                          double density) {
   if (const auto problem = input_file_problem(ins.file))
     throw InputError(spec.where(key + ".file"), key + ".file", ins.file + " " + *problem);
   std::ifstream in(ins.file);
+  const bool two_d = spec.simulation.dimension == 2;
+  enum class Section { Header, Atoms, Velocities, Other };
+  Section section = Section::Header;
   std::string line;
   long natoms = -1;
-  std::vector<Candidate> out;
-  bool in_atoms = false;
+  DataFile out;
+  std::unordered_map<long, std::size_t> index_of_id; // Atoms id -> index in out.atoms
+  std::vector<char> has_velocity;
+  long velocity_lines = 0;
   long line_no = 0;
+  auto fail = [&](const std::string& what) {
+    throw InputError(SourceLocation{ins.file, line_no, 1}, key + ".file", what);
+  };
   while (std::getline(in, line)) {
     ++line_no;
+    if (line_no == 1) continue; // the title (LAMMPS always skips the first line)
     const auto hash = line.find('#');
-    std::string body = hash == std::string::npos ? line : line.substr(0, hash);
-    std::istringstream ss(body);
-    if (!in_atoms) {
+    std::istringstream ss(hash == std::string::npos ? line : line.substr(0, hash));
+    std::string first;
+    if (!(ss >> first)) continue;                             // blank
+    if (std::isalpha(static_cast<unsigned char>(first[0]))) { // a section keyword
+      if (first == "Atoms") {
+        if (!out.atoms.empty()) fail("a second Atoms section");
+        section = Section::Atoms;
+      } else if (first == "Velocities") {
+        if (out.atoms.empty()) fail("the Velocities section must follow the Atoms section");
+        if (out.velocities) fail("a second Velocities section");
+        if (index_of_id.size() != out.atoms.size())
+          fail("the Atoms section repeats an atom id, so the Velocities cannot be matched to "
+               "the atoms (allowed: unique ids)");
+        out.velocities = true;
+        has_velocity.assign(out.atoms.size(), 0);
+        section = Section::Velocities;
+      } else {
+        section = Section::Other;
+      }
+      continue;
+    }
+    std::istringstream row(hash == std::string::npos ? line : line.substr(0, hash));
+    if (section == Section::Header) {
       long v;
       std::string word;
-      if (ss >> v >> word && word == "atoms") natoms = v;
-      if (line.rfind("Atoms", 0) == 0) in_atoms = true;
-      continue;
+      if (row >> v >> word && word == "atoms") natoms = v;
+    } else if (section == Section::Atoms) {
+      long id, type;
+      double d, rho, x, y, z;
+      if (!(row >> id >> type >> d >> rho >> x >> y >> z) || !std::isfinite(d) ||
+          !std::isfinite(rho) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) ||
+          d <= 0.0 || rho <= 0.0)
+        fail("expected 'id type diameter density x y z' with diameter > 0 and density > 0 "
+             "(finite numbers) in the Atoms section");
+      index_of_id.emplace(id, out.atoms.size()); // (a repeated id is refused with Velocities)
+      out.atoms.push_back({{x, y, z}, 0.5 * d, density > 0.0 ? density : rho});
+    } else if (section == Section::Velocities) {
+      long id;
+      double v[6];
+      std::string extra;
+      const bool read =
+          static_cast<bool>(row >> id >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5]);
+      if (!read || (row >> extra) ||
+          !std::all_of(v, v + 6, [](double c) { return std::isfinite(c); }))
+        fail("expected 'id vx vy vz wx wy wz' (atom style sphere: finite numbers, m/s and "
+             "rad/s) in the Velocities section");
+      if (two_d && (v[1] != 0.0 || v[3] != 0.0 || v[5] != 0.0))
+        fail(fmt::format("atom {}: vy = {}, wx = {}, wz = {}; in a 2-D run the discs move in the "
+                         "x-z plane and turn about y only (allowed: vy = wx = wz = 0)",
+                         id, v[1], v[3], v[5]));
+      const auto it = index_of_id.find(id);
+      if (it == index_of_id.end()) fail(fmt::format("atom {} is not in the Atoms section", id));
+      if (has_velocity[it->second]) fail(fmt::format("atom {} has a second velocity line", id));
+      has_velocity[it->second] = 1;
+      Candidate& c = out.atoms[it->second];
+      c.v = {v[0], v[1], v[2]};
+      c.w = {v[3], v[4], v[5]};
+      ++velocity_lines;
     }
-    long id, type;
-    double d, rho, x, y, z;
-    if (!(ss >> id)) {
-      if (!out.empty()) break; // blank line after the section, or the next section
-      continue;
-    }
-    if (!(ss >> type >> d >> rho >> x >> y >> z) || d <= 0.0 || rho <= 0.0) {
-      throw InputError(SourceLocation{ins.file, line_no, 1}, key + ".file",
-                       "expected 'id type diameter density x y z' with diameter > 0 and "
-                       "density > 0 in the Atoms section");
-    }
-    out.push_back({{x, y, z}, 0.5 * d, density > 0.0 ? density : rho});
   }
-  if (natoms < 0 || static_cast<long>(out.size()) != natoms) {
+  if (natoms < 0 || static_cast<long>(out.atoms.size()) != natoms) {
     throw InputError(SourceLocation{ins.file, 0, 0}, key + ".file",
                      fmt::format("LAMMPS data file declares {} atoms but its Atoms section "
                                  "holds {}",
-                                 natoms, out.size()));
+                                 natoms, out.atoms.size()));
+  }
+  if (out.velocities) {
+    if (velocity_lines != natoms)
+      throw InputError(SourceLocation{ins.file, 0, 0}, key + ".file",
+                       fmt::format("the Velocities section holds {} lines for {} atoms (allowed: "
+                                   "one line per atom)",
+                                   velocity_lines, natoms));
   }
   return out;
 }
@@ -164,6 +232,7 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
     const double r = 0.5 * sp.diameter;
     std::mt19937_64 rng(ins.seed);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const Vec3 spin{ins.angular_velocity[0], ins.angular_velocity[1], ins.angular_velocity[2]};
     auto velocity = [&]() {
       Vec3 v{ins.velocity[0], ins.velocity[1], ins.velocity[2]};
       if (ins.velocity_spread > 0.0) {
@@ -185,10 +254,17 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
       }
     }
 
-    auto place = [&](const Vec3& x, double radius, double rho) {
+    // A particle with velocity v and angular velocity w (rad/s), or held in place (fixed).
+    auto place_moving = [&](const Vec3& x, double radius, double rho, const Vec3& v,
+                            const Vec3& w) {
       const std::size_t idx = store.size();
-      store.add(x, velocity(), radius, rho, s, static_cast<std::int64_t>(idx + 1));
+      store.add(x, v, radius, rho, s, static_cast<std::int64_t>(idx + 1));
+      store.wx[idx] = w.x, store.wy[idx] = w.y, store.wz[idx] = w.z;
+      if (ins.fixed) store.fix(idx);
       grid.add(idx, x);
+    };
+    auto place = [&](const Vec3& x, double radius, double rho) {
+      place_moving(x, radius, rho, velocity(), spin);
     };
 
     if (ins.placement == Placement::Random) {
@@ -240,10 +316,30 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
         place(x, r, sp.density);
       }
     } else {
-      for (const auto& c : read_lammps_data(spec, ins, key, 0.0)) {
+      const DataFile data = read_lammps_data(spec, ins, key, 0.0);
+      // The file's Velocities give each particle its motion: the block's must then be zero
+      // (a fixed block reads and checks them, and holds its particles at rest).
+      if (data.velocities && !ins.fixed) {
+        const auto moving = [](const std::array<double, 3>& v) {
+          return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0;
+        };
+        const char* given = moving(ins.velocity)           ? "velocity"
+                            : ins.velocity_spread > 0.0    ? "velocity_spread"
+                            : moving(ins.angular_velocity) ? "angular_velocity"
+                                                           : nullptr;
+        if (given)
+          throw InputError(spec.where(key + "." + given), key + "." + given,
+                           "must be 0 when the data file has a Velocities section (it gives "
+                           "each particle's velocity and angular velocity): " +
+                               ins.file);
+      }
+      for (const auto& c : data.atoms) {
         Vec3 x = c.x;
         if (two_d) x.y = y_mid;
-        place(x, c.r, c.rho);
+        if (data.velocities)
+          place_moving(x, c.r, c.rho, c.v, c.w);
+        else
+          place(x, c.r, c.rho);
       }
     }
   }
@@ -262,6 +358,19 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
                                      store.id[i], x.x, x.y, x.z, "xyz"[a], dom.lo[a], dom.hi[a]));
       }
       const double wall_overlap = ri - std::min(x[a] - dom.lo[a], dom.hi[a] - x[a]);
+      // A fixed particle can never be pushed off a wall (and has no contact with one): it may
+      // touch a wall, not cut into it (1e-9 of its diameter: the round-off of a lattice row
+      // placed at the wall).
+      if (store.fixed(i) && wall_overlap > 1e-9 * 2.0 * ri) {
+        throw InputError(spec.where("insert"), "insert",
+                         fmt::format("fixed particle {} at ({}, {}, {}) m overlaps the {} wall by "
+                                     "{:.3g} of its diameter (allowed: a fixed particle may "
+                                     "touch a wall, not overlap it)",
+                                     store.id[i], x.x, x.y, x.z,
+                                     x[a] - dom.lo[a] < dom.hi[a] - x[a] ? kFaceNames[2 * a]
+                                                                         : kFaceNames[2 * a + 1],
+                                     wall_overlap / (2.0 * ri)));
+      }
       if (wall_overlap > tol * 2.0 * ri) {
         throw InputError(spec.where("insert"), "insert",
                          fmt::format("particle {} at ({}, {}, {}) m overlaps the {} wall by "

@@ -45,6 +45,13 @@ void ParticleStore::add(const Vec3& p, const Vec3& v, double r, double rho, std:
   layer.push_back(0);
 }
 
+void ParticleStore::fix(std::size_t i) {
+  inv_mass[i] = 0.0;
+  inv_inertia[i] = 0.0;
+  vx[i] = vy[i] = vz[i] = 0.0;
+  wx[i] = wy[i] = wz[i] = 0.0;
+}
+
 void assign_layers(ParticleStore& p, int axis, int n_layers) {
   const std::vector<double>& h = axis == 0 ? p.x : axis == 1 ? p.y : p.z;
   p.layer.assign(p.size(), 0);

@@ -18,7 +18,9 @@ public:
   std::vector<double> vx, vy, vz;
   // Angular velocities, rad/s
   std::vector<double> wx, wy, wz;
-  // Radius (m), mass (kg), inverse mass (1/kg), inverse moment of inertia (1/(kg m^2))
+  // Radius (m), mass (kg), inverse mass (1/kg), inverse moment of inertia (1/(kg m^2)).
+  // A fixed particle (fix()) has inv_mass = inv_inertia = 0: a body of infinite mass and inertia
+  // for every force, torque and collision (it never moves or turns); `mass` keeps the sphere's.
   std::vector<double> radius, mass, inv_mass, inv_inertia;
   // Species index into the species table; unique id (stable across sorting)
   std::vector<std::int32_t> species;
@@ -42,6 +44,11 @@ public:
   Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
   Vec3 velocity(std::size_t i) const { return {vx[i], vy[i], vz[i]}; }
   Vec3 angular_velocity(std::size_t i) const { return {wx[i], wy[i], wz[i]}; }
+  /// Hold particle i in place for the whole run: inverse mass and inertia 0 (infinite mass and
+  /// inertia), velocity and angular velocity 0. Checkpoints carry it in inv_mass.
+  void fix(std::size_t i);
+  /// Whether particle i is fixed (fix()).
+  bool fixed(std::size_t i) const { return inv_mass[i] == 0.0; }
 
   /// Reorder every array by new_to_old (new index k takes old particle new_to_old[k]).
   void permute(const std::vector<std::uint32_t>& new_to_old);

@@ -16,7 +16,8 @@
 // contacts; once more without the continuum averages, so that most steps are folded: the
 // integrator's pass inside the contact loop, Simulation::step), hard spheres (the same with the
 // event-driven engine), and both coupled to the gas (the Tsuji column of tests/common, 200
-// particles). The time step is fixed explicitly (an automatic step depends on end_time). T is
+// particles), and the pouring runs of both engines with a row of fixed particles. The time step
+// is fixed explicitly (an automatic step depends on end_time). T is
 // short (a few hundred steps): identity must hold from any state.
 // Also: a checkpoint truncated or with a flipped byte is rejected with a message naming the
 // file (CheckpointError), and the previous checkpoint (checkpoint.prev.h5) still loads.
@@ -226,6 +227,31 @@ TEST(Restart, SoftSpheresWithFoldedStepsContinueBitwise) {
 
 TEST(Restart, HardSpheresContinueBitwise) {
   check_restart_identity(pouring(Engine::HardSphere), 0.1, "hard");
+}
+
+/// The pouring case with a row of fixed discs across the box at a quarter of its height (an
+/// obstacle the falling discs pile on; inserted first, so the random discs avoid it): fixed
+/// particles are inv_mass = inv_inertia = 0 in the particle arrays, which the checkpoint holds.
+CaseSpec with_fixed_row(CaseSpec spec) {
+  InsertSpec row;
+  row.species = spec.species[0].name;
+  row.placement = Placement::Lattice;
+  row.fixed = true;
+  const double d = spec.species[0].diameter;
+  row.region_lo = spec.domain.lo;
+  row.region_hi = spec.domain.hi;
+  row.region_lo[2] = 0.25 * (spec.domain.hi[2] - spec.domain.lo[2]);
+  row.region_hi[2] = row.region_lo[2] + d;
+  row.count = static_cast<long>((spec.domain.hi[0] - spec.domain.lo[0]) / d * (1.0 + 1e-9));
+  spec.inserts.insert(spec.inserts.begin(), row);
+  return spec;
+}
+
+TEST(Restart, FixedParticlesContinueBitwise) {
+  CaseSpec soft = with_fixed_row(pouring(Engine::SoftSphere));
+  soft.neighbour.sort_interval = 1;
+  check_restart_identity(soft, 0.1, "fixed_soft");
+  check_restart_identity(with_fixed_row(pouring(Engine::HardSphere)), 0.1, "fixed_hard");
 }
 
 TEST(Restart, CoupledSoftSpheresContinueBitwise) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <string>
 #include <vector>
 
 #include "integrate/simulation.hpp"
@@ -175,6 +176,31 @@ TEST(ThreadIndependence, ClosedBoxWithWallsInEverySlabGivesBitwiseIdenticalParti
   // Walls near a third of the particles (the y walls are four diameters apart).
   EXPECT_GT(one.wall_entries, 1500u); // 1955
   EXPECT_GT(one.contacts, 100);
+}
+
+// kCase on a floor of fixed particles (a lattice layer, inserted first so that the random bed
+// avoids it): pairs with a fixed partner (1/m = 0) in the soft-sphere contact loop, no pairs of
+// two fixed ones, no wall entries of them; and the same with the hard-sphere engine, whose
+// collisions with fixed particles are found on the moving one's parabola.
+std::string fixed_layer_case(const char* engine) {
+  std::string text = kCase;
+  const std::string layer = "[[insert]]\nspecies = \"glass\"\ncount = 676\n"
+                            "placement = \"lattice\"\n"
+                            "region = { hi = [0.08, 0.08, 0.003] }\nfixed = true\n";
+  text.insert(text.find("[[insert]]"), layer);
+  text.insert(text.find("[simulation]\n") + 13, std::string("engine = \"") + engine + "\"\n");
+  return text;
+}
+
+TEST(ThreadIndependence, FixedLayerGivesBitwiseIdenticalParticles) {
+  for (const char* engine : {"soft_sphere", "hard_sphere"}) {
+    const std::string text = fixed_layer_case(engine);
+    const State one = run_with_threads(1, text.c_str());
+    const State two = run_with_threads(2, text.c_str());
+    const State three = run_with_threads(3, text.c_str());
+    ASSERT_EQ(one.x.size(), 3u * 6676u) << engine;
+    expect_bitwise_equal(one, two, three);
+  }
 }
 
 } // namespace
