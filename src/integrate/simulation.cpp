@@ -34,6 +34,9 @@ double seconds_since(Clock::time_point t0) {
 
 /// At least this many particle steps per contact: below it the run is refused unless forced.
 constexpr double kMinStepsPerContact = 10.0;
+/// The automatic skin (neighbour.skin = "auto") lets a neighbour list last at least this many
+/// steps at the largest particle speed of its build, within its bounds (NeighbourList::AutoSkin).
+constexpr double kAutoSkinSteps = 10.0;
 /// A run of more steps than this would not end in any useful time: refused.
 constexpr double kMaxSteps = 1e12;
 /// The integrator's pass folds into the contact loop (Simulation::step) only in beds with at
@@ -248,12 +251,16 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
   }
 
   nl_ = std::make_unique<NeighbourList>(box_from(spec_), skin, contact_history_width(*table_));
+  // neighbour.skin = "auto": each build chooses its skin from the particles' speeds, for lists
+  // that last kAutoSkinSteps steps, between 0.2 and 1 largest diameter (NeighbourList::AutoSkin).
+  if (!spec_.neighbour.skin) nl_->set_auto_skin({dt_, kAutoSkinSteps, skin, dmax});
   // A new run starts sorted in space (inserted at random or read from a file in any order); a
   // restarted one continues in the order of its checkpoint.
   if (!initial && spec_.neighbour.sort_interval > 0)
     sort_and_rebuild(); // the first build, so no history to carry over
   else
     nl_->build(p_);
+  report_.skin = nl_->skin(); // the first build's
   compute_forces();
   if (spec_.gas) gas_ = std::make_unique<GasCoupling>(spec_, p_);
 }
