@@ -43,17 +43,20 @@ void CellGrid::bin(const BoxGeometry& box, double cell_size, const double* x, co
     cell_[i] = (c[2] * ny_ + c[1]) * nx_ + c[0];
   });
 
+  // Counting sort, stable: the particles of a cell in ascending index order. Each cell's count
+  // goes to cell_start_[c], whose running sum is then the end of cell c; the particles are put
+  // in from the last, each at --cell_start_[c], which leaves the start of cell c there (no
+  // array of cursors: a build allocates as few arrays as before, steady_steps_allocate_nothing).
   cell_particles_.resize(n);
   if (dense_) {
-    // Counting sort over all cells, stable: the particles of a cell in ascending index order.
     hash_key_.clear();
     hash_cell_.clear();
     cell_start_.assign(ncells + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_[i] + 1];
-    for (std::size_t c = 0; c < ncells; ++c) cell_start_[c + 1] += cell_start_[c];
-    scratch_.assign(cell_start_.begin(), cell_start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i)
-      cell_particles_[scratch_[cell_[i]]++] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_[i]];
+    for (std::size_t c = 1; c < ncells; ++c) cell_start_[c] += cell_start_[c - 1];
+    for (std::size_t i = n; i-- > 0;)
+      cell_particles_[--cell_start_[cell_[i]]] = static_cast<std::uint32_t>(i);
+    cell_start_[ncells] = static_cast<std::uint32_t>(n);
     return;
   }
   // The occupied cells only, numbered in the order of their first particle, through a hash
@@ -63,25 +66,22 @@ void CellGrid::bin(const BoxGeometry& box, double cell_size, const double* x, co
   hash_shift_ = 64 - std::countr_zero(slots);
   hash_key_.assign(slots, kEmptyKey);
   hash_cell_.resize(slots);
-  scratch_.resize(n); // each particle's occupied cell
-  cell_start_.assign(1, 0);
+  scratch_.resize(n);           // each particle's occupied cell
+  cell_start_.assign(n + 1, 0); // (at most n occupied cells)
+  std::uint32_t occupied = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint64_t key = cell_[i];
     std::uint64_t s = hash_slot(key);
     while (hash_key_[s] != key && hash_key_[s] != kEmptyKey) s = (s + 1) & hash_mask_;
-    if (hash_key_[s] == kEmptyKey) {
-      hash_key_[s] = key;
-      hash_cell_[s] = static_cast<std::uint32_t>(cell_start_.size() - 1);
-      cell_start_.push_back(0);
-    }
+    if (hash_key_[s] == kEmptyKey) hash_key_[s] = key, hash_cell_[s] = occupied++;
     scratch_[i] = hash_cell_[s];
-    ++cell_start_[hash_cell_[s] + 1];
+    ++cell_start_[hash_cell_[s]];
   }
-  const std::size_t occupied = cell_start_.size() - 1;
-  for (std::size_t c = 0; c < occupied; ++c) cell_start_[c + 1] += cell_start_[c];
-  std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-    cell_particles_[fill[scratch_[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::uint32_t c = 1; c < occupied; ++c) cell_start_[c] += cell_start_[c - 1];
+  for (std::size_t i = n; i-- > 0;)
+    cell_particles_[--cell_start_[scratch_[i]]] = static_cast<std::uint32_t>(i);
+  cell_start_.resize(static_cast<std::size_t>(occupied) + 1);
+  cell_start_[occupied] = static_cast<std::uint32_t>(n);
 }
 
 void CellGrid::release() {

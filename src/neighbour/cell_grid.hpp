@@ -108,7 +108,7 @@ private:
   std::vector<std::uint32_t> hash_cell_;
   std::uint64_t hash_mask_ = 0;
   int hash_shift_ = 64;
-  std::vector<std::uint32_t> scratch_; ///< the counting sort's fill cursors
+  std::vector<std::uint32_t> scratch_; ///< hashed grids: each particle's occupied cell
 };
 
 } // namespace fluidem

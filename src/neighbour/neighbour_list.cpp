@@ -134,17 +134,18 @@ void NeighbourList::build_slabs(std::size_t n) {
   // the particles sorted by layer.
   slab_particles.resize(n);
   if (static_cast<std::size_t>(nlayer_) <= 2 * n + 64) {
-    count_.assign(static_cast<std::size_t>(nlayer_) + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) ++count_[particle_slab_[i] + 1];
-    slab_of_layer_.resize(static_cast<std::size_t>(nlayer_));
+    // count_[l]: the particles of layer l, then the first place of its slab (a cursor).
+    count_.reserve(std::max(static_cast<std::size_t>(nlayer_), n)); // (build() reuses it for n)
+    count_.assign(static_cast<std::size_t>(nlayer_), 0);
+    for (std::size_t i = 0; i < n; ++i) ++count_[particle_slab_[i]];
     slab_start.assign(1, 0);
     for (int l = 0; l < nlayer_; ++l) {
-      slab_of_layer_[l] = static_cast<std::uint32_t>(slab_start.size() - 1);
-      if (count_[l + 1] > 0) slab_start.push_back(slab_start.back() + count_[l + 1]);
+      const std::uint32_t c = count_[l];
+      count_[l] = slab_start.back();
+      if (c > 0) slab_start.push_back(slab_start.back() + c);
     }
-    count_.assign(slab_start.begin(), slab_start.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
-      slab_particles[count_[slab_of_layer_[particle_slab_[i]]]++] = static_cast<std::uint32_t>(i);
+      slab_particles[count_[particle_slab_[i]]++] = static_cast<std::uint32_t>(i);
   } else {
     for (std::size_t i = 0; i < n; ++i) slab_particles[i] = static_cast<std::uint32_t>(i);
     std::stable_sort(
@@ -329,7 +330,6 @@ void NeighbourList::build_with_skin(const ParticleStore& p,
   // grid (~18 bytes per particle), which only the build reads.
   grid_.release();
   release(particle_slab_);
-  release(slab_of_layer_);
   release(count_);
   release(old_offset_);
   release(old_partner_);
@@ -342,9 +342,9 @@ void NeighbourList::build_with_skin(const ParticleStore& p,
 std::size_t NeighbourList::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return b(offset) + b(partner) + b(history) + b(wall_particle) + b(wall_face) + b(wall_history) +
-         b(x0_) + b(y0_) + b(z0_) + grid_.bytes() + b(slab_of_layer_) + b(old_offset_) +
-         b(old_partner_) + b(old_history_) + b(old_wall_particle_) + b(old_wall_face_) +
-         b(old_wall_history_) + b(count_) + b(slab_start) + b(slab_particles) + b(particle_slab_);
+         b(x0_) + b(y0_) + b(z0_) + grid_.bytes() + b(old_offset_) + b(old_partner_) +
+         b(old_history_) + b(old_wall_particle_) + b(old_wall_face_) + b(old_wall_history_) +
+         b(count_) + b(slab_start) + b(slab_particles) + b(particle_slab_);
 }
 
 } // namespace fluidem

@@ -179,7 +179,6 @@ private:
   /// the slabs are cut from (a particle's layer decides which particle owns a pair).
   int slab_axis_ = 0, nslab_ = 1, nlayer_ = 1;
   std::vector<std::uint32_t> particle_slab_; ///< each particle's layer
-  std::vector<std::uint32_t> slab_of_layer_; ///< scratch: the slab of each occupied layer
   // Scratch for history carry-over
   std::vector<std::uint32_t> old_offset_, old_partner_, old_wall_particle_;
   std::vector<std::uint8_t> old_wall_face_;
