@@ -1,5 +1,4 @@
 #include "hardsphere/hard_sphere_engine.hpp"
-#include "neighbour/cell_walk.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -117,31 +116,8 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
   double rmax = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : rmax) if (n >= kParallelMin)
   for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, p.radius[i]);
-  const double cell_size = 2.0 * rmax + skin_;
-  std::array<double, 3> inv_cell{};
-  ncell_ = grid_cells(box_, cell_size);
-  for (int a = 0; a < 3; ++a) inv_cell[a] = ncell_[a] / box_.length(a);
-  const std::size_t ncells = static_cast<std::size_t>(ncell_[0]) * ncell_[1] * ncell_[2];
-  particle_cell_.resize(n);
-  const std::array<const double*, 3> pos{p.x.data(), p.y.data(), p.z.data()};
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::array<int, 3> c{};
-    for (int a = 0; a < 3; ++a) {
-      double rel = pos[a][i] - box_.lo[a];
-      if (box_.periodic[a]) rel -= box_.length(a) * std::floor(rel / box_.length(a));
-      c[a] = std::clamp(static_cast<int>(rel * inv_cell[a]), 0, ncell_[a] - 1);
-    }
-    particle_cell_[i] = static_cast<std::uint32_t>((c[2] * ncell_[1] + c[1]) * ncell_[0] + c[0]);
-  }
-  // Counting sort, stable: the particles of a cell in ascending index order.
-  cell_start_.assign(ncells + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) ++cell_start_[particle_cell_[i] + 1];
-  for (std::size_t c = 0; c < ncells; ++c) cell_start_[c + 1] += cell_start_[c];
-  cell_particles_.resize(n);
-  cell_fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-    cell_particles_[cell_fill_[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
+  // (The grid's work and memory are bounded by the particle count: CellGrid.)
+  grid_.bin(box_, 2.0 * rmax + skin_, p.x.data(), p.y.data(), p.z.data(), n, n >= kParallelMin);
 
   full_offset_.assign(n + 1, 0);
   const int nthreads = n >= kParallelMin ? omp_get_max_threads() : 1;
@@ -158,7 +134,6 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
     // going to even): the same separations, so the same rows.
     const double *const px = p.x.data(), *const py = p.y.data(), *const pz = p.z.data(),
                         *const pr = p.radius.data();
-    const std::uint32_t *const start = cell_start_.data(), *const members = cell_particles_.data();
     const double skin = skin_;
     std::array<double, 3> period{}, half{};
     for (int a = 0; a < 3; ++a) {
@@ -172,16 +147,13 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
       const double xi = px[i], yi = py[i], zi = pz[i], ri = pr[i];
       const bool fixed_i = p.fixed(i); // two fixed particles never meet: no pair of them
       const std::size_t before = rows.size();
-      for_each_cell_around(particle_cell_[i], ncell_, box_.periodic, [&](std::uint32_t cell) {
-        for (std::uint32_t k = start[cell]; k < start[cell + 1]; ++k) {
-          const std::uint32_t j = members[k];
-          if (j == i || (fixed_i && p.fixed(j))) continue;
-          const double ddx = image(px[j] - xi, 0);
-          const double ddy = image(py[j] - yi, 1);
-          const double ddz = image(pz[j] - zi, 2);
-          const double cut = ri + pr[j] + skin;
-          if (ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) rows.push_back(j);
-        }
+      grid_.for_each_near(i, box_.periodic, [&](std::uint32_t j) {
+        if (j == i || (fixed_i && p.fixed(j))) return;
+        const double ddx = image(px[j] - xi, 0);
+        const double ddy = image(py[j] - yi, 1);
+        const double ddz = image(pz[j] - zi, 2);
+        const double cut = ri + pr[j] + skin;
+        if (ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) rows.push_back(j);
       });
       // Rows in ascending partner order: the partners above i (each pair once) form the tail.
       std::sort(rows.begin() + static_cast<std::ptrdiff_t>(before), rows.end());
@@ -742,10 +714,9 @@ std::size_t HardSphereEngine::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   std::size_t rows = 0;
   for (const auto& r : thread_rows_) rows += b(r);
-  return b(cell_start_) + b(cell_particles_) + b(particle_cell_) + b(cell_fill_) + b(full_offset_) +
-         b(full_partner_) + b(split_) + b(mirror_) + b(mirror_cursor_) + b(pair_time_) + rows +
-         b(kin_) + b(last_collision_) + b(counter_) + b(next_) + b(queue_) + b(slot_) +
-         b(built_x_) + b(built_y_) + b(built_z_);
+  return grid_.bytes() + b(full_offset_) + b(full_partner_) + b(split_) + b(mirror_) +
+         b(mirror_cursor_) + b(pair_time_) + rows + b(kin_) + b(last_collision_) + b(counter_) +
+         b(next_) + b(queue_) + b(slot_) + b(built_x_) + b(built_y_) + b(built_z_);
 }
 
 } // namespace fluidem

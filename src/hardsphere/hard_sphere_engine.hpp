@@ -29,6 +29,7 @@
 #include "core/case_spec.hpp"
 #include "core/nearest_integer.hpp"
 #include "hardsphere/collision_operator.hpp"
+#include "neighbour/cell_grid.hpp"
 #include "neighbour/neighbour_list.hpp" // BoxGeometry, NeighbourList::State (checkpoints)
 #include "particles/particle_store.hpp"
 
@@ -151,8 +152,7 @@ private:
   double skin_ = 0.0;
   // Cell grid of the last build and the full list (CSR: the partners of i are
   // full_partner_[full_offset_[i] .. full_offset_[i + 1])).
-  std::array<int, 3> ncell_{1, 1, 1};
-  std::vector<std::uint32_t> cell_start_, cell_particles_, particle_cell_, cell_fill_;
+  CellGrid grid_;
   std::vector<std::uint32_t> full_offset_, full_partner_;
   std::vector<std::uint32_t> split_, mirror_; ///< first entry above i; the entry (j, i) of (i, j)
   std::vector<std::uint32_t> mirror_cursor_;  ///< build_list on one thread: per row, its next

@@ -1,7 +1,5 @@
 #include "integrate/memory_estimate.hpp"
 
-#include <cstdint>
-#include <limits>
 
 #include <fmt/format.h>
 
@@ -22,9 +20,6 @@ constexpr double kGasBytesPerCell = 750.0;
 /// of a result and the writer's copy. Measured as above at 40^3 and 100^3 cells: 110 and 899 MB,
 /// 864 bytes per cell.
 constexpr double kContinuumBytesPerCell = 870.0;
-/// A cell grid of the neighbour lists per cell, bytes: the start of its particles and a fill
-/// counter (NeighbourList::build_cells, HardSphereEngine::build_list), 32 bits each.
-constexpr double kCellGridBytesPerCell = 2.0 * sizeof(std::uint32_t);
 
 double product(const std::array<int, 3>& n) {
   return static_cast<double>(n[0]) * static_cast<double>(n[1]) * static_cast<double>(n[2]);
@@ -60,24 +55,6 @@ std::vector<MemoryShare> case_memory_shares(const CaseSpec& spec, std::optional<
                       cells * kContinuumBytesPerCell});
   }
   return shares;
-}
-
-MemoryShare cell_grid_share(const CaseSpec& spec, const BoxGeometry& box, double cell_size) {
-  const std::array<int, 3> n = grid_cells(box, cell_size);
-  const double cells = product(n);
-  const std::string what =
-      fmt::format("the neighbour-list cell grid of {:.3g} cells ({} x {} x {} of {:.3g} m: the "
-                  "largest diameter plus the skin) over the domain",
-                  cells, n[0], n[1], n[2], cell_size);
-  // The cell of a particle is a 32-bit index (and the grid's starts count to cells + 1).
-  const double max_cells = static_cast<double>(std::numeric_limits<std::uint32_t>::max()) - 1.0;
-  if (cells > max_cells)
-    throw InputError(spec.where("domain.hi"), "domain.hi",
-                     fmt::format("{} has more cells than its 32-bit cell index counts (allowed: "
-                                 "at most {:.0f} cells; a smaller domain, larger particles or a "
-                                 "larger neighbour.skin)",
-                                 what, max_cells));
-  return {"domain.hi", what, cells * kCellGridBytesPerCell};
 }
 
 } // namespace fluidem

@@ -38,6 +38,9 @@ double seconds_since(Clock::time_point t0) {
 
 /// At least this many particle steps per contact: below it the run is refused unless forced.
 constexpr double kMinStepsPerContact = 10.0;
+/// The automatic skin (neighbour.skin = "auto") lets a neighbour list last at least this many
+/// steps at the largest particle speed of its build, within its bounds (NeighbourList::AutoSkin).
+constexpr double kAutoSkinSteps = 10.0;
 /// A run of more steps than this would not end in any useful time: refused.
 constexpr double kMaxSteps = 1e12;
 /// The integrator's pass folds into the contact loop (Simulation::step) only in beds with at
@@ -200,15 +203,9 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
       if (!table_->has_particles(s))
         throw std::logic_error("a particle of species " + spec_.species[s].name +
                                ", which no [[insert]] names");
-  {
-    // With the particles known: the cell grid of the lists (the event-driven engine's skin
-    // changes with its steps: cells as narrow as the largest diameter bound it).
-    double rmax = 0.0;
-    for (const double r : p_.radius) rmax = std::max(rmax, r);
-    auto shares = case_memory_shares(spec_, static_cast<double>(p_.size()));
-    shares.push_back(cell_grid_share(spec_, box_from(spec_), 2.0 * rmax + (hard ? 0.0 : skin)));
-    require_memory(spec_, shares);
-  }
+  // With the particles known (the neighbour lists' cell grids are bounded by the particle count,
+  // neighbour/cell_grid.hpp, and counted in their bytes per particle).
+  require_memory(spec_, case_memory_shares(spec_, static_cast<double>(p_.size())));
 
   if (spec_.output.collisions) {
     CollisionStatistics::Settings cs;
@@ -310,12 +307,16 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial) : spec_(std:
   }
 
   nl_ = std::make_unique<NeighbourList>(box_from(spec_), skin, contact_history_width(*table_));
+  // neighbour.skin = "auto": each build chooses its skin from the particles' speeds, for lists
+  // that last kAutoSkinSteps steps, between 0.2 and 1 largest diameter (NeighbourList::AutoSkin).
+  if (!spec_.neighbour.skin) nl_->set_auto_skin({dt_, kAutoSkinSteps, skin, dmax});
   // A new run starts sorted in space (inserted at random or read from a file in any order); a
   // restarted one continues in the order of its checkpoint.
   if (!initial && spec_.neighbour.sort_interval > 0)
     sort_and_rebuild(); // the first build, so no history to carry over
   else
     nl_->build(p_);
+  report_.skin = nl_->skin(); // the first build's
   compute_forces();
   if (spec_.gas) gas_ = std::make_unique<GasCoupling>(spec_, p_);
 }

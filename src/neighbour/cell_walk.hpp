@@ -9,18 +9,20 @@
 namespace fluidem {
 
 /// Calls visit(cell) for each distinct cell of the block around `cell` (flat index, x fastest:
-/// (cz * ny + cy) * nx + cx), in the order dz, dy, dx = -1 .. 1 (dx fastest).
+/// (cz * ny + cy) * nx + cx), in the order dz, dy, dx = -1 .. 1 (dx fastest). Index: the flat
+/// index's type, std::uint32_t for grids of up to 2^32 cells, std::uint64_t beyond (CellGrid's
+/// hashed cells: up to 2^20 per axis).
 ///
 /// The block is the product of three per-axis index lists (the offsets -1, 0, 1 of each axis,
 /// wrapped or cut, each index at its first occurrence), so two cells of it are the same only if
 /// all three indices are: deduplicating per axis visits each cell once, in the order of the
 /// first offsets (dz, dy, dx) that reach it — the order of a walk over all 27 offsets that skips
 /// the cells it has seen.
-template <class Visit>
-[[gnu::always_inline]] inline void
-for_each_cell_around(std::uint32_t cell, const std::array<int, 3>& ncell,
-                     const std::array<bool, 3>& periodic, Visit&& visit) {
-  const auto nx = static_cast<std::uint32_t>(ncell[0]), ny = static_cast<std::uint32_t>(ncell[1]);
+template <class Index, class Visit>
+[[gnu::always_inline]] inline void for_each_cell_around(Index cell, const std::array<int, 3>& ncell,
+                                                        const std::array<bool, 3>& periodic,
+                                                        Visit&& visit) {
+  const auto nx = static_cast<Index>(ncell[0]), ny = static_cast<Index>(ncell[1]);
   const int c[3] = {static_cast<int>(cell % nx), static_cast<int>((cell / nx) % ny),
                     static_cast<int>(cell / (nx * ny))};
   int idx[3][3];
@@ -40,8 +42,8 @@ for_each_cell_around(std::uint32_t cell, const std::array<int, 3>& ncell,
   }
   for (int kz = 0; kz < count[2]; ++kz)
     for (int ky = 0; ky < count[1]; ++ky) {
-      const auto row = static_cast<std::uint32_t>((idx[2][kz] * ncell[1] + idx[1][ky]) * ncell[0]);
-      for (int kx = 0; kx < count[0]; ++kx) visit(row + static_cast<std::uint32_t>(idx[0][kx]));
+      const Index row = (static_cast<Index>(idx[2][kz]) * ny + static_cast<Index>(idx[1][ky])) * nx;
+      for (int kx = 0; kx < count[0]; ++kx) visit(row + static_cast<Index>(idx[0][kx]));
     }
 }
 

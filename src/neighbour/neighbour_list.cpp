@@ -28,43 +28,28 @@ bool NeighbourList::needs_rebuild(const ParticleStore& p) const {
                       [&](std::size_t i) { return moved_far(i, p.x[i], p.y[i], p.z[i]); });
 }
 
-std::array<int, 3> grid_cells(const BoxGeometry& box, double cell_size) {
-  std::array<int, 3> n{};
-  for (int a = 0; a < 3; ++a) // (in double first: a tiny cell would overflow the int)
-    n[a] = static_cast<int>(std::clamp(std::floor(box.length(a) / cell_size), 1.0, 1048576.0));
-  return n;
+double NeighbourList::AutoSkin::skin(double v_max) const {
+  return std::clamp(2.0 * steps * v_max * dt, min_skin, max_skin);
 }
 
-void NeighbourList::build_cells(const ParticleStore& p, double cell_size) {
+double NeighbourList::skin_for(const ParticleStore& p) const {
+  if (!auto_skin_) return skin_;
   const std::size_t n = p.size();
-  ncell_ = grid_cells(box_, cell_size);
-  for (int a = 0; a < 3; ++a) inv_cell_[a] = ncell_[a] / box_.length(a);
-  const std::size_t ncells = static_cast<std::size_t>(ncell_[0]) * ncell_[1] * ncell_[2];
-  particle_cell_.resize(n);
-  const std::array<const std::vector<double>*, 3> pos{&p.x, &p.y, &p.z};
-  parallel_for(n, threaded_particles(n), [&](std::size_t i) {
-    std::array<int, 3> c{};
-    for (int a = 0; a < 3; ++a) {
-      double rel = (*pos[a])[i] - box_.lo[a];
-      if (box_.periodic[a]) rel -= box_.length(a) * std::floor(rel / box_.length(a));
-      c[a] = std::clamp(static_cast<int>(rel * inv_cell_[a]), 0, ncell_[a] - 1);
-    }
-    particle_cell_[i] = static_cast<std::uint32_t>((c[2] * ncell_[1] + c[1]) * ncell_[0] + c[0]);
-  });
-  // Counting sort, stable: particles of a cell in ascending index order.
-  cell_start_.assign(ncells + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) ++cell_start_[particle_cell_[i] + 1];
-  for (std::size_t c = 0; c < ncells; ++c) cell_start_[c + 1] += cell_start_[c];
-  cell_particles_.resize(n);
-  count_.assign(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-    cell_particles_[count_[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
+  const double *const vx = p.vx.data(), *const vy = p.vy.data(), *const vz = p.vz.data();
+  double v2 = 0.0;
+  // A maximum: the same in any order, so with any number of threads.
+#pragma omp parallel for schedule(static) reduction(max : v2) if (threaded_particles(n))
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
+    v2 = s2 > v2 ? s2 : v2; // (a NaN counts as no speed)
+  }
+  return auto_skin_->skin(std::sqrt(v2));
 }
 
 double NeighbourList::cell_size(const ParticleStore& p) const {
   double rmax = 0.0;
   for (const double r : p.radius) rmax = std::max(rmax, r);
-  return 2.0 * rmax + skin_;
+  return 2.0 * rmax + skin_for(p);
 }
 
 void NeighbourList::renumber_old(const std::vector<std::uint32_t>& new_to_old) {
@@ -115,8 +100,74 @@ void NeighbourList::renumber_old(const std::vector<std::uint32_t>& new_to_old) {
 }
 
 void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_t>* new_to_old) {
+  skin_ = skin_for(p);
+  build_with_skin(p, new_to_old);
+}
+
+void NeighbourList::build_slabs(std::size_t n) {
+  // Slabs along the axis over which the particles spread across the most cells.
+  std::array<std::uint32_t, 3> cmin{~0u, ~0u, ~0u}, cmax{0, 0, 0};
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) {
+      const std::uint32_t q = grid_.coordinate(i, a);
+      cmin[a] = std::min(cmin[a], q), cmax[a] = std::max(cmax[a], q);
+    }
+  slab_axis_ = n > 0 ? slab_axis(cmin, cmax) : 0; // the rule spatial_order follows too
+  // The cell layers along the axis: a particle's layer decides which particle owns a pair
+  // (the lower layer, build()'s owns). A periodic axis gets an even number of layers (the last
+  // layer neighbours layer 0): the last cell then joins the layer before it. (The contact
+  // loop's even/odd slab phases needed it; its groups of two or more slabs do not, but the
+  // layers decide which particle owns a pair, and a checkpoint's list is verified against the
+  // pairs rebuilt from it.)
+  nlayer_ = grid_.cells_per_axis()[slab_axis_];
+  if (box_.periodic[slab_axis_] && nlayer_ > 1 && nlayer_ % 2 == 1) --nlayer_;
+  const auto last = static_cast<std::uint32_t>(nlayer_ - 1);
+  particle_slab_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    particle_slab_[i] = std::min(grid_.coordinate(i, slab_axis_), last);
+  // The slabs: the occupied layers, numbered in order (a box much longer than its particles'
+  // spread has mostly empty layers, which would cost the contact loop a visit each per step).
+  // A pair lies in one layer or in two neighbouring ones, which are then neighbouring slabs
+  // (no occupied layer lies between them): the rows of slab s still touch only slabs s and
+  // s + 1 (and slab 0 from the last one across a periodic axis), as the contact loop needs.
+  // Counted over the layers when there are not many more of them than particles, else over
+  // the particles sorted by layer.
+  slab_particles.resize(n);
+  if (static_cast<std::size_t>(nlayer_) <= 2 * n + 64) {
+    // count_[l]: the particles of layer l, then the first place of its slab (a cursor).
+    count_.reserve(std::max(static_cast<std::size_t>(nlayer_), n)); // (build() reuses it for n)
+    count_.assign(static_cast<std::size_t>(nlayer_), 0);
+    for (std::size_t i = 0; i < n; ++i) ++count_[particle_slab_[i]];
+    slab_start.assign(1, 0);
+    for (int l = 0; l < nlayer_; ++l) {
+      const std::uint32_t c = count_[l];
+      count_[l] = slab_start.back();
+      if (c > 0) slab_start.push_back(slab_start.back() + c);
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      slab_particles[count_[particle_slab_[i]]++] = static_cast<std::uint32_t>(i);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) slab_particles[i] = static_cast<std::uint32_t>(i);
+    std::stable_sort(
+        slab_particles.begin(), slab_particles.end(),
+        [&](std::uint32_t a, std::uint32_t b) { return particle_slab_[a] < particle_slab_[b]; });
+    slab_start.assign(1, 0);
+    for (std::size_t k = 0; k < n; ++k)
+      if (k + 1 == n || particle_slab_[slab_particles[k + 1]] != particle_slab_[slab_particles[k]])
+        slab_start.push_back(static_cast<std::uint32_t>(k + 1));
+  }
+  if (slab_start.size() == 1) slab_start.push_back(0); // no particles: one empty slab
+  nslab_ = static_cast<int>(slab_start.size() - 1);
+}
+
+void NeighbourList::build_with_skin(const ParticleStore& p,
+                                    const std::vector<std::uint32_t>* new_to_old) {
   const std::size_t n = p.size();
-  build_cells(p, cell_size(p));
+  double rmax = 0.0;
+  for (const double r : p.radius) rmax = std::max(rmax, r);
+  grid_.bin(box_, 2.0 * rmax + skin_, p.x.data(), p.y.data(), p.z.data(), n, threaded_particles(n));
+  stored_cells_ = grid_.stored_cells();
+  grid_bytes_ = grid_.bytes();
 
   std::swap(old_offset_, offset);
   std::swap(old_partner_, partner);
@@ -133,48 +184,15 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
     if (carry) renumber_old(*new_to_old);
   }
 
-  // Slabs along the axis over which the particles spread across the most cells.
-  {
-    std::array<std::uint32_t, 3> cmin{~0u, ~0u, ~0u}, cmax{0, 0, 0};
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t c = particle_cell_[i];
-      const std::array<std::uint32_t, 3> q{c % ncell_[0], (c / ncell_[0]) % ncell_[1],
-                                           c / (static_cast<std::uint32_t>(ncell_[0]) * ncell_[1])};
-      for (int a = 0; a < 3; ++a)
-        cmin[a] = std::min(cmin[a], q[a]), cmax[a] = std::max(cmax[a], q[a]);
-    }
-    slab_axis_ = n > 0 ? slab_axis(cmin, cmax) : 0; // the rule spatial_order follows too
-    nslab_ = ncell_[slab_axis_];
-    // A periodic axis gets an even number of slabs (the last slab neighbours slab 0): the last
-    // cell then joins the slab before it. (The contact loop's even/odd slab phases needed it;
-    // its groups of two or more slabs do not, but the slabs decide which particle owns a pair,
-    // and a checkpoint's list is verified against the pairs rebuilt from it.)
-    if (box_.periodic[slab_axis_] && nslab_ > 1 && nslab_ % 2 == 1) --nslab_;
-    particle_slab_.resize(n);
-    const std::uint32_t stride =
-        slab_axis_ == 0 ? 1u
-                        : (slab_axis_ == 1 ? static_cast<std::uint32_t>(ncell_[0])
-                                           : static_cast<std::uint32_t>(ncell_[0] * ncell_[1]));
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t q = (particle_cell_[i] / stride) % ncell_[slab_axis_];
-      particle_slab_[i] = std::min(q, static_cast<std::uint32_t>(nslab_ - 1));
-    }
-    slab_start.assign(nslab_ + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) ++slab_start[particle_slab_[i] + 1];
-    for (int k = 0; k < nslab_; ++k) slab_start[k + 1] += slab_start[k];
-    slab_particles.resize(n);
-    count_.assign(slab_start.begin(), slab_start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i)
-      slab_particles[count_[particle_slab_[i]]++] = static_cast<std::uint32_t>(i);
-  }
+  build_slabs(n);
   const bool periodic_slabs = box_.periodic[slab_axis_];
-  // Owner of a pair: the particle whose slab is followed by the other's; within a slab the
-  // lower index. (With two periodic slabs each follows the other: the lower slab owns.)
+  // Owner of a pair: the particle whose layer is followed by the other's; within a layer the
+  // lower index. (With two periodic layers each follows the other: the lower layer owns.)
   auto owns = [&](std::uint32_t i, std::uint32_t j) {
     const std::uint32_t si = particle_slab_[i], sj = particle_slab_[j];
     if (si == sj) return i < j;
     const auto next = [&](std::uint32_t sl) {
-      return periodic_slabs ? (sl + 1) % static_cast<std::uint32_t>(nslab_) : sl + 1;
+      return periodic_slabs ? (sl + 1) % static_cast<std::uint32_t>(nlayer_) : sl + 1;
     };
     if (sj == next(si) && si == next(sj)) return si < sj;
     return sj == next(si);
@@ -184,17 +202,14 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
   // fixed particles (ParticleStore::fix) never interact: no pair of them.
   auto for_each_partner = [&](std::size_t i, auto&& visit) {
     const bool fixed_i = p.fixed(i);
-    for_each_cell_around(particle_cell_[i], ncell_, box_.periodic, [&](std::uint32_t cell) {
-      for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-        const std::uint32_t j = cell_particles_[k];
-        if (j == i || !owns(static_cast<std::uint32_t>(i), j)) continue;
-        if (fixed_i && p.fixed(j)) continue;
-        const double dxp = min_image(p.x[j] - p.x[i], 0);
-        const double dyp = min_image(p.y[j] - p.y[i], 1);
-        const double dzp = min_image(p.z[j] - p.z[i], 2);
-        const double cut = p.radius[i] + p.radius[j] + skin_;
-        if (dxp * dxp + dyp * dyp + dzp * dzp < cut * cut) visit(j);
-      }
+    grid_.for_each_near(i, box_.periodic, [&](std::uint32_t j) {
+      if (j == i || !owns(static_cast<std::uint32_t>(i), j)) return;
+      if (fixed_i && p.fixed(j)) return;
+      const double dxp = min_image(p.x[j] - p.x[i], 0);
+      const double dyp = min_image(p.y[j] - p.y[i], 1);
+      const double dzp = min_image(p.z[j] - p.z[i], 2);
+      const double cut = p.radius[i] + p.radius[j] + skin_;
+      if (dxp * dxp + dyp * dyp + dzp * dzp < cut * cut) visit(j);
     });
   };
 
@@ -318,9 +333,7 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
   // a run holds one list, not two (the next build allocates its arrays again; builds are rare
   // next to steps, and the history carried over is ~100 bytes per particle). So is the cell
   // grid (~18 bytes per particle), which only the build reads.
-  release(cell_start_);
-  release(cell_particles_);
-  release(particle_cell_);
+  grid_.release();
   release(particle_slab_);
   release(count_);
   release(old_offset_);
@@ -334,10 +347,9 @@ void NeighbourList::build(const ParticleStore& p, const std::vector<std::uint32_
 std::size_t NeighbourList::bytes() const {
   auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return b(offset) + b(partner) + b(history) + b(wall_particle) + b(wall_face) + b(wall_history) +
-         b(x0_) + b(y0_) + b(z0_) + b(cell_start_) + b(cell_particles_) + b(particle_cell_) +
-         b(old_offset_) + b(old_partner_) + b(old_history_) + b(old_wall_particle_) +
-         b(old_wall_face_) + b(old_wall_history_) + b(count_) + b(slab_start) + b(slab_particles) +
-         b(particle_slab_);
+         b(x0_) + b(y0_) + b(z0_) + grid_.bytes() + b(old_offset_) + b(old_partner_) +
+         b(old_history_) + b(old_wall_particle_) + b(old_wall_face_) + b(old_wall_history_) +
+         b(count_) + b(slab_start) + b(slab_particles) + b(particle_slab_);
 }
 
 } // namespace fluidem
@@ -375,7 +387,7 @@ void NeighbourList::restore(const ParticleStore& p, const State& s) {
   at_build.x = s.x0;
   at_build.y = s.y0;
   at_build.z = s.z0;
-  build(at_build);
+  build_with_skin(at_build, nullptr); // the checkpoint's skin, not one chosen again
   if (offset != s.offset || partner != s.partner || wall_particle != s.wall_particle ||
       wall_face != s.wall_face || s.history.size() != history.size() ||
       s.wall_history.size() != wall_history.size())

@@ -12,25 +12,15 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/nearest_integer.hpp"
+#include "neighbour/box_geometry.hpp"
+#include "neighbour/cell_grid.hpp"
 #include "particles/particle_store.hpp"
 
 namespace fluidem {
-
-struct BoxGeometry {
-  std::array<double, 3> lo{}, hi{};
-  std::array<bool, 3> periodic{};
-  /// Which faces carry a wall (closed, non-periodic; no y walls for 2-D discs).
-  std::array<bool, 6> wall{};
-  double length(int a) const { return hi[a] - lo[a]; }
-};
-
-/// Cells along each axis of a grid of cells at least `cell_size` wide over the box: the grid the
-/// lists bin particles in (at least 1 and at most 2^20 per axis). Their product is refused
-/// before a run when the cells would not fit in memory or in a 32-bit cell index.
-std::array<int, 3> grid_cells(const BoxGeometry& box, double cell_size);
 
 class NeighbourList {
 public:
@@ -82,14 +72,46 @@ public:
   bool slabs_wrap() const { return box_.periodic[slab_axis_]; }
 
   int history_width() const { return hw_; }
+  /// The skin of the list as last built (restored), m.
   double skin() const { return skin_; }
-  /// Change the skin for the next build (the hard-sphere engine sizes it per flow step).
-  void set_skin(double skin) { skin_ = skin; }
+  /// Change the skin for the next build (a fixed skin: ends an automatic one).
+  void set_skin(double skin) {
+    skin_ = skin;
+    auto_skin_.reset();
+  }
+
+  /// The automatic skin (neighbour.skin = "auto"): each build() chooses its skin from the
+  /// largest particle speed v_max at that moment, so that the list lasts at least `steps` time
+  /// steps dt while the particles keep their speeds (a rebuild is due after a move of skin/2):
+  ///   skin = clamp(2 steps v_max dt, min_skin, max_skin).
+  /// The lower bound keeps slow beds at the fixed default (0.2 d_max); the upper bound (d_max)
+  /// limits the pairs a dense region holds (their number grows with (d + skin)^3). The choice
+  /// depends on the velocities alone (a maximum: the same with any number of threads), so a
+  /// restarted run, which rebuilds its list with the checkpoint's skin, chooses the same skins
+  /// after it as the run it continues. docs/case-file.md, [neighbour].
+  struct AutoSkin {
+    double dt = 0.0;       ///< the time step, s
+    double steps = 10.0;   ///< steps the list should last at the largest speed
+    double min_skin = 0.0; ///< m
+    double max_skin = 0.0; ///< m
+    double skin(double v_max) const;
+  };
+  void set_auto_skin(const AutoSkin& a) { auto_skin_ = a; }
+  /// The skin the next build() of the particles p uses: the automatic one for their speeds, or
+  /// the fixed one.
+  double skin_for(const ParticleStore& p) const;
+  /// The cells of the last build() (its grid is released after it; kept for inspection).
+  std::array<int, 3> cells_per_axis() const { return grid_.cells_per_axis(); }
+  /// The cells the last build() stored (all of a dense grid, the occupied ones of a sparse one)
+  /// and the most bytes its grid held: bounded by the particle count, not the box.
+  std::size_t stored_cells() const { return stored_cells_; }
+  std::size_t grid_bytes() const { return grid_bytes_; }
   long builds() const { return builds_; }
   /// Changes with every build() and restore() of this object (and is not saved): whoever
   /// derives data from the pairs (the contact loop's entry owners) rebuilds them when it does.
   std::uint64_t generation() const { return generation_; }
-  /// Side of the cells the list bins particles in: the largest diameter plus the skin.
+  /// Side of the cells the next build() bins the particles p in: their largest diameter plus
+  /// the skin it uses (skin_for).
   double cell_size(const ParticleStore& p) const;
   std::size_t bytes() const;
 
@@ -136,23 +158,28 @@ public:
   void restore(const ParticleStore& p, const State& s);
 
 private:
-  void build_cells(const ParticleStore& p, double cell_size);
+  /// build() with the skin as it is (restore() rebuilds with the checkpoint's skin).
+  void build_with_skin(const ParticleStore& p, const std::vector<std::uint32_t>* new_to_old);
+  /// The slabs of the particles from the cell grid of the build.
+  void build_slabs(std::size_t n);
   /// Renumber the previous list (old_* arrays) into the new particle order.
   void renumber_old(const std::vector<std::uint32_t>& new_to_old);
 
   BoxGeometry box_;
   double skin_;
+  std::optional<AutoSkin> auto_skin_;
   int hw_;
   long builds_ = 0;
   std::uint64_t generation_ = 0;
   std::uint32_t max_entries_ = 0;
+  std::size_t stored_cells_ = 0, grid_bytes_ = 0;
   std::vector<double> x0_, y0_, z0_; ///< positions at the last build
   // Cell grid (its arrays are scratch of build(), released at its end)
-  std::array<int, 3> ncell_{1, 1, 1};
-  std::array<double, 3> inv_cell_{1, 1, 1};
-  std::vector<std::uint32_t> cell_start_, cell_particles_, particle_cell_;
-  int slab_axis_ = 0, nslab_ = 1;
-  std::vector<std::uint32_t> particle_slab_;
+  CellGrid grid_;
+  /// The slabs' axis; the slab count (occupied slabs only); the cell layers along the axis that
+  /// the slabs are cut from (a particle's layer decides which particle owns a pair).
+  int slab_axis_ = 0, nslab_ = 1, nlayer_ = 1;
+  std::vector<std::uint32_t> particle_slab_; ///< each particle's layer
   // Scratch for history carry-over
   std::vector<std::uint32_t> old_offset_, old_partner_, old_wall_particle_;
   std::vector<std::uint8_t> old_wall_face_;

@@ -2,7 +2,7 @@
 // of a run together against the available memory, the error at the key of the largest share
 // with its estimate, the whole run's and the machine's. The shares themselves are what runs
 // measured (integrate/memory_estimate.cpp); the user-visible refusals (a gas grid, a continuum
-// grid, a cell grid of 1e10 cells) are tested with the real binary in app/bad_input_test.cpp.
+// grid) are tested with the real binary in app/bad_input_test.cpp.
 #include <gtest/gtest.h>
 
 #include <string>
