@@ -40,7 +40,15 @@ inline constexpr std::array<std::string_view, 11> drag_model_name_table = {
 
 /// The case-file name of m ("ergun", "wen_yu", ...).
 std::string_view to_string(DragModel m);
-/// Comma-separated list of the valid names, for error messages and docs.
+/// Why a case may not choose m today; empty if it may. `wen_yu_single` is refused: it is the
+/// TOTAL gas force on a particle [Hoomans96 eq. 34-37], to be used without a pressure-gradient
+/// force, but the exchange (coupling/exchange.hpp) always adds -V grad p (Model A) or the
+/// buoyancy term with the drag divided by eps (Model B), so the pressure force would be counted
+/// twice. The closure itself stays (tested against tests/models/drag/wen_yu_single.toml) for the
+/// exchange form that omits the pressure force.
+std::string_view drag_model_refusal(DragModel m);
+/// Comma-separated list of the names a case may choose (those without a refusal), for error
+/// messages and docs.
 std::string drag_model_names();
 /// The model named `name`; InputError listing the valid names if there is none.
 DragModel drag_model_from_string(std::string_view name);

@@ -20,8 +20,11 @@ void ParticleGasForces::resize(std::size_t n) {
 }
 
 namespace {
+/// Faces that take the particles' momentum source: the solved ones, and inflow faces, where it
+/// sets the pressure on the face (gas_solver.hpp, inflow_face_pressure).
 bool solved_face(unsigned char r) {
-  return r == gas::GasSolver::solved || r == gas::GasSolver::pressure_face;
+  return r == gas::GasSolver::solved || r == gas::GasSolver::pressure_face ||
+         r == gas::GasSolver::inflow;
 }
 
 /// u_c: mean of the two faces of cell q (grid index) along d (the face at q is the HIGH one).
@@ -107,6 +110,8 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
 
 void validate(const CouplingSettings& c, const gas::GasSettings& /*gas: Models A and B both*/) {
   validate(c.porosity);
+  if (const auto why = drag::drag_model_refusal(c.drag); !why.empty())
+    throw InputError("coupling.drag = " + std::string(why));
   if (drag::needs_mean_diameter(c.drag) && !(c.d_mean > 0.0))
     throw InputError(std::string("coupling.d_mean must be > 0 for drag closure '") +
                      std::string(drag::to_string(c.drag)) + "'");

@@ -75,8 +75,12 @@
 //   Scheme 1 [Zhu07 §3.2]: each particle gets its own scheme-3 drag c_i (u_i - v_i), the gas
 //     gets -F_c of the cell averages: the third law holds only ON AVERAGE (exactly only when the
 //     cell averages reproduce the particles' own state, e.g. identical particles with one
-//     velocity in a uniform gas field and porosity). [Zhu07 §3.2] calls it "not reasonable";
-//     it is here to reproduce the early codes (Tsuji 1993, Hoomans 1996).
+//     velocity in a uniform gas field and porosity). [Zhu07 §3.2] calls it "not reasonable"
+//     and lists the early codes (Tsuji 1993, Hoomans 1996) under it. It has their exchange
+//     structure, not their models: [Hoomans96 eq. 34-37] gives the particles gravity and a
+//     single-particle Wen-Yu force with no pressure force, and the gas a beta from another
+//     closure (eq. 45-46); here both sides use one closure and the particles also get the
+//     pressure force (docs/coupling.md).
 // The pressure force (Model A: -V_i grad p at x_i) or buoyancy term (Model B: -V_i rho_i g) is
 // per particle in all three schemes.
 #pragma once
@@ -90,8 +94,10 @@
 
 namespace fluidem::coupling {
 
-/// InputError for: a bad cube factor, a polydisperse closure without d_mean. Gas Models A and B
-/// and schemes 1, 2, 3 are all accepted.
+/// InputError for: a bad cube factor, a polydisperse closure without d_mean, a closure a case may
+/// not choose (drag::drag_model_refusal: wen_yu_single, a total force, to which this exchange
+/// would add the pressure force a second time). Gas Models A and B and schemes 1, 2, 3 are all
+/// accepted.
 void validate(const CouplingSettings& c, const gas::GasSettings& gas);
 
 /// Per-particle results of the gas -> particle step (all of size p.size()), and the cell

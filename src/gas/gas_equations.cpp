@@ -170,7 +170,7 @@ void GasSolver::solve_momentum(int d, double dt) {
     const long q = i * sx + j * sy + k * sz;
     if constexpr (!interior) {
       const unsigned char r = role[q];
-      if (r == fixed || r == outflow) {
+      if (r == fixed || r == inflow || r == outflow) {
         diag[q] = 1.0;
         rhs_out[q] = uu[q];
         for (double* sl : slots) sl[q] = 0.0;

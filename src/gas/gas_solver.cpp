@@ -46,6 +46,7 @@ GasSolver::GasSolver(const GasSettings& settings) : s_(settings) {
   apply_scalar_bcs();
   update_density();
   apply_velocity_bcs(0.0, true);
+  set_inflow_ghost_pressures();
 
   // Linear solvers: cells 1..n (pressure correction), faces of component d along d from 0
   // (non-periodic: the boundary faces are rows too) or 1 (periodic) to n_d.
@@ -82,6 +83,7 @@ GasSolver::~GasSolver() = default;
 
 void GasSolver::sync_old_porosity() {
   apply_scalar_bcs();
+  set_inflow_ghost_pressures();
   eps_old_ = eps_;
 }
 
@@ -117,6 +119,9 @@ void GasSolver::init_roles() {
               break;
             case BoundaryType::outflow:
               r = outflow;
+              break;
+            case BoundaryType::inflow:
+              r = inflow;
               break;
             default:
               r = fixed;
@@ -155,19 +160,16 @@ void GasSolver::build_boundary_lists() {
         for (int i = 0; i <= g_.n[0]; ++i) {
           const long q = g_.idx(i, j, k);
           const unsigned char r = role_[d][q];
-          if (r != fixed && r != outflow) continue;
+          if (r != fixed && r != inflow && r != outflow) continue;
           const int c[3] = {i, j, k};
           const bool low = c[d] == 0;
           if (r == outflow) {
             if (g_.n[d] > 1) outflow_copies_[d].push_back({q, low ? q + sd : q - sd, 1.0});
             continue;
           }
-          const BoundaryPatch* inflow = nullptr;
-          if (!(g_.dimension == 2 && d == 1)) {
-            const BoundaryPatch& b = bc_.at(2 * d + (low ? 0 : 1), i, j, k);
-            if (b.type == BoundaryType::inflow) inflow = &b;
-          }
-          fixed_faces_[d].push_back({q, inflow, low ? 1.0 : -1.0});
+          const BoundaryPatch* in_patch = nullptr;
+          if (r == inflow) in_patch = &bc_.at(2 * d + (low ? 0 : 1), i, j, k);
+          fixed_faces_[d].push_back({q, in_patch, low ? 1.0 : -1.0});
         }
     for (int e = 0; e < 3; ++e) {
       if (e == d || bc_.periodic(e)) continue;
@@ -334,7 +336,38 @@ void GasSolver::step(double time, double dt) {
       << " m/s (gas.solver.velocity_tolerance " << s_.velocity_tolerance << ")";
     throw InstabilityError(m.str());
   }
+  set_inflow_ghost_pressures();
   eps_old_ = eps_;
+}
+
+// [docs/gas.md, "Pressure on an inflow face"]: along the inward normal n = s e_d (s = +1 on a
+// low face), the gas of the half cell between the face and the centre of the first cell c,
+// steady and without viscous stress, is held by the pressure difference, its weight and the
+// particles' force on it (the weights of the particles' stencils that fall on the face, per
+// volume of the half cell: twice the face's S per cell volume):
+//   c_p (p_b - p_c) = -s (h/2) (2 S_face + eps_c rho_c g_d),  c_p = eps_c (A) or 1 (B)
+// [Zhu07 eq. 5, 7]. Convection is left out: the first-order upwind flux into the first
+// interior face's volume is the inflow's own (the half cell passes it on unchanged).
+double GasSolver::inflow_face_pressure(int d, long q) const {
+  const long sd = g_.stride[d];
+  const long id = (q / sd) % g_.padded[d];
+  const double s = id == 0 ? 1.0 : -1.0;
+  const auto c = static_cast<std::size_t>(id == 0 ? q + sd : q);
+  const auto uq = static_cast<std::size_t>(q);
+  const double S = Kus_[d][uq] - K_[d][uq] * u_[d][uq] + f_[d][uq];
+  const double cp = s_.model == PressureModel::A ? eps_[c] : 1.0;
+  return p_[c] - s * 0.5 * g_.h[d] * (2.0 * S + eps_[c] * rho_[c] * s_.gravity[d]) / cp;
+}
+
+void GasSolver::set_inflow_ghost_pressures() {
+  for (int d = 0; d < 3; ++d)
+    for (const FixedFace& f : fixed_faces_[d]) {
+      if (f.inflow == nullptr) continue;
+      const long sd = g_.stride[d];
+      const long c = f.sign > 0.0 ? f.q + sd : f.q, ghost = f.sign > 0.0 ? f.q : f.q + sd;
+      const double pb = inflow_face_pressure(d, f.q);
+      p_[static_cast<std::size_t>(ghost)] = 2.0 * pb - p_[static_cast<std::size_t>(c)];
+    }
 }
 
 void GasSolver::check_courant(double t_new, double dt) const {
@@ -366,7 +399,7 @@ void GasSolver::check_courant(double t_new, double dt) const {
 std::vector<double> GasSolver::applied_source(int d) const {
   std::vector<double> s(g_.size(), 0.0);
   for (std::size_t q = 0; q < s.size(); ++q)
-    if (role_[d][q] == solved || role_[d][q] == pressure_face)
+    if (role_[d][q] == solved || role_[d][q] == pressure_face || role_[d][q] == inflow)
       s[q] = Kus_[d][q] - K_[d][q] * u_[d][q] + f_[d][q];
   return s;
 }

@@ -10,6 +10,9 @@
 //  - drag_coefficient(d) K >= 0 [kg m^-3 s^-1], drag_velocity_term(d) K_us = K u_s
 //    [kg m^-2 s^-2 = N m^-3], explicit_source(d) f [N m^-3]: the particle momentum source ON
 //    THE GAS per unit volume, S = K_us - K u_new + f (positive along +axis), set per step.
+//    On the solved faces it enters the momentum equations; on an inflow face (velocity
+//    prescribed) it is the force on the gas of the half cell between the face and the first
+//    cell centre, and sets the pressure on the face (inflow_face_pressure()).
 //  - applied_source(d): S actually applied with the converged u_new, per face, N m^-3.
 // The gas module knows nothing about particles.
 #pragma once
@@ -80,7 +83,8 @@ public:
   std::vector<double>& drag_coefficient(int d) { return K_[d]; }
   std::vector<double>& drag_velocity_term(int d) { return Kus_[d]; }
   std::vector<double>& explicit_source(int d) { return f_[d]; }
-  /// K_us - K u + f on every face with the current u, N m^-3 (0 on faces not solved).
+  /// K_us - K u + f on every face with the current u, N m^-3 (0 on faces that take no source:
+  /// those neither solved nor inflow faces).
   std::vector<double> applied_source(int d) const;
 
   /// Interstitial gas velocity component d on its faces, m/s.
@@ -98,6 +102,13 @@ public:
 
   /// Trilinear interpolation of the cell-centre pressure (ghost values at the boundary), Pa.
   double pressure_at(const Vec3& x) const;
+
+  /// The pressure on the inflow face whose momentum-grid index is q (component d), Pa: the
+  /// momentum balance of the gas in the half cell between the face and the first cell centre
+  /// (docs/gas.md, "Pressure on an inflow face"). After each step() (and at construction) the
+  /// inflow ghost cell holds 2 p_b - p_1, so that the face value is the mean of the ghost and
+  /// the first cell, as on a pressure face, and interpolation reads p_b on the face.
+  double inflow_face_pressure(int d, long q) const;
 
   /// What carries over from one flow step to the next (for checkpoints): velocities, pressure,
   /// porosity (new and old), density and the last step's diagnostics.
@@ -149,7 +160,17 @@ public:
   const LinearSolverCounters& linear_counters() const { return counters_; }
 
   /// Face roles (internal, exposed for tests and coupling): solved, fixed, ...
-  enum FaceRole : unsigned char { none = 0, solved, fixed, outflow, pressure_face, periodic_copy };
+  /// inflow: the normal face of an inflow patch, velocity prescribed like a fixed face; it
+  /// takes the particles' momentum source of its half cell (inflow_face_pressure).
+  enum FaceRole : unsigned char {
+    none = 0,
+    solved,
+    fixed,
+    outflow,
+    pressure_face,
+    periodic_copy,
+    inflow
+  };
   const std::vector<unsigned char>& face_role(int d) const { return role_[d]; }
 
 private:
@@ -157,6 +178,9 @@ private:
   void init_roles();
   void build_boundary_lists();
   void apply_scalar_bcs();
+  /// Inflow ghost pressures 2 p_b - p_1 from inflow_face_pressure (after apply_scalar_bcs and
+  /// update_density: the ghost's density stays that of the first cell's pressure).
+  void set_inflow_ghost_pressures();
   void apply_velocity_bcs(double t_new, bool set_inflow);
   void fill_periodic(std::vector<double>& a) const;
   void update_density();

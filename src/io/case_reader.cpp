@@ -1643,6 +1643,8 @@ private:
       } catch (const InputError& ex) {
         throw InputError(e->where, p + ".drag", ex.what());
       }
+      if (const auto why = coupling::drag::drag_model_refusal(c.drag); !why.empty())
+        throw InputError(e->where, p + ".drag", std::string(why));
     }
     std::vector<std::pair<std::string, coupling::PorosityMethod>> methods;
     for (const auto m : {coupling::PorosityMethod::cell, coupling::PorosityMethod::porous_cube})

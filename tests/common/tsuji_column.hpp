@@ -22,6 +22,7 @@ struct TsujiColumn {
   double end_time = 1.0; ///< s
   gas::InflowProfile inflow{gas::InflowMode::constant, 2.5};
   bool periodic_sides = false;
+  double cell_width = 0.01, cell_height = 0.02; ///< gas cells: across (x, and y if periodic), up; m
 };
 
 inline CaseSpec tsuji_column(const TsujiColumn& c) {
@@ -51,9 +52,10 @@ inline CaseSpec tsuji_column(const TsujiColumn& c) {
   ins.region_hi = s.domain.hi;
   s.inserts.push_back(ins);
   gas::GasSettings g;
-  g.cells = {static_cast<int>(std::lround(c.width / 0.01)),
-             c.periodic_sides ? std::max(1, static_cast<int>(std::lround(c.depth / 0.01))) : 1,
-             static_cast<int>(std::lround(c.height / 0.02))};
+  g.cells = {static_cast<int>(std::lround(c.width / c.cell_width)),
+             c.periodic_sides ? std::max(1, static_cast<int>(std::lround(c.depth / c.cell_width)))
+                              : 1,
+             static_cast<int>(std::lround(c.height / c.cell_height))};
   g.time_step = c.engine == Engine::SoftSphere ? 1e-4 : 0.0;
   g.boundary[gas::bottom].type = gas::BoundaryType::inflow;
   g.boundary[gas::bottom].inflow = c.inflow;
