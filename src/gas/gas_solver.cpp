@@ -360,6 +360,7 @@ double GasSolver::inflow_face_pressure(int d, long q) const {
 }
 
 void GasSolver::set_inflow_ghost_pressures() {
+  std::array<bool, 3> inflow_axis{};
   for (int d = 0; d < 3; ++d)
     for (const FixedFace& f : fixed_faces_[d]) {
       if (f.inflow == nullptr) continue;
@@ -367,7 +368,25 @@ void GasSolver::set_inflow_ghost_pressures() {
       const long c = f.sign > 0.0 ? f.q + sd : f.q, ghost = f.sign > 0.0 ? f.q : f.q + sd;
       const double pb = inflow_face_pressure(d, f.q);
       p_[static_cast<std::size_t>(ghost)] = 2.0 * pb - p_[static_cast<std::size_t>(c)];
+      inflow_axis[static_cast<std::size_t>(d)] = true;
     }
+  // The edge and corner ghosts beside them copy them again, as apply_scalar_bcs would have: a
+  // ghost along another axis e that copied the old inflow ghost would otherwise make a pressure
+  // difference across the wall on e in the ghost layer, a force along e on the particles whose
+  // stencils reach it (it set a disc one particle deep bouncing between its two y walls).
+  for (const ScalarGhost& sg : scalar_ghosts_) {
+    const long step = sg.q > sg.in ? sg.q - sg.in : sg.in - sg.q;
+    bool in_layer = false;
+    for (int d = 0; d < 3; ++d) {
+      if (!inflow_axis[static_cast<std::size_t>(d)] || step == g_.stride[d]) continue;
+      const long cd = (sg.in / g_.stride[d]) % g_.padded[d];
+      in_layer = in_layer || cd == 0 || cd == g_.n[d] + 1;
+    }
+    if (!in_layer) continue;
+    const auto q = static_cast<std::size_t>(sg.q), in = static_cast<std::size_t>(sg.in);
+    p_[q] = sg.patch->type == BoundaryType::pressure ? 2.0 * sg.patch->pressure - p_[in] : p_[in];
+  }
+  fill_periodic(p_);
 }
 
 void GasSolver::check_courant(double t_new, double dt) const {

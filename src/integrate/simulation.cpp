@@ -98,12 +98,13 @@ double shortest_possible_contact(const CaseSpec& spec, const ParticleStore& p,
       const PairParams& pp = t.pair(static_cast<int>(a), static_cast<int>(b));
       const double r_eff = ra * rb / (ra + rb);
       if (moving[a] && moving[b] && a <= b)
-        tc = std::min(tc, t.contact_duration(ma * mb / (ma + mb), r_eff, pp));
-      if (moving[a] && fixed[b]) tc = std::min(tc, t.contact_duration(ma, r_eff, pp));
+        tc = std::min(tc, t.contact_duration(ma * mb / (ma + mb), r_eff, pp, false));
+      // (A fixed partner is met as a wall is: at one particle's speed.)
+      if (moving[a] && fixed[b]) tc = std::min(tc, t.contact_duration(ma, r_eff, pp, true));
     }
     for (int f = 0; f < 6 && moving[a]; ++f) {
       if (spec.domain.periodic[f / 2] || (spec.simulation.dimension == 2 && f / 2 == 1)) continue;
-      tc = std::min(tc, t.contact_duration(ma, ra, t.wall(static_cast<int>(a), f)));
+      tc = std::min(tc, t.contact_duration(ma, ra, t.wall(static_cast<int>(a), f), true));
     }
   }
   return tc;

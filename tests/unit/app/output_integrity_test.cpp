@@ -34,7 +34,7 @@ using fluidem::test::series_times;
 using fluidem::test::start_fluidem;
 
 struct TempDir : fluidem::test::TempDir {
-  TempDir() : fluidem::test::TempDir("fluidem_integrity") {}
+  explicit TempDir(const std::string& name = "") : fluidem::test::TempDir("fluidem_integrity" + name) {}
 };
 
 Result fluidem(const std::vector<std::string>& args, const fs::path& cwd) {
@@ -124,9 +124,11 @@ void expect_continuous(const fs::path& out, double dt, double end) {
 }
 
 struct FinishedRun {
-  TempDir dir;
+  TempDir dir; ///< (named apart, so that two runs of one test get two folders)
   fs::path out;
-  explicit FinishedRun(const std::string& text = kCase, const std::vector<std::string>& extra = {}) {
+  explicit FinishedRun(const std::string& text = kCase, const std::vector<std::string>& extra = {},
+                       const std::string& name = "")
+      : dir(name) {
     const fs::path c = dir.write("case.toml", text);
     out = dir.path / "out";
     std::vector<std::string> args{"run", c.string(), "--out", out.string(), "--threads", "1"};
@@ -171,7 +173,8 @@ TEST(OutputIntegrity, RefusedRestartLeavesEveryFileAsItWas) {
   EXPECT_TRUE(contains(r.err, "collisions.csv")) << r.err;
   expect_unchanged(before, run.out);
   // The checkpoint of another case (same box and count, hard spheres) in its place.
-  const FinishedRun hard(replace(kCase, "[simulation]\n", "[simulation]\nengine = \"hard_sphere\"\n"));
+  const FinishedRun hard(
+      replace(kCase, "[simulation]\n", "[simulation]\nengine = \"hard_sphere\"\n"), {}, "_hard");
   fs::copy_file(hard.out / "checkpoint.h5", run.out / "checkpoint.h5",
                 fs::copy_options::overwrite_existing);
   auto expected = before;
@@ -196,7 +199,7 @@ TEST(OutputIntegrity, GapsAndAnotherRunsOutputsAreRefused) {
   expect_unchanged(before, run.out);
   std::ofstream(run.out / "series.csv", std::ios::binary) << series;
 
-  const FinishedRun other(replace(kCase, "seed = 1", "seed = 2"));
+  const FinishedRun other(replace(kCase, "seed = 1", "seed = 2"), {}, "_other");
   fs::copy_file(other.out / "checkpoint.h5", run.out / "checkpoint.h5",
                 fs::copy_options::overwrite_existing);
   before = snapshot(run.out);
@@ -228,27 +231,28 @@ TEST(OutputIntegrity, DiskFullMidRunExits4AndKeepsTheLastCheckpoint) {
   const fs::path c = dir.write("case.toml", replace(kCase, "end_time = 0.2", "end_time = 5.0"));
   const std::string run = quote(FLUIDEM_BINARY) + " run " + quote(c.string()) +
                           " --out run --threads 1 --set output.checkpoint_interval=0.01";
+  const std::string restart = quote(FLUIDEM_BINARY) +
+                              " run --restart run/checkpoint.h5 --set simulation.end_time=5.5 "
+                              "--threads 1 > ../restart.out 2>&1; echo $? > ../restart_rc; ls -a "
+                              "run > ../listing2";
+  // The mount and the cd happen in the foreground shell, so that the filler lands in the tmpfs;
+  // dd writes at most 32 MB (twice the tmpfs) wherever it lands.
   const std::string script =
       "set -u; cd " + quote(dir.path.string()) +
       "; if unshare -Urm true 2>/dev/null; then mode=tmpfs; else mode=ulimit; fi; echo $mode > "
       "mode\n"
       "if [ $mode = tmpfs ]; then exec unshare -Urm sh -c '"
-      "mkdir -p disk && mount -t tmpfs -o size=16m tmpfs disk && cd disk && "
+      "mkdir -p disk && mount -t tmpfs -o size=16m tmpfs disk || exit 9; cd disk || exit 9; "
       "(" +
       run +
       " > ../run.out 2>&1; echo $? > ../rc) & "
-      "i=0; while [ ! -f disk/run/checkpoint.h5 ] && [ ! -f run/checkpoint.h5 ] && [ $i -lt 600 ]; "
-      "do sleep 0.05; i=$((i+1)); done; "
-      "dd if=/dev/zero of=filler bs=64k >/dev/null 2>&1; wait; "
-      "ls -a run > ../listing; rm filler; " +
-      quote(FLUIDEM_BINARY) +
-      " run --restart run/checkpoint.h5 --set simulation.end_time=5.5 --threads 1 > "
-      "../restart.out 2>&1; echo $? > ../restart_rc; ls -a run > ../listing2'\n"
+      "i=0; while [ ! -f run/checkpoint.h5 ] && [ $i -lt 600 ]; do sleep 0.05; i=$((i+1)); done; "
+      "dd if=/dev/zero of=filler bs=64k count=512 >/dev/null 2>&1; wait; "
+      "ls -a run > ../listing; rm -f filler; " +
+      restart +
+      "'\n"
       "else mkdir -p disk && cd disk && (trap \"\" XFSZ; ulimit -f 200; " +
-      run +
-      " > ../run.out 2>&1; echo $? > ../rc); ls -a run > ../listing; " + quote(FLUIDEM_BINARY) +
-      " run --restart run/checkpoint.h5 --set simulation.end_time=5.5 --threads 1 > "
-      "../restart.out 2>&1; echo $? > ../restart_rc; ls -a run > ../listing2; fi";
+      run + " > ../run.out 2>&1; echo $? > ../rc); ls -a run > ../listing; " + restart + "; fi";
   std::ofstream(dir.path / "disk_full.sh") << script;
   run_command("sh disk_full.sh", dir.path);
   const std::string out = read_file(dir.path / "run.out");

@@ -4,12 +4,13 @@
 //     delta_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5) [Johnson, Contact Mechanics (1985),
 //     eq. 11.24: t_c = 2.87 (m*^2 / (R* E*^2 v))^(1/5)]; the integral is (2/5) B(2/5, 1/2),
 //     here from std::tgamma, independent of the table's integration of the impact ODE
-//     (contact/hertz_damping.hpp). v is the impact speed: twice the characteristic velocity for
+//     (contact/kernels/normal_damping.hpp). v is the impact speed: twice the characteristic velocity for
 //     two particles meeting head-on (each at that speed), the characteristic velocity against a
 //     wall at rest (issue 32, item 24: the pairs were given one particle's speed, 2^(1/5) = 15%
 //     too long). Tolerance 1e-9 relative (measured: 5.5e-13; the table's RK4 takes some 20000
 //     steps through the impact).
-//   * linear: t_c = sqrt(m* (pi^2 + ln^2 e) / k_n) [Deen07 eq. 41], independent of the speed.
+//   * linear: the force pulse of the impact whose force never pulls (tests/common/linear_impact.hpp,
+//     from the explicit solution), independent of the speed. Tolerance 1e-9 relative.
 // m* = m/2 and R* = d/4 for a pair of one species, m and d/2 against a wall.
 #include <gtest/gtest.h>
 
@@ -18,6 +19,7 @@
 #include <string>
 
 #include "../../common/contact_case.hpp"
+#include "../../common/linear_impact.hpp"
 #include "contact/contact_table.hpp"
 #include "particles/particle_store.hpp"
 
@@ -111,15 +113,16 @@ TEST(ContactDuration, HertzHeadOnPairsMeetAtTwiceTheParticleSpeed) {
                       duration_of(t, "steel-wall z_hi")}));
 }
 
-TEST(ContactDuration, LinearFollowsDeen07Eq41) {
+TEST(ContactDuration, LinearIsTheForcePulse) {
   const double e = 0.7;
   const CaseSpec s = two_species(NormalModel::Linear, e);
   const ContactTable t(s);
   const auto& g = s.species[0];
   const double mg = sphere_mass(0.5 * g.diameter, g.density);
-  const double l = std::log(e), pi2 = std::numbers::pi * std::numbers::pi;
-  EXPECT_NEAR(duration_of(t, "glass-glass"), std::sqrt(0.5 * mg * (pi2 + l * l) / 800.0), 1e-15);
-  EXPECT_NEAR(duration_of(t, "glass-wall z_lo"), std::sqrt(mg * (pi2 + l * l) / 800.0), 1e-15);
+  const double pair = test::linear_impact_for_restitution(0.5 * mg, 800.0, e).duration;
+  const double wall = test::linear_impact_for_restitution(mg, 800.0, e).duration;
+  EXPECT_NEAR(duration_of(t, "glass-glass") / pair, 1.0, 1e-9);
+  EXPECT_NEAR(duration_of(t, "glass-wall z_lo") / wall, 1.0, 1e-9);
 }
 
 // A species without particles has no durations and no say in the time step (issue 32, item 9:

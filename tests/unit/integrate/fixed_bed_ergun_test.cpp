@@ -146,12 +146,14 @@ TEST(FixedBed, PressureDropIsErguns) {
 // steady state, with free-slip side walls, Delta p A = sum over the particles of the gas force
 // on them (drag and pressure force; Newton's third law) + the weight of the gas in the pores.
 // Before issue 32 item 22 the inflow ghost cell copied the first cell's pressure, so the half
-// cell above the distributor carried no gradient: the drop read short by the force on the
-// particles of that half cell (3.7% at cells of 5 mm here, 1.9% at 2 mm, 0.9% at 1 mm; it read
-// 0.968 of a fluidised bed's weight with 1 cm cells). Tolerance 0.1% at every cell size (1, 2
-// and 5 mm: one to five particle layers per cell); what is left is the solver's convergence.
+// cell above the distributor carried no gradient and the drop was read from the first cell
+// centre: 0.866, 0.934, 0.973, 0.986 of the balance at cells of 10, 5, 2, 1 mm (printed below as
+// "first cell centre"; it read 0.968 of a fluidised bed's weight with 1 cm cells). Measured now:
+// 0.9993, 0.9986, 0.9986, 0.9986 (a residual of 0.33 Pa, the size of the gas weight in the
+// column, 0.34 Pa, not explained yet). Tolerance 0.5%, at cell sizes of one to ten particle
+// layers; the issue asks for 1%.
 TEST(FixedBed, PressureDropBalancesTheGasForceOnTheParticlesAtAnyCellSize) {
-  for (const int nz : {10, 25, 50}) {
+  for (const int nz : {5, 10, 25, 50}) {
     Simulation sim(read_case_string(bed_case(0.5, nz), "ergun.toml"));
     sim.advance(300);
     const ParticleStore& p = sim.particles();
@@ -168,10 +170,19 @@ TEST(FixedBed, PressureDropBalancesTheGasForceOnTheParticlesAtAnyCellSize) {
     const double area = 0.008 * 0.008;
     const double expected = (fz + gas_weight) / area;
     const double drop = sim.gas()->pressure_drop();
+    // What the run reported before: the first cell centre's pressure for the inflow face's.
+    double p1 = 0.0, p0 = 0.0;
+    for (int j = 1; j <= g.n[1]; ++j)
+      for (int i = 1; i <= g.n[0]; ++i) {
+        p1 += gs.pressure()[static_cast<std::size_t>(g.idx(i, j, 1))] / (g.n[0] * g.n[1]);
+        p0 += gs.pressure()[static_cast<std::size_t>(g.idx(i, j, 0))] / (g.n[0] * g.n[1]);
+      }
+    const double old_drop = drop - (0.5 * (p0 + p1) - p1);
+    std::printf("  first cell centre to the top: %.6g Pa, ratio %.6f\n", old_drop, old_drop / expected);
     std::printf("cells of %.0f mm: pressure drop %.6g Pa, gas force on the particles + gas weight "
                 "%.6g Pa, ratio %.6f\n",
                 g.h[2] * 1e3, drop, expected, drop / expected);
-    EXPECT_NEAR(drop / expected, 1.0, 1e-3) << "cells of " << g.h[2] << " m";
+    EXPECT_NEAR(drop / expected, 1.0, 5e-3) << "cells of " << g.h[2] << " m";
   }
 }
 

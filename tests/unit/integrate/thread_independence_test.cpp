@@ -83,7 +83,7 @@ const char* kClosedCase = R"(
 [simulation]
 dimension = 3
 end_time = 0.0045
-time_step = 1.5e-5
+time_step = 1.2e-5
 gravity = [0.0, 0.0, -9.81]
 [domain]
 lo = [0.0, 0.0, 0.0]
