@@ -136,11 +136,12 @@ std::string check_threads(const std::string& text) {
 } // namespace
 
 int run_cli(int argc, char** argv) {
-  CLI::App app{"fluidem: discrete particle simulation of gas-fluidised beds (CFD-DEM)\n"
-               "Exit codes: 0 success, 2 invalid input, 3 run stopped because it went unstable, 4 an "
-               "output could not be written (disk full, I/O error), 130/143 stopped by "
-               "SIGINT/SIGTERM.",
-               "fluidem"};
+  CLI::App app{
+      "fluidem: discrete particle simulation of gas-fluidised beds (CFD-DEM)\n"
+      "Exit codes: 0 success, 2 invalid input, 3 run stopped because it went unstable, 4 an "
+      "output could not be written (disk full, I/O error), 130/143 stopped by "
+      "SIGINT/SIGTERM.",
+      "fluidem"};
   app.set_version_flag("--version", std::string("fluidem ") + kVersion);
   app.require_subcommand(1);
 

@@ -1,6 +1,5 @@
 #include "integrate/memory_estimate.hpp"
 
-
 #include <fmt/format.h>
 
 #include "contact/contact_table.hpp"

@@ -826,8 +826,7 @@ OutputLayout Simulation::output_layout() const {
     // Continuum averages [Zhu07 Tables 5-6]: one frame at the end of every averaging interval,
     // the cells as ParaView cell data. Tensor T_ab as the scalar <name>_<a><b>.
     OutputLayout::Grid c;
-    c.grid = FieldGrid{continuum_->grid().cells, continuum_->grid().lo,
-                       continuum_->grid().spacing};
+    c.grid = FieldGrid{continuum_->grid().cells, continuum_->grid().lo, continuum_->grid().spacing};
     c.scalars = {"solid_fraction", "granular_temperature"};
     for (const char* tensor : {"kinetic_stress", "contact_stress", "couple_stress"})
       for (const char* ab : {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"})

@@ -313,10 +313,9 @@ FieldsWriter FieldsWriter::resume(const std::string& path, const std::vector<dou
     Handle file = hdf5::open_existing(path, who, false);
     hsize_t longest = 0;
     const hsize_t complete = open_layout(m, file.get(), who, run_id, longest);
-    const std::vector<double> times =
-        hdf5::read_all<double>(m.time.get(), H5T_NATIVE_DOUBLE,
-                               hdf5::extent(m.time.get(), path, "/fields/time")[0], path,
-                               "/fields/time");
+    const std::vector<double> times = hdf5::read_all<double>(
+        m.time.get(), H5T_NATIVE_DOUBLE, hdf5::extent(m.time.get(), path, "/fields/time")[0], path,
+        "/fields/time");
     keep = hdf5::frames_to_keep(times, complete, frame_times, who);
     cut = longest > keep;
     m.close_all();

@@ -346,8 +346,8 @@ inline hsize_t frames_to_keep(const std::vector<double>& times, hsize_t complete
         "): the outputs do not reach the checkpoint, continuing them would leave a gap");
   for (std::size_t k = 0; k < expected.size(); ++k)
     if (times[k] != expected[k])
-      throw std::runtime_error(who + ": frame " + std::to_string(k) + " is at t = " +
-                               at(times, k) + " in the file and at t = " + at(expected, k) +
+      throw std::runtime_error(who + ": frame " + std::to_string(k) + " is at t = " + at(times, k) +
+                               " in the file and at t = " + at(expected, k) +
                                " in the checkpoint's record: the file holds another run's frames");
   return expected.size();
 }

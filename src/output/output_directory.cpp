@@ -23,13 +23,9 @@ namespace {
 
 // `fluidem analyse` (src/app/analyse*.cpp) and python/fluidem_analysis_plot.py write these into
 // analysis/; spectrum_<probe>.csv/.png are matched by prefix.
-const char* const kAnalysisFiles[] = {"summary.csv",
-                                      "velocity_distribution.csv",
-                                      "velocity_distribution.png",
-                                      "segregation.csv",
-                                      "segregation.png",
-                                      "pressure_drop_velocity.csv",
-                                      "pressure_drop_velocity.png"};
+const char* const kAnalysisFiles[] = {
+    "summary.csv",     "velocity_distribution.csv",  "velocity_distribution.png", "segregation.csv",
+    "segregation.png", "pressure_drop_velocity.csv", "pressure_drop_velocity.png"};
 
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
@@ -65,11 +61,21 @@ std::vector<std::string> entries(const fs::path& dir, bool (*match)(const std::s
 } // namespace
 
 const std::vector<std::string>& run_file_names() {
-  static const std::vector<std::string> names{
-      "case.resolved.toml", "particles.h5",    "particles.xmf",         "series.csv",
-      "fields.h5",          "fields.xmf",      "probes.csv",            "checkpoint.h5",
-      "checkpoint.prev.h5", "collisions.csv",  "collision_overlap.csv", "continuum.h5",
-      "continuum.xmf",      "snapshot.png",    "movie.mp4"};
+  static const std::vector<std::string> names{"case.resolved.toml",
+                                              "particles.h5",
+                                              "particles.xmf",
+                                              "series.csv",
+                                              "fields.h5",
+                                              "fields.xmf",
+                                              "probes.csv",
+                                              "checkpoint.h5",
+                                              "checkpoint.prev.h5",
+                                              "collisions.csv",
+                                              "collision_overlap.csv",
+                                              "continuum.h5",
+                                              "continuum.xmf",
+                                              "snapshot.png",
+                                              "movie.mp4"};
   return names;
 }
 
@@ -173,8 +179,7 @@ void OutputDirectory::check_writable() const {
     if (std::fclose(f) != 0) throw OutputError(std::strerror(errno));
   } catch (const OutputError& e) {
     safe_file::remove_quietly(probe);
-    throw InputError(
-        fmt::format("cannot write to the output directory '{}': {}", path_, e.what()));
+    throw InputError(fmt::format("cannot write to the output directory '{}': {}", path_, e.what()));
   }
   safe_file::remove_quietly(probe);
 }

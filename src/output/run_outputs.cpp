@@ -45,20 +45,19 @@ RunOutputs RunOutputs::start(const OutputDirectory& dir, const OutputLayout& lay
   RunOutputs o(dir, layout);
   o.run_id_ = new_run_id();
   o.write_resolved_case(resolved_case, version);
-  o.particles_ = std::make_unique<H5mdWriter>(dir.file("particles.h5"), layout.particles,
-                                              layout.dimension, version, layout.box, std::string(),
-                                              layout.layers, o.run_id_);
+  o.particles_ =
+      std::make_unique<H5mdWriter>(dir.file("particles.h5"), layout.particles, layout.dimension,
+                                   version, layout.box, std::string(), layout.layers, o.run_id_);
   for (const auto& [name, columns] : layout.csv)
     o.csv_[name] = std::make_unique<SeriesWriter>(dir.file(name), columns);
   if (layout.fields)
-    o.fields_ =
-        std::make_unique<FieldsWriter>(dir.file("fields.h5"), layout.fields->grid,
-                                       layout.fields->scalars, layout.fields->vectors, version,
-                                       o.run_id_);
+    o.fields_ = std::make_unique<FieldsWriter>(dir.file("fields.h5"), layout.fields->grid,
+                                               layout.fields->scalars, layout.fields->vectors,
+                                               version, o.run_id_);
   if (layout.continuum)
-    o.continuum_ = std::make_unique<FieldsWriter>(
-        dir.file("continuum.h5"), layout.continuum->grid, layout.continuum->scalars,
-        layout.continuum->vectors, version, o.run_id_);
+    o.continuum_ = std::make_unique<FieldsWriter>(dir.file("continuum.h5"), layout.continuum->grid,
+                                                  layout.continuum->scalars,
+                                                  layout.continuum->vectors, version, o.run_id_);
   return o;
 }
 
@@ -89,8 +88,8 @@ RunOutputs RunOutputs::resume(const OutputDirectory& dir, const OutputLayout& la
     }
   };
   checked([&] {
-    H5mdWriter::resume(dir.file("particles.h5"), marks.frame_times, marks.run_id,
-                       layout.particles, layout.dimension, layout.box, layout.layers, true);
+    H5mdWriter::resume(dir.file("particles.h5"), marks.frame_times, marks.run_id, layout.particles,
+                       layout.dimension, layout.box, layout.layers, true);
   });
   for (const auto& [name, columns] : layout.csv)
     checked([&] { SeriesWriter::resume(dir.file(name), columns, marks.csv.at(name), true); });
@@ -117,17 +116,16 @@ RunOutputs RunOutputs::resume(const OutputDirectory& dir, const OutputLayout& la
     o.csv_[name] = std::make_unique<SeriesWriter>(
         SeriesWriter::resume(dir.file(name), columns, marks.csv.at(name)));
   if (layout.fields)
-    o.fields_ = std::make_unique<FieldsWriter>(FieldsWriter::resume(
-        dir.file("fields.h5"), marks.frame_times, marks.run_id, layout.fields->grid,
-        layout.fields->scalars, layout.fields->vectors));
+    o.fields_ = std::make_unique<FieldsWriter>(
+        FieldsWriter::resume(dir.file("fields.h5"), marks.frame_times, marks.run_id,
+                             layout.fields->grid, layout.fields->scalars, layout.fields->vectors));
   if (layout.continuum)
     o.continuum_ = std::make_unique<FieldsWriter>(FieldsWriter::resume(
         dir.file("continuum.h5"), marks.continuum_times, marks.run_id, layout.continuum->grid,
         layout.continuum->scalars, layout.continuum->vectors));
   o.frame_times_ = marks.frame_times;
   o.continuum_times_ = marks.continuum_times;
-  write_particles_xdmf(dir.file("particles.xmf"), "particles.h5", layout.particles,
-                       o.frame_times_);
+  write_particles_xdmf(dir.file("particles.xmf"), "particles.h5", layout.particles, o.frame_times_);
   if (layout.fields)
     write_fields_xdmf(dir.file("fields.xmf"), "fields.h5", layout.fields->grid,
                       layout.fields->scalars, layout.fields->vectors, o.frame_times_);

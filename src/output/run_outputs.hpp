@@ -41,7 +41,7 @@ struct OutputLayout {
 
 /// What a run has written so far, as its checkpoints record it.
 struct OutputMarks {
-  std::string run_id; ///< empty: unknown (a checkpoint of an older fluidem)
+  std::string run_id;                  ///< empty: unknown (a checkpoint of an older fluidem)
   std::vector<double> frame_times;     ///< particles.h5 and fields.h5
   std::vector<double> continuum_times; ///< continuum.h5
   std::map<std::string, SeriesWriter::Mark> csv;

@@ -14,9 +14,9 @@ namespace fluidem::safe_file {
 namespace {
 
 [[noreturn]] void fail(const std::string& what, const std::string& path, int err) {
-  throw OutputError("cannot " + what + " '" + path + "': " + std::strerror(err) +
-                    (err == ELOOP ? " (it is a symbolic link; fluidem does not write through links)"
-                                  : ""));
+  throw OutputError(
+      "cannot " + what + " '" + path + "': " + std::strerror(err) +
+      (err == ELOOP ? " (it is a symbolic link; fluidem does not write through links)" : ""));
 }
 
 std::FILE* stream(int fd, const char* mode, const std::string& path, const std::string& what) {
@@ -37,7 +37,7 @@ std::string parent_of(const std::string& path) {
 } // namespace
 
 Kind kind(const std::string& path) {
-  struct stat st{};
+  struct stat st {};
   if (::lstat(path.c_str(), &st) != 0) return Kind::missing;
   if (S_ISLNK(st.st_mode)) return Kind::symlink;
   if (S_ISREG(st.st_mode)) return Kind::regular;
@@ -75,7 +75,7 @@ std::FILE* create_exclusive(const std::string& path) {
 std::FILE* open_append(const std::string& path) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC);
   if (fd < 0) fail("open for appending", path, errno);
-  struct stat st{};
+  struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
     throw OutputError("cannot append to '" + path + "': not a regular file");
@@ -86,7 +86,7 @@ std::FILE* open_append(const std::string& path) {
 std::FILE* open_read(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
   if (fd < 0) fail("read", path, errno);
-  struct stat st{};
+  struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
     throw OutputError("cannot read '" + path + "': not a regular file");
@@ -172,8 +172,8 @@ void copy(const std::string& from, const std::string& to) {
 void cut(const std::string& path, std::uint64_t bytes) {
   const std::string text = read_all(path);
   if (text.size() < bytes)
-    throw OutputError("cannot cut '" + path + "' to " + std::to_string(bytes) + " bytes: it holds " +
-                      std::to_string(text.size()));
+    throw OutputError("cannot cut '" + path + "' to " + std::to_string(bytes) +
+                      " bytes: it holds " + std::to_string(text.size()));
   if (text.size() == bytes) return;
   replace(path, std::string_view(text).substr(0, bytes));
 }

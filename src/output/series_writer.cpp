@@ -89,8 +89,8 @@ SeriesWriter SeriesWriter::resume(const std::string& path, std::vector<std::stri
   const std::string header = w.header() + "\n";
   if (text.compare(0, header.size(), header) != 0) {
     const std::string first = text.substr(0, text.find('\n'));
-    throw std::runtime_error(who + ": its header '" + first + "' is not the run's, '" +
-                             w.header() + "'");
+    throw std::runtime_error(who + ": its header '" + first + "' is not the run's, '" + w.header() +
+                             "'");
   }
   if (text.size() < mark.bytes) {
     const std::size_t last = text.rfind('\n', text.empty() ? 0 : text.size() - 2);

@@ -1,7 +1,8 @@
 // The head-on impact of the linear spring-dashpot whose force never pulls, from its explicit
 // solution (independent of contact/kernels/normal_damping.hpp's closed form): with
 // w0 = sqrt(k/m*), damping ratio zeta < 1, wd = w0 sqrt(1 - zeta^2) and impact speed v,
-//   x(t) = v/wd exp(-zeta w0 t) sin(wd t),  x'(t) = v exp(-zeta w0 t) (cos wd t - zeta w0/wd sin wd t),
+//   x(t) = v/wd exp(-zeta w0 t) sin(wd t),  x'(t) = v exp(-zeta w0 t) (cos wd t - zeta w0/wd sin wd
+//   t),
 // the force k x + 2 zeta sqrt(m* k) x' starts positive and the contact ends where it first
 // vanishes [Schwager & Poeschel 2008, Granular Matter 10:465]; the rebound is e = -x'(t_c)/v.
 // Both found by bisection here (the force on its first half period; zeta from e(zeta), which

@@ -95,9 +95,9 @@ TEST(BadInput, AHugeDomainWithFewParticlesRuns) {
   EXPECT_EQ(t.r.code, 0) << t.r.out << t.r.err;
   EXPECT_LT(t.seconds, 20.0);
   const auto t0 = std::chrono::steady_clock::now();
-  const Result run = fluidem(
-      {"run", (kCorpus / "memory_domain_1000m_cell_grid.toml").string(), "--out", "huge"},
-      dir.path);
+  const Result run =
+      fluidem({"run", (kCorpus / "memory_domain_1000m_cell_grid.toml").string(), "--out", "huge"},
+              dir.path);
   EXPECT_EQ(run.code, 0) << run.out << run.err;
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 60.0);
 }

@@ -34,7 +34,8 @@ using fluidem::test::series_times;
 using fluidem::test::start_fluidem;
 
 struct TempDir : fluidem::test::TempDir {
-  explicit TempDir(const std::string& name = "") : fluidem::test::TempDir("fluidem_integrity" + name) {}
+  explicit TempDir(const std::string& name = "")
+      : fluidem::test::TempDir("fluidem_integrity" + name) {}
 };
 
 Result fluidem(const std::vector<std::string>& args, const fs::path& cwd) {
@@ -105,8 +106,7 @@ void expect_unchanged(const std::map<std::string, std::string>& before, const fs
     else
       EXPECT_TRUE(it->second == bytes) << name << " was changed";
   }
-  for (const auto& [name, bytes] : after)
-    EXPECT_TRUE(before.count(name)) << name << " was created";
+  for (const auto& [name, bytes] : after) EXPECT_TRUE(before.count(name)) << name << " was created";
 }
 
 /// Rows every `dt` from 0 to `end` without a repeat or a gap; frames strictly increasing.
@@ -167,8 +167,8 @@ TEST(OutputIntegrity, RefusedRestartLeavesEveryFileAsItWas) {
   const auto before = snapshot(run.out);
   // An output the continued run did not write, switched on (it used to cut particles.h5 and
   // series.csv, then fail on collisions.csv).
-  Result r = run.restart("checkpoint.prev.h5",
-                         {"output.collisions=true", "simulation.end_time=0.5"});
+  Result r =
+      run.restart("checkpoint.prev.h5", {"output.collisions=true", "simulation.end_time=0.5"});
   EXPECT_EQ(r.code, 2) << r.out << r.err;
   EXPECT_TRUE(contains(r.err, "collisions.csv")) << r.err;
   expect_unchanged(before, run.out);
@@ -273,11 +273,10 @@ TEST(OutputIntegrity, DiskFullMidRunExits4AndKeepsTheLastCheckpoint) {
 TEST(OutputIntegrity, DiskCheckCountsRowsAndClampsFramesToSteps) {
   const TempDir dir;
   const fs::path c = dir.write("case.toml", kCase);
-  Result r = fluidem_with_free_space({"run", c.string(), "--out", "rows", "--set",
-                                      "simulation.end_time=50", "--set",
-                                      "output.series_interval=2e-5", "--set",
-                                      "output.frame_interval=50"},
-                                     dir.path, 100'000'000ULL);
+  Result r = fluidem_with_free_space(
+      {"run", c.string(), "--out", "rows", "--set", "simulation.end_time=50", "--set",
+       "output.series_interval=2e-5", "--set", "output.frame_interval=50"},
+      dir.path, 100'000'000ULL);
   EXPECT_EQ(r.code, 2) << r.out << r.err;
   EXPECT_TRUE(contains(r.err, "not enough disk space")) << r.err;
   EXPECT_FALSE(fs::exists(dir.path / "rows" / "series.csv"));
@@ -294,9 +293,9 @@ TEST(OutputIntegrity, ForceChecksBeforeDeletingAndRemovesOnlyFluidemsFiles) {
   const FinishedRun run;
   fs::create_directories(run.out / "analysis");
   fs::create_directories(run.out / "movie_frames");
-  for (const char* f : {"snapshot.png", "movie.mp4", "analysis/summary.csv",
-                        "analysis/spectrum_p1.png", "movie_frames/frame_00001.png",
-                        "analysis/my_notes.txt", "my_notes.txt"})
+  for (const char* f :
+       {"snapshot.png", "movie.mp4", "analysis/summary.csv", "analysis/spectrum_p1.png",
+        "movie_frames/frame_00001.png", "analysis/my_notes.txt", "my_notes.txt"})
     std::ofstream(run.out / f) << "x";
   const auto before = snapshot(run.out);
   const fs::path c = run.dir.path / "case.toml";
@@ -336,9 +335,8 @@ TEST(OutputIntegrity, LinksUnderFluidemsNamesAreNeverWrittenThrough) {
   const fs::path out = dir.path / "out_probe", victim = dir.path / "victim_probe";
   fs::create_directories(out);
   fs::create_symlink(victim, out / ".fluidem-write-test");
-  const Result r = fluidem({"run", c.string(), "--out", out.string(), "--set",
-                            "simulation.end_time=0.02"},
-                           dir.path);
+  const Result r = fluidem(
+      {"run", c.string(), "--out", out.string(), "--set", "simulation.end_time=0.02"}, dir.path);
   EXPECT_EQ(r.code, 0) << r.out << r.err;
   EXPECT_FALSE(fs::exists(fs::symlink_status(victim)));
   // analyse writes into analysis/: a link there is refused too.
@@ -364,8 +362,8 @@ TEST(OutputIntegrity, SecondProcessIntoARunningDirectoryIsRefused) {
   while (!fs::exists(out / "series.csv") &&
          std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60))
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  Result r = fluidem({"run", c.string(), "--out", out.string(), "--threads", "1", "--force"},
-                     second);
+  Result r =
+      fluidem({"run", c.string(), "--out", out.string(), "--threads", "1", "--force"}, second);
   EXPECT_EQ(r.code, 2) << r.out << r.err;
   EXPECT_TRUE(contains(r.err, "in use by another fluidem process")) << r.err;
   r = fluidem({"analyse", out.string()}, second);
@@ -404,9 +402,9 @@ TEST(OutputIntegrity, CommandLineMistakesAreNamed) {
     EXPECT_TRUE(contains(r.err, "from 1 to 1024")) << r.err;
     EXPECT_LT(r.err.size(), 400u) << r.err;
   }
-  Result r = fluidem({"run", c.string(), "--out", "many", "--threads", "64", "--set",
-                      "simulation.end_time=0.01"},
-                     dir.path);
+  Result r = fluidem(
+      {"run", c.string(), "--out", "many", "--threads", "64", "--set", "simulation.end_time=0.01"},
+      dir.path);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(contains(r.err, "--threads 64 on a machine with")) << r.err;
   r = fluidem({"frobnicate"}, dir.path);

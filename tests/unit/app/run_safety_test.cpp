@@ -126,7 +126,8 @@ void signal_stops_and_restart_continues(int sig, int expected_code, const char* 
   TempDir dir;
   const fs::path c = dir.write("long.toml", kLong);
   const fs::path out = dir.path / "out";
-  const pid_t pid = start_fluidem({"run", c.string(), "--out", out.string(), "--threads", "1"}, dir.path);
+  const pid_t pid =
+      start_fluidem({"run", c.string(), "--out", out.string(), "--threads", "1"}, dir.path);
   // Wait until the run has written some rows (at most 60 s), then signal it.
   const auto t0 = std::chrono::steady_clock::now();
   while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60)) {

@@ -4,12 +4,13 @@
 //     delta_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5) [Johnson, Contact Mechanics (1985),
 //     eq. 11.24: t_c = 2.87 (m*^2 / (R* E*^2 v))^(1/5)]; the integral is (2/5) B(2/5, 1/2),
 //     here from std::tgamma, independent of the table's integration of the impact ODE
-//     (contact/kernels/normal_damping.hpp). v is the impact speed: twice the characteristic velocity for
-//     two particles meeting head-on (each at that speed), the characteristic velocity against a
-//     wall at rest (issue 32, item 24: the pairs were given one particle's speed, 2^(1/5) = 15%
-//     too long). Tolerance 1e-9 relative (measured: 5.5e-13; the table's RK4 takes some 20000
+//     (contact/kernels/normal_damping.hpp). v is the impact speed: twice the characteristic
+//     velocity for two particles meeting head-on (each at that speed), the characteristic velocity
+//     against a wall at rest (issue 32, item 24: the pairs were given one particle's speed, 2^(1/5)
+//     = 15% too long). Tolerance 1e-9 relative (measured: 5.5e-13; the table's RK4 takes some 20000
 //     steps through the impact).
-//   * linear: the force pulse of the impact whose force never pulls (tests/common/linear_impact.hpp,
+//   * linear: the force pulse of the impact whose force never pulls
+//   (tests/common/linear_impact.hpp,
 //     from the explicit solution), independent of the speed. Tolerance 1e-9 relative.
 // m* = m/2 and R* = d/4 for a pair of one species, m and d/2 against a wall.
 #include <gtest/gtest.h>

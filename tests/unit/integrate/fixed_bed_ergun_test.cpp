@@ -178,7 +178,8 @@ TEST(FixedBed, PressureDropBalancesTheGasForceOnTheParticlesAtAnyCellSize) {
         p0 += gs.pressure()[static_cast<std::size_t>(g.idx(i, j, 0))] / (g.n[0] * g.n[1]);
       }
     const double old_drop = drop - (0.5 * (p0 + p1) - p1);
-    std::printf("  first cell centre to the top: %.6g Pa, ratio %.6f\n", old_drop, old_drop / expected);
+    std::printf("  first cell centre to the top: %.6g Pa, ratio %.6f\n", old_drop,
+                old_drop / expected);
     std::printf("cells of %.0f mm: pressure drop %.6g Pa, gas force on the particles + gas weight "
                 "%.6g Pa, ratio %.6f\n",
                 g.h[2] * 1e3, drop, expected, drop / expected);

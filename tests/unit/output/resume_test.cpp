@@ -375,10 +375,9 @@ TEST(H5mdResume, MismatchIsAnErrorNamingTheFileAndWhatDiffers) {
   const std::string file = dir.file("particles.h5");
   write_old_run(file, 5, 2);
   const std::string bytes = slurp(file);
-  const auto resume = [&](const std::vector<double>& times, const std::string& run,
-                          std::size_t n, int dim, const H5mdBox& box) {
-    return error_of<std::runtime_error>(
-        [&] { H5mdWriter::resume(file, times, run, n, dim, box); });
+  const auto resume = [&](const std::vector<double>& times, const std::string& run, std::size_t n,
+                          int dim, const H5mdBox& box) {
+    return error_of<std::runtime_error>([&] { H5mdWriter::resume(file, times, run, n, dim, box); });
   };
   std::string msg = resume(kept(2), kRun, 6, 2, kBox);
   EXPECT_NE(msg.find(file), std::string::npos) << msg;
@@ -396,8 +395,7 @@ TEST(H5mdResume, MismatchIsAnErrorNamingTheFileAndWhatDiffers) {
   EXPECT_NE(msg.find("box boundary along x"), std::string::npos) << msg;
   // Another run's file, a file that stops short of the checkpoint (a gap), other frames.
   msg = resume(kept(2), "ffff", 5, 2, kBox);
-  EXPECT_NE(msg.find("belongs to run " + kRun + ", the checkpoint to run ffff"),
-            std::string::npos)
+  EXPECT_NE(msg.find("belongs to run " + kRun + ", the checkpoint to run ffff"), std::string::npos)
       << msg;
   msg = resume(kept(3), kRun, 5, 2, kBox);
   EXPECT_NE(msg.find("holds 2 complete frames"), std::string::npos) << msg;
@@ -412,29 +410,27 @@ TEST(H5mdResume, MismatchIsAnErrorNamingTheFileAndWhatDiffers) {
 TEST(H5mdResume, MissingOrNonHdf5FileOrALinkIsAnErrorNamingTheFile) {
   TempDir dir;
   const std::string missing = dir.file("missing.h5");
-  std::string msg = error_of<std::runtime_error>(
-      [&] { H5mdWriter::resume(missing, kept(1), kRun, 5, 2, kBox); });
+  std::string msg =
+      error_of<std::runtime_error>([&] { H5mdWriter::resume(missing, kept(1), kRun, 5, 2, kBox); });
   EXPECT_NE(msg.find(missing), std::string::npos) << msg;
   EXPECT_NE(msg.find("does not exist"), std::string::npos) << msg;
   const std::string text = dir.file("text.h5");
   { std::ofstream(text) << "not hdf5\n"; }
-  msg = error_of<std::runtime_error>(
-      [&] { H5mdWriter::resume(text, kept(1), kRun, 5, 2, kBox); });
+  msg = error_of<std::runtime_error>([&] { H5mdWriter::resume(text, kept(1), kRun, 5, 2, kBox); });
   EXPECT_NE(msg.find(text), std::string::npos) << msg;
   EXPECT_NE(msg.find("not a readable HDF5 file"), std::string::npos) << msg;
   // An HDF5 file of another kind (a fields file): the missing layout is named.
   const std::string fields = dir.file("fields.h5");
   write_old_fields(fields, 1);
-  msg = error_of<std::runtime_error>(
-      [&] { H5mdWriter::resume(fields, kept(1), kRun, 5, 2, kBox); });
+  msg =
+      error_of<std::runtime_error>([&] { H5mdWriter::resume(fields, kept(1), kRun, 5, 2, kBox); });
   EXPECT_NE(msg.find(fields), std::string::npos) << msg;
   EXPECT_NE(msg.find("parameters"), std::string::npos) << msg;
   // A link to a good file is not followed.
   const std::string real = dir.file("real.h5"), link = dir.file("link.h5");
   write_old_run(real, 5, 2);
   fs::create_symlink(real, link);
-  msg = error_of<std::runtime_error>(
-      [&] { H5mdWriter::resume(link, kept(2), kRun, 5, 2, kBox); });
+  msg = error_of<std::runtime_error>([&] { H5mdWriter::resume(link, kept(2), kRun, 5, 2, kBox); });
   EXPECT_NE(msg.find("symbolic link"), std::string::npos) << msg;
   // Nor does a new file write through one (dangling or not).
   const std::string dangling = dir.file("dangling.h5");
@@ -579,9 +575,8 @@ TEST(FieldsResume, MismatchIsAnErrorNamingTheFileAndWhatDiffers) {
   msg = resume(small_grid(), kScalars, kVectors, kept(4));
   EXPECT_NE(msg.find("gap"), std::string::npos) << msg;
   const std::string missing = dir.file("missing.h5");
-  msg = error_of<std::runtime_error>([&] {
-    FieldsWriter::resume(missing, kept(1), kRun, small_grid(), kScalars, kVectors);
-  });
+  msg = error_of<std::runtime_error>(
+      [&] { FieldsWriter::resume(missing, kept(1), kRun, small_grid(), kScalars, kVectors); });
   EXPECT_NE(msg.find(missing), std::string::npos) << msg;
   EXPECT_EQ(slurp(file), bytes);
   expect_fields_hold(file, {{0, 0}, {0, 1}});
@@ -627,8 +622,7 @@ TEST(SeriesResume, KeepsTheCheckpointsBytesThenAppends) {
   const std::vector<std::string> columns{"time", "e_kin", "n"};
   SeriesWriter::Mark mark;
   write_old_series(file, columns, mark);
-  const std::string kept_text =
-      "time,e_kin,n\n0,0,0\n0.0003333333333,0.5,1\n0.0006666666667,1,2\n";
+  const std::string kept_text = "time,e_kin,n\n0,0,0\n0.0003333333333,0.5,1\n0.0006666666667,1,2\n";
   EXPECT_EQ(mark.bytes, kept_text.size());
   {
     SeriesWriter s = SeriesWriter::resume(file, columns, mark);
@@ -670,8 +664,9 @@ TEST(SeriesResume, AnotherRunsRowsAGapOrAnotherHeaderIsAnErrorNamingTheFile) {
   SeriesWriter::Mark mark;
   write_old_series(file, columns, mark);
   const std::string content = slurp(file);
-  std::string msg = error_of<std::runtime_error>(
-      [&] { SeriesWriter::resume(file, {"time", "e_kin", "e_rot"}, mark); });
+  std::string msg = error_of<std::runtime_error>([&] {
+    SeriesWriter::resume(file, {"time", "e_kin", "e_rot"}, mark);
+  });
   EXPECT_NE(msg.find(file), std::string::npos) << msg;
   EXPECT_NE(msg.find("its header 'time,e_kin,n' is not the run's, 'time,e_kin,e_rot'"),
             std::string::npos)
