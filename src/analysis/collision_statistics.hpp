@@ -37,8 +37,8 @@
 #include <string>
 #include <vector>
 
-#include "contact/contact_record.hpp" // plain data (header only): no dependency on the contact loop
 #include "core/vec3.hpp"
+#include "particles/contact_record.hpp" // plain data (header only): no dependency on the contact loop
 #include "particles/particle_store.hpp"
 
 namespace fluidem {

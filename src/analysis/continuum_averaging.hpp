@@ -28,7 +28,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "contact/contact_record.hpp" // ContactSample: a plain struct (core/vec3.hpp only)
+#include "particles/contact_record.hpp" // ContactSample: a plain struct (core/vec3.hpp only)
 #include "particles/particle_store.hpp"
 
 namespace fluidem {

@@ -5,12 +5,12 @@
 #include <array>
 #include <functional>
 
-#include "contact/contact_record.hpp"
 #include "contact/contact_table.hpp"
 #include "core/load_shares.hpp"
 #include "core/parallel.hpp"
 #include "core/phase_progress.hpp"
 #include "neighbour/neighbour_list.hpp"
+#include "particles/contact_record.hpp"
 #include "particles/particle_store.hpp"
 
 namespace fluidem {

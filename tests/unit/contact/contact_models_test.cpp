@@ -4,8 +4,8 @@
 // its cases (ContactModelFiles.EveryFileLoadsAndPasses also runs whatever is on disk at test time,
 // so a file added without re-running the test discovery is still checked).
 //
-// Lives under tests/unit/io because it parses TOML (fluidem_io links toml++); the kernels are
-// header-only and need nothing but core/vec3.hpp.
+// toml++ is header-only (/usr/include/toml++), so this test needs no link beyond fluidem_contact
+// (as tests/unit/coupling/drag_closures_test.cpp).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
