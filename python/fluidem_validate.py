@@ -15,9 +15,47 @@ tree; `--quick` runs short versions (ctest label `regression`): their numbers ar
 with the papers and the report says so; the quick mode checks that every run completes and every
 quantity is extracted.
 
+The published values are data, beside the cases: cases/<folder>/reference.toml of every case
+folder of RUNS (hoomans96, chang08, deen07). This script keeps the logic only: the runs (RUNS),
+how each compared value is read from their outputs (VALUES, keyed by the quantity's id; its
+order is the order of the report's rows) and the criterion kinds (CRITERIA). A reference.toml
+holds:
+
+  [[quantity]]           one compared quantity, a row of the report
+    id         string    its key in VALUES, e.g. "pouring_soft.area_fraction"
+    case       string    the report's case column (a run's name)
+    source     string    paper and section / figure / table: "[Hoomans96 §5.1]"
+    quantity   string    what is compared, as the report shows it
+    published  string    the published value as the report shows it: "0.832 ± 0.010"
+    value      number    the published number, where there is one (optional; needed by
+                         within_abs and within_rel, which compare with it)
+    spread     number    its published spread (optional, for the reader)
+    unit       string    unit of value and of fluidem's value, shown after it ("" for a ratio,
+                         a fraction or a count)
+    format     string    Python format spec of fluidem's value: ".3f", ".2e", ".3g"
+    note       string    why, where it matters (optional)
+    [quantity.criterion]
+    kind       string    within_abs  |v - value| <= tolerance
+                         within_rel  |v / value - 1| <= tolerance
+                         above  v > bound;  at_least  v >= bound;  below  v < bound
+                         between  lower <= v <= upper
+                         none  nothing to compare (no published number)
+    tolerance, bound, lower, upper   numbers: the kind's parameters, exactly these
+    text       string    the report's criterion column: "within 0.020 (twice the published
+                         spread)"
+  [[not_run]]            a seed case the report lists but cannot run, with the reason
+    case, source, quantity, published, reason   strings
+    value, unit          the published number(s) and unit(s) (optional; a list each when the
+                         published text quotes several)
+
+Every file is checked before anything runs (also with --list): a key missing, unknown or of the
+wrong type, an unknown criterion kind, an id that VALUES does not know, an id of VALUES with no
+[[quantity]], or a file that cannot be read stops the script with exit status 2 and a message
+naming the file and the key.
+
 Exit status: 0 when every run completed and every quantity was extracted (whether or not it
 agrees: disagreement is a result, reported with its reason); 1 when a run failed or a quantity
-could not be computed; 2 for bad arguments.
+could not be computed; 2 for bad arguments or a malformed reference.toml.
 """
 
 import argparse
@@ -457,6 +495,8 @@ def _check_criterion(entry, where):
     c = entry["criterion"]
     where = f"{where}, criterion"
     kind = c.get("kind")
+    if kind is None:
+        raise ReferenceError(f"{where}: missing key 'kind'")
     if kind not in CRITERIA:
         raise ReferenceError(f"{where}: key 'kind' is {kind!r}: must be one of "
                              + ", ".join(CRITERIA))
