@@ -15,9 +15,47 @@ tree; `--quick` runs short versions (ctest label `regression`): their numbers ar
 with the papers and the report says so; the quick mode checks that every run completes and every
 quantity is extracted.
 
+The published values are data, beside the cases: cases/<folder>/reference.toml of every case
+folder of RUNS (hoomans96, chang08, deen07). This script keeps the logic only: the runs (RUNS),
+how each compared value is read from their outputs (VALUES, keyed by the quantity's id; its
+order is the order of the report's rows) and the criterion kinds (CRITERIA). A reference.toml
+holds:
+
+  [[quantity]]           one compared quantity, a row of the report
+    id         string    its key in VALUES, e.g. "pouring_soft.area_fraction"
+    case       string    the report's case column (a run's name)
+    source     string    paper and section / figure / table: "[Hoomans96 §5.1]"
+    quantity   string    what is compared, as the report shows it
+    published  string    the published value as the report shows it: "0.832 ± 0.010"
+    value      number    the published number, where there is one (optional; needed by
+                         within_abs and within_rel, which compare with it)
+    spread     number    its published spread (optional, for the reader)
+    unit       string    unit of value and of fluidem's value, shown after it ("" for a ratio,
+                         a fraction or a count)
+    format     string    Python format spec of fluidem's value: ".3f", ".2e", ".3g"
+    note       string    why, where it matters (optional)
+    [quantity.criterion]
+    kind       string    within_abs  |v - value| <= tolerance
+                         within_rel  |v / value - 1| <= tolerance
+                         above  v > bound;  at_least  v >= bound;  below  v < bound
+                         between  lower <= v <= upper
+                         none  nothing to compare (no published number)
+    tolerance, bound, lower, upper   numbers: the kind's parameters, exactly these
+    text       string    the report's criterion column: "within 0.020 (twice the published
+                         spread)"
+  [[not_run]]            a seed case the report lists but cannot run, with the reason
+    case, source, quantity, published, reason   strings
+    value, unit          the published number(s) and unit(s) (optional; a list each when the
+                         published text quotes several)
+
+Every file is checked before anything runs (also with --list): a key missing, unknown or of the
+wrong type, an unknown criterion kind, an id that VALUES does not know, an id of VALUES with no
+[[quantity]], or a file that cannot be read stops the script with exit status 2 and a message
+naming the file and the key.
+
 Exit status: 0 when every run completed and every quantity was extracted (whether or not it
 agrees: disagreement is a result, reported with its reason); 1 when a run failed or a quantity
-could not be computed; 2 for bad arguments.
+could not be computed; 2 for bad arguments or a malformed reference.toml.
 """
 
 import argparse
@@ -52,31 +90,45 @@ class Run:
 
 
 class Quantity:
-    """A compared quantity: value(outputs) -> float; agrees(value) -> bool or None."""
+    """A compared quantity: its reference (a [[quantity]] of cases/<folder>/reference.toml:
+    source, published value, unit, criterion, note) and how fluidem's value is read from the
+    runs' outputs (VALUES[id]: the runs it needs and value(outputs) -> float)."""
 
-    def __init__(self, case, paper, quantity, published, value, agrees, criterion, note="",
-                 runs=(), fmt="{:.4g}"):
-        self.case = case
-        self.paper = paper
-        self.quantity = quantity
-        self.published = published
-        self.value = value
-        self.agrees = agrees
-        self.criterion = criterion
-        self.note = note
+    def __init__(self, ref, runs, value):
+        self.id = ref["id"]
+        self.case = ref["case"]
+        self.paper = ref["source"]
+        self.quantity = ref["quantity"]
+        self.published = ref["published"]
+        self.reference = ref.get("value")  # the published number, where there is one
+        self.unit = ref["unit"]
+        self.format = ref["format"]
+        self.kind = ref["criterion"]["kind"]
+        self.params = ref["criterion"]
+        self.criterion = ref["criterion"]["text"]
+        self.note = ref.get("note", "")
         self.runs = list(runs)
-        self.fmt = fmt
+        self.value = value
+
+    def agrees(self, v):
+        """True or False by the criterion; None when there is nothing to compare."""
+        return CRITERIA[self.kind][1](v, self.reference, self.params)
+
+    def show(self, v):
+        """fluidem's value as the report shows it: the reference's format, then the unit."""
+        return format(v, self.format) + (" " + self.unit if self.unit else "")
 
 
 class NotRun:
-    """A seed case the report lists but cannot run (yet), with the reason."""
+    """A seed case the report lists but cannot run (yet), with the reason: a [[not_run]] of
+    cases/<folder>/reference.toml."""
 
-    def __init__(self, case, paper, quantity, published, reason):
-        self.case = case
-        self.paper = paper
-        self.quantity = quantity
-        self.published = published
-        self.reason = reason
+    def __init__(self, ref):
+        self.case = ref["case"]
+        self.paper = ref["source"]
+        self.quantity = ref["quantity"]
+        self.published = ref["published"]
+        self.reason = ref["reason"]
 
 
 class Outputs:
@@ -162,7 +214,8 @@ def ratio_text(a, b):
 
 
 # ---------------------------------------------------------------------------------------------
-# The cases. Published values from the seeds (../shared/seeds); criteria as stated per row.
+# The runs: the cases of the seeds (../shared/seeds) and their overrides. The published values
+# they are compared with live beside the cases, in cases/<folder>/reference.toml.
 # ---------------------------------------------------------------------------------------------
 
 IDEAL = ["species[0].restitution=1.0", "species[0].friction=0.0", "walls.restitution=1.0",
@@ -201,137 +254,6 @@ RUNS = [
         quick=["simulation.end_time=0.05"], analyse=["--from", "0.5"]),
 ]
 
-H96 = "Hoomans96"
-QUANTITIES = [
-    Quantity("pouring_soft", "[Hoomans96 §5.1]", "settled area fraction",
-             "0.832 ± 0.010",
-             lambda o: o.summary("pouring_soft", "area_fraction_last_frame"),
-             lambda v: abs(v - 0.832) <= 0.020, "within 0.020 (twice the published spread)",
-             "soft spheres, k_n = 1e4 N/m", runs=["pouring_soft"], fmt="{:.3f}"),
-    Quantity("pouring_soft", "[Hoomans96 §5.1]", "energy balance error (largest, relative)",
-             "< 5e-5 (0.005 %)",
-             lambda o: o.summary("pouring_soft", "energy_balance_error"),
-             lambda v: v < 5e-5, "below 5e-5",
-             "the paper's is the hard-sphere error; a soft-sphere run's is its integration "
-             "error (velocity Verlet)", runs=["pouring_soft"], fmt="{:.2e}"),
-    Quantity("pouring_hard", "[Hoomans96 §5.1]", "settled area fraction", "0.832 ± 0.010",
-             lambda o: o.summary("pouring_hard", "area_fraction_last_frame"),
-             lambda v: abs(v - 0.832) <= 0.020, "within 0.020 (twice the published spread)",
-             "event-driven hard spheres", runs=["pouring_hard"], fmt="{:.3f}"),
-    Quantity("pouring_hard", "[Hoomans96 §5.1]", "energy balance error (largest, relative)",
-             "< 5e-5 (0.005 %)",
-             lambda o: o.summary("pouring_hard", "energy_balance_error"),
-             lambda v: v < 5e-5, "below 5e-5",
-             "series.csv holds 10 significant digits: 0 means below 1e-10 (the run's log: "
-             "round-off, exact parabolic flights, every collision's loss booked)",
-             runs=["pouring_hard"], fmt="{:.2e}"),
-    Quantity("tsuji_setup", "[Hoomans96 §5.2]", "bubble fraction (cells of the bed with "
-             "porosity > 0.8)", "no bubbles",
-             lambda o: o.bubble_fraction("tsuji_setup"), lambda v: v < 0.01, "below 0.01",
-             "the 2-D bed is above its own u_mf at 1.8 m/s (cases/hoomans96/README.md)",
-             runs=["tsuji_setup"], fmt="{:.3f}"),
-    Quantity("bubble_orifice", "[Hoomans96 §5.3.1]", "bubble fraction, non-ideal (e = 0.9, "
-             "mu = 0.3)", "bubbles (a bubble turning into a slug)",
-             lambda o: o.bubble_fraction("bubble_orifice"), lambda v: v >= 0.01, "at least 0.01",
-             runs=["bubble_orifice"], fmt="{:.3f}"),
-    Quantity("bubble_orifice", "[Hoomans96 §5.3.1]", "bubble fraction, ideal (e = 1, mu = 0)",
-             "no bubbles", lambda o: o.bubble_fraction("bubble_orifice_ideal"),
-             lambda v: v < 0.01, "below 0.01",
-             "as in tsuji_setup: the 2-D packing converted to 3-D porosity (eq. 49) is dense "
-             "(eps = 0.33), where Ergun carries the bed at about 1.1 m/s, so at 1.8 m/s the "
-             "model bed is fluidised even without the jet, and the full inflow from rest lifts "
-             "it as a plug (cases/hoomans96/README.md); the non-ideal/ideal contrast is there",
-             runs=["bubble_orifice_ideal"], fmt="{:.3f}"),
-    Quantity("bubble_orifice", "[Hoomans96 §5.3.1, Fig. 11]", "pressure std 20 cm above the "
-             "jet, non-ideal / ideal", "> 1 (the non-ideal line has the strongest peaks)",
-             lambda o: ratio_text(math.sqrt(o.summary("bubble_orifice", "pressure_variance_p_20cm")),
-                                  math.sqrt(o.summary("bubble_orifice_ideal",
-                                                      "pressure_variance_p_20cm"))),
-             lambda v: v > 1.0, "above 1", runs=["bubble_orifice", "bubble_orifice_ideal"],
-             fmt="{:.2f}"),
-    Quantity("bubble_orifice", "[Hoomans96 §5.3]", "collisions in the run, non-ideal",
-             "over 3 million", lambda o: o.summary("bubble_orifice", "collisions_total"),
-             lambda v: v > 3e6, "above 3e6", runs=["bubble_orifice"], fmt="{:.3g}"),
-    Quantity("slug_homogeneous", "[Hoomans96 §5.3.2, Fig. 13]", "pressure-drop std / bed "
-             "weight, non-ideal / ideal", "> 1 (slugs with pressure peaks vs homogeneous "
-             "expansion)",
-             lambda o: ratio_text(o.summary("slug_homogeneous", "pressure_drop_std_over_weight"),
-                                  o.summary("slug_homogeneous_ideal",
-                                            "pressure_drop_std_over_weight")),
-             lambda v: v > 1.0, "above 1", runs=["slug_homogeneous", "slug_homogeneous_ideal"],
-             fmt="{:.2f}"),
-    Quantity("slug_homogeneous", "[Hoomans96 §5.3.2]", "mean pressure drop / bed weight, "
-             "non-ideal", "1 (a fluidised bed carries its weight)",
-             lambda o: o.summary("slug_homogeneous", "pressure_drop_over_weight"),
-             lambda v: abs(v - 1.0) <= 0.1, "within 10 %", runs=["slug_homogeneous"],
-             fmt="{:.3f}"),
-    Quantity("slug_homogeneous", "[Hoomans96 §5.3.2]", "collisions in the run, ideal",
-             "slightly over 1 million", lambda o: o.summary("slug_homogeneous_ideal",
-                                                            "collisions_total"),
-             lambda v: 1e6 <= v <= 2e6, "1e6 to 2e6",
-             "the paper's run length is not stated", runs=["slug_homogeneous_ideal"],
-             fmt="{:.3g}"),
-]
-
-QUANTITIES += [
-    Quantity("spouted_2.6", "[Chang08 §3.3, Fig. 3.10]", "regime at U0 = 2.6 m/s: mean pressure "
-             "drop / bed weight", "spouting (the pressure drop falls below the bed weight in "
-             "the fluidised region)",
-             lambda o: o.summary("spouted_2.6", "pressure_drop_over_weight"),
-             lambda v: v < 1.0, "below 1",
-             "inlet width, grid and start lost in the seed: chosen (cases/chang08/README.md); "
-             "within 1 s a cavity forms, no through-spout", runs=["spouted_2.6"], fmt="{:.3f}"),
-    Quantity("spouted_2.6", "[Chang08 §3.4]", "dominant pressure frequency 200 mm above the "
-             "nozzle", "not given in the text (Fig. 3.16 lost)",
-             lambda o: o.summary("spouted_2.6", "dominant_frequency_p_200mm"),
-             lambda v: None, "none (no published number)", runs=["spouted_2.6"],
-             fmt="{:.2f} Hz"),
-    Quantity("single_bubble_quick", "[Deen07 §6.1]", "bed height before the jet (0.005-0.02 s; "
-             "reduced case: one particle deep, 0.15 m wide)", "0.22 m",
-             lambda o: o.window_mean("single_bubble_quick", "bed_height", 0.005, 0.02),
-             lambda v: abs(v - 0.22) <= 0.022, "within 10 %", runs=["single_bubble_quick"],
-             fmt="{:.3f} m"),
-    Quantity("single_bubble_quick", "[Deen07 §6.1]", "pressure drop / bed weight before the "
-             "jet (incipient fluidisation)", "1",
-             lambda o: o.window_mean("single_bubble_quick", "pressure_drop", 0.005, 0.02)
-             / o.summary("single_bubble_quick", "bed_weight_per_area"),
-             lambda v: abs(v - 1.0) <= 0.15, "within 15 %",
-             "a one-particle-deep bed packs looser: not quite fluidised at 1.25 m/s",
-             runs=["single_bubble_quick"], fmt="{:.2f}"),
-    Quantity("single_bubble_quick", "[Deen07 §6.1, Fig. 8]", "bubble equivalent diameter 0.1 s "
-             "after injection (cells with porosity > 0.8)",
-             "a bubble (sizes in the lost Fig. 8; DPM slightly larger than experiment)",
-             lambda o: o.csv_at("single_bubble_quick", "bubble.csv", "after_injection", 0.1,
-                                "equivalent_diameter"),
-             lambda v: v > 0.03, "a bubble: above 0.03 m", "reduced case (5,620 particles)",
-             runs=["single_bubble_quick"], fmt="{:.3f} m"),
-    Quantity("velocity_ideal_quick", "[Deen07 §6.2, Fig. 10]", "velocity kurtosis x / z, ideal "
-             "particles", "near Gaussian (3)",
-             lambda o: max(abs(o.summary("velocity_ideal_quick", "velocity_kurtosis_x") - 3),
-                           abs(o.summary("velocity_ideal_quick", "velocity_kurtosis_z") - 3)) + 3,
-             lambda v: abs(v - 3.0) <= 1.0, "both within 3 ± 1 (the value shown: the farther)",
-             "reduced case: 5,000 particles, 1 s", runs=["velocity_ideal_quick"], fmt="{:.2f}"),
-    Quantity("velocity_nonideal_quick", "[Deen07 §6.2, Fig. 10]", "velocity kurtosis x / z, "
-             "non-ideal particles", "near Gaussian (3)",
-             lambda o: max(abs(o.summary("velocity_nonideal_quick", "velocity_kurtosis_x") - 3),
-                           abs(o.summary("velocity_nonideal_quick",
-                                         "velocity_kurtosis_z") - 3)) + 3,
-             lambda v: abs(v - 3.0) <= 1.0, "both within 3 ± 1 (the value shown: the farther)",
-             "sharply peaked with long tails: the fluctuations pooled over a mostly packed small "
-             "bed and a few fast bubbles; whether the full case (25,000 particles) and "
-             "Goldschmidt's sampling change this is open", runs=["velocity_nonideal_quick"],
-             fmt="{:.2f}"),
-    Quantity("velocity_ideal_quick", "[Deen07 §6.2]", "anisotropy s_z^2 / s_horizontal^2, ideal",
-             "isotropic",
-             lambda o: o.summary("velocity_ideal_quick", "anisotropy"),
-             lambda v: abs(v - 1.0) <= 0.3, "1 ± 0.3", runs=["velocity_ideal_quick"],
-             fmt="{:.2f}"),
-    Quantity("velocity_nonideal_quick", "[Deen07 §6.2]", "anisotropy s_z^2 / s_horizontal^2, "
-             "non-ideal", "clear anisotropy",
-             lambda o: o.summary("velocity_nonideal_quick", "anisotropy"),
-             lambda v: v > 1.3, "above 1.3", runs=["velocity_nonideal_quick"], fmt="{:.2f}"),
-]
-
 # The full-size cases: hours each today (issue 7). `fluidem validate --long` runs them too.
 RUNS += [
     Run("validation_40k", "hoomans96/validation_40k.toml", analyse=["--from", "0.5", "--to", "0.7"],
@@ -345,6 +267,17 @@ RUNS += [
 ]
 
 
+
+# ---------------------------------------------------------------------------------------------
+# How each compared quantity is read from the runs' outputs, keyed by the `id` of its entry in
+# cases/<folder>/reference.toml (which holds the published value, unit, source, criterion and
+# note). The order here is the order of the report's rows.
+# ---------------------------------------------------------------------------------------------
+
+def summary_of(run, name):
+    return lambda o: o.summary(run, name)
+
+
 def loop_summary(o, run, name):
     """A row of OUT/loop_summary.csv (name,value,unit) of cases/chang08/loop_umf.py."""
     with open(os.path.join(o.dir(run), "loop_summary.csv")) as f:
@@ -354,75 +287,21 @@ def loop_summary(o, run, name):
     raise KeyError(f"{run}: loop_summary.csv has no row '{name}'")
 
 
+def kurtosis_farther(o, run):
+    """3 plus the larger distance of the x and z velocity kurtoses from the Gaussian's 3."""
+    return max(abs(o.summary(run, "velocity_kurtosis_x") - 3),
+               abs(o.summary(run, "velocity_kurtosis_z") - 3)) + 3
+
+
 def kurtosis_farthest(o, run):
     """The kurtosis of the x, y, z velocity fluctuations farthest from the Gaussian's 3."""
     k = [o.summary(run, f"velocity_kurtosis_{a}") for a in "xz"]
     return max(k, key=lambda v: abs(v - 3.0))
 
 
-QUANTITIES += [
-    Quantity("validation_40k", "[Hoomans96 §5.4, Fig. 15]", "bubble fraction during the jet "
-             "(0.5-0.7 s; cells of the bed with porosity > 0.8)",
-             "a bubble comparing reasonably with the photographs (figures lost)",
-             lambda o: o.bubble_fraction("validation_40k"), lambda v: v >= 0.01,
-             "a bubble: at least 0.01", "40,000 particles", runs=["validation_40k"],
-             fmt="{:.3f}"),
-    Quantity("spouted_loop", "[Chang08 §3.4, Fig. 3.17]", "u_mf: crossing of the rising and "
-             "falling branches (point C)", "1.9 m/s",
-             lambda o: loop_summary(o, "spouted_loop", "u_mf_C"),
-             lambda v: abs(v / 1.9 - 1) <= 0.2, "within 20 %",
-             "17 s of bed, about 2.6 h. A loop ramped 4x faster (4.4 s of bed, 1969 s of wall "
-             "time, cases/chang08/README.md) gave 2.21 m/s here and 1.58 m/s for the Ergun fit "
-             "below; the periodic 3-D loop of tests/validation/integrate/"
-             "minimum_fluidisation_test.cpp gave 1.594 m/s (-9.9 % from Wen & Yu)",
-             runs=["spouted_loop"], fmt="{:.2f} m/s"),
-    Quantity("spouted_loop", "[Chang08 §3.2, eq. 3.8]", "u_mf: Ergun fit of the fixed-bed "
-             "branch meeting the plateau", "1.77 m/s (Wen & Yu)",
-             lambda o: loop_summary(o, "spouted_loop", "u_mf_ergun"),
-             lambda v: abs(v / 1.77 - 1) <= 0.15, "within 15 %", runs=["spouted_loop"],
-             fmt="{:.2f} m/s"),
-    Quantity("single_bubble", "[Deen07 §6.1]", "bed height before the jet (0.5-0.6 s)", "0.22 m",
-             lambda o: o.window_mean("single_bubble", "bed_height", 0.5, 0.6),
-             lambda v: abs(v - 0.22) <= 0.022, "within 10 %", runs=["single_bubble"],
-             fmt="{:.3f} m"),
-    Quantity("single_bubble", "[Deen07 §6.1]", "pressure drop / bed weight before the jet", "1",
-             lambda o: o.window_mean("single_bubble", "pressure_drop", 0.5, 0.6)
-             / o.summary("single_bubble", "bed_weight_per_area"),
-             lambda v: abs(v - 1.0) <= 0.15, "within 15 %", runs=["single_bubble"],
-             fmt="{:.2f}"),
-    Quantity("single_bubble", "[Deen07 §6.1, Fig. 8]", "bubble equivalent diameter 0.1 s after "
-             "injection", "a bubble (sizes in the lost Fig. 8)",
-             lambda o: o.csv_at("single_bubble", "bubble.csv", "after_injection", 0.1,
-                                "equivalent_diameter"),
-             lambda v: v > 0.03, "a bubble: above 0.03 m", runs=["single_bubble"],
-             fmt="{:.3f} m"),
-    Quantity("velocity_ideal", "[Deen07 §6.2, Fig. 10]", "velocity kurtosis (x or z, the "
-             "farther from 3), ideal, 25,000 particles", "near Gaussian (3)",
-             lambda o: kurtosis_farthest(o, "velocity_ideal"),
-             lambda v: abs(v - 3.0) <= 1.0, "within 3 ± 1", runs=["velocity_ideal"],
-             fmt="{:.2f}"),
-    Quantity("velocity_nonideal", "[Deen07 §6.2, Fig. 10]", "velocity kurtosis (x or z, the "
-             "farther from 3), non-ideal, 25,000 particles", "near Gaussian (3)",
-             lambda o: kurtosis_farthest(o, "velocity_nonideal"),
-             lambda v: abs(v - 3.0) <= 1.0, "within 3 ± 1", runs=["velocity_nonideal"],
-             fmt="{:.2f}"),
-    Quantity("velocity_nonideal", "[Deen07 §6.2]", "anisotropy, non-ideal / ideal, 25,000 "
-             "particles", "> 1 (ideal isotropic, non-ideal clearly anisotropic)",
-             lambda o: o.summary("velocity_nonideal", "anisotropy")
-             / o.summary("velocity_ideal", "anisotropy"),
-             lambda v: v > 1.3, "above 1.3", runs=["velocity_ideal", "velocity_nonideal"],
-             fmt="{:.2f}"),
-]
-
-# [Chang08 conference paper, Table 1]: 512 spheres in a periodic cube of water driven by a
-# sinusoidal field (eq. 1, garbled: reconstructed, cases/chang08/README_binary_collision.md).
-CUBE_NOTE = ("eq. (1) reconstructed (the seed garbles it), restitution 0.9 and no friction "
-             "chosen, water held at rest on average (coupling.hold_gas_at_rest)")
-TABLE1 = {  # d: (void fraction whole, GC, CC; collision frequency whole, GC, CC)
-    "10": (0.732, 0.546, 0.440, 11.86, 10.83, 27.87),
-    "7_5": (0.887, 0.619, 0.564, 8.852, 4.761, 22.63),
-    "5": (0.966, 0.840, 0.619, 7.690, 8.991, 12.90),
-}
+def pressure_drop_before_jet(o, run, t0, t1):
+    """Mean pressure drop over [t0, t1] s / the bed's weight per area."""
+    return o.window_mean(run, "pressure_drop", t0, t1) / o.summary(run, "bed_weight_per_area")
 
 
 def cube_cc(o, run, what):
@@ -430,49 +309,267 @@ def cube_cc(o, run, what):
     return 0.5 * (o.summary(run, "CC1_" + what) + o.summary(run, "CC2_" + what))
 
 
-for d, (vw, vg, vc, fw, fg, fc) in TABLE1.items():
-    run = f"binary_collision_d{d}"
-    size = d.replace("_", ".") + " mm"
-    QUANTITIES += [
-        Quantity(run, "[Chang08 binary-collision paper, Table 1]",
-                 f"collision frequency, whole cube, d = {size}", f"{fw} 1/s",
-                 lambda o, run=run: o.summary(run, "collision_frequency"),
-                 lambda v, fw=fw: abs(v / fw - 1) <= 0.25, "within 25 %",
-                 CUBE_NOTE + ("" if d == "10" else "; not steady after 30 s: f falls during the "
-                              "run as the particles form streams along the field lines that "
-                              "carry their water (cases/chang08/README_binary_collision.md)"),
-                 runs=[run], fmt="{:.3g} 1/s"),
-        Quantity(run, "[Chang08 binary-collision paper, Table 1]",
-                 f"collision frequency at GC (sphere of radius 0.1 L), d = {size}", f"{fg} 1/s",
-                 lambda o, run=run: o.summary(run, "GC_collision_frequency"),
-                 lambda v, fg=fg: abs(v / fg - 1) <= 0.25, "within 25 %",
-                 runs=[run], fmt="{:.3g} 1/s"),
-        Quantity(run, "[Chang08 binary-collision paper, Table 1]",
-                 f"collision frequency at CC (mean of the two), d = {size}", f"{fc} 1/s",
-                 lambda o, run=run: cube_cc(o, run, "collision_frequency"),
-                 lambda v, fc=fc: abs(v / fc - 1) <= 0.25, "within 25 %", runs=[run],
-                 fmt="{:.3g} 1/s"),
-        Quantity(run, "[Chang08 binary-collision paper, Table 1]",
-                 f"local void fraction at GC, d = {size}", f"{vg}",
-                 lambda o, run=run: o.summary(run, "GC_void_fraction"),
-                 lambda v, vg=vg: abs(v - vg) <= 0.05, "within 0.05",
-                 "the global void fraction is "
-                 f"{vw} by construction (512 spheres in 1 litre)", runs=[run],
-                 fmt="{:.3f}"),
-        Quantity(run, "[Chang08 binary-collision paper, Table 1]",
-                 f"local void fraction at CC (mean of the two), d = {size}", f"{vc}",
-                 lambda o, run=run: cube_cc(o, run, "void_fraction"),
-                 lambda v, vc=vc: abs(v - vc) <= 0.05, "within 0.05",
-                 "our particles gather less at GC and CC than the paper's" if d != "10" else
-                 "", runs=[run], fmt="{:.3f}"),
-    ]
+VALUES = {  # id: (the runs it needs, value(outputs) -> float)
+    # [Hoomans96]
+    "pouring_soft.area_fraction": (["pouring_soft"],
+                                   summary_of("pouring_soft", "area_fraction_last_frame")),
+    "pouring_soft.energy_error": (["pouring_soft"],
+                                  summary_of("pouring_soft", "energy_balance_error")),
+    "pouring_hard.area_fraction": (["pouring_hard"],
+                                   summary_of("pouring_hard", "area_fraction_last_frame")),
+    "pouring_hard.energy_error": (["pouring_hard"],
+                                  summary_of("pouring_hard", "energy_balance_error")),
+    "tsuji_setup.bubble_fraction": (["tsuji_setup"],
+                                    lambda o: o.bubble_fraction("tsuji_setup")),
+    "bubble_orifice.bubble_fraction": (["bubble_orifice"],
+                                       lambda o: o.bubble_fraction("bubble_orifice")),
+    "bubble_orifice_ideal.bubble_fraction": (["bubble_orifice_ideal"],
+                                             lambda o: o.bubble_fraction("bubble_orifice_ideal")),
+    "bubble_orifice.pressure_std_ratio": (
+        ["bubble_orifice", "bubble_orifice_ideal"],
+        lambda o: ratio_text(math.sqrt(o.summary("bubble_orifice", "pressure_variance_p_20cm")),
+                             math.sqrt(o.summary("bubble_orifice_ideal",
+                                                 "pressure_variance_p_20cm")))),
+    "bubble_orifice.collisions": (["bubble_orifice"],
+                                  summary_of("bubble_orifice", "collisions_total")),
+    "slug_homogeneous.pressure_drop_std_ratio": (
+        ["slug_homogeneous", "slug_homogeneous_ideal"],
+        lambda o: ratio_text(o.summary("slug_homogeneous", "pressure_drop_std_over_weight"),
+                             o.summary("slug_homogeneous_ideal",
+                                       "pressure_drop_std_over_weight"))),
+    "slug_homogeneous.pressure_drop": (["slug_homogeneous"],
+                                       summary_of("slug_homogeneous",
+                                                  "pressure_drop_over_weight")),
+    "slug_homogeneous_ideal.collisions": (["slug_homogeneous_ideal"],
+                                          summary_of("slug_homogeneous_ideal",
+                                                     "collisions_total")),
+    # [Chang08]
+    "spouted_2.6.pressure_drop": (["spouted_2.6"],
+                                  summary_of("spouted_2.6", "pressure_drop_over_weight")),
+    "spouted_2.6.dominant_frequency": (["spouted_2.6"],
+                                       summary_of("spouted_2.6", "dominant_frequency_p_200mm")),
+    # [Deen07], reduced cases
+    "single_bubble_quick.bed_height": (
+        ["single_bubble_quick"],
+        lambda o: o.window_mean("single_bubble_quick", "bed_height", 0.005, 0.02)),
+    "single_bubble_quick.pressure_drop": (
+        ["single_bubble_quick"],
+        lambda o: pressure_drop_before_jet(o, "single_bubble_quick", 0.005, 0.02)),
+    "single_bubble_quick.bubble_diameter": (
+        ["single_bubble_quick"],
+        lambda o: o.csv_at("single_bubble_quick", "bubble.csv", "after_injection", 0.1,
+                           "equivalent_diameter")),
+    "velocity_ideal_quick.kurtosis": (["velocity_ideal_quick"],
+                                      lambda o: kurtosis_farther(o, "velocity_ideal_quick")),
+    "velocity_nonideal_quick.kurtosis": (["velocity_nonideal_quick"],
+                                         lambda o: kurtosis_farther(o,
+                                                                    "velocity_nonideal_quick")),
+    "velocity_ideal_quick.anisotropy": (["velocity_ideal_quick"],
+                                        summary_of("velocity_ideal_quick", "anisotropy")),
+    "velocity_nonideal_quick.anisotropy": (["velocity_nonideal_quick"],
+                                           summary_of("velocity_nonideal_quick", "anisotropy")),
+    # The full-size cases (`--long`)
+    "validation_40k.bubble_fraction": (["validation_40k"],
+                                       lambda o: o.bubble_fraction("validation_40k")),
+    "spouted_loop.u_mf_crossing": (["spouted_loop"],
+                                   lambda o: loop_summary(o, "spouted_loop", "u_mf_C")),
+    "spouted_loop.u_mf_ergun": (["spouted_loop"],
+                                lambda o: loop_summary(o, "spouted_loop", "u_mf_ergun")),
+    "single_bubble.bed_height": (
+        ["single_bubble"], lambda o: o.window_mean("single_bubble", "bed_height", 0.5, 0.6)),
+    "single_bubble.pressure_drop": (
+        ["single_bubble"], lambda o: pressure_drop_before_jet(o, "single_bubble", 0.5, 0.6)),
+    "single_bubble.bubble_diameter": (
+        ["single_bubble"],
+        lambda o: o.csv_at("single_bubble", "bubble.csv", "after_injection", 0.1,
+                           "equivalent_diameter")),
+    "velocity_ideal.kurtosis": (["velocity_ideal"],
+                                lambda o: kurtosis_farthest(o, "velocity_ideal")),
+    "velocity_nonideal.kurtosis": (["velocity_nonideal"],
+                                   lambda o: kurtosis_farthest(o, "velocity_nonideal")),
+    "velocity_nonideal.anisotropy_ratio": (
+        ["velocity_ideal", "velocity_nonideal"],
+        lambda o: o.summary("velocity_nonideal", "anisotropy")
+        / o.summary("velocity_ideal", "anisotropy")),
+}
 
-NOT_RUN = [
-    NotRun("chang08 bubbling bed", "[Chang08 §4]", "mean pressure drop; PSD peak at 150 mm",
-           "826.1 Pa; 1.82 Hz",
-           "the particle size and velocity of the cases (Table 4.2) are lost in the seed's "
-           "extraction: the case cannot be set up without inventing them"),
-]
+# [Chang08 binary-collision paper, Table 1]: the whole cube, the granular centre GC (a sphere of
+# radius 0.1 L) and the collision centres CC1, CC2 (their mean), for each particle size.
+for _d in ["10", "7_5", "5"]:
+    _run = f"binary_collision_d{_d}"
+    VALUES.update({
+        f"{_run}.collision_frequency": ([_run], summary_of(_run, "collision_frequency")),
+        f"{_run}.collision_frequency_gc": ([_run], summary_of(_run, "GC_collision_frequency")),
+        f"{_run}.collision_frequency_cc": (
+            [_run], lambda o, run=_run: cube_cc(o, run, "collision_frequency")),
+        f"{_run}.void_fraction_gc": ([_run], summary_of(_run, "GC_void_fraction")),
+        f"{_run}.void_fraction_cc": ([_run], lambda o, run=_run: cube_cc(o, run, "void_fraction")),
+    })
+
+
+# ---------------------------------------------------------------------------------------------
+# The criterion kinds; their parameters come from the reference files. kind: (parameters,
+# agrees(v, published value, criterion) -> True, False or None).
+# ---------------------------------------------------------------------------------------------
+
+CRITERIA = {
+    "within_abs": (["tolerance"], lambda v, ref, c: abs(v - ref) <= c["tolerance"]),
+    "within_rel": (["tolerance"], lambda v, ref, c: abs(v / ref - 1) <= c["tolerance"]),
+    "above": (["bound"], lambda v, ref, c: v > c["bound"]),
+    "at_least": (["bound"], lambda v, ref, c: v >= c["bound"]),
+    "below": (["bound"], lambda v, ref, c: v < c["bound"]),
+    "between": (["lower", "upper"], lambda v, ref, c: c["lower"] <= v <= c["upper"]),
+    "none": ([], lambda v, ref, c: None),
+}
+NEEDS_VALUE = {"within_abs", "within_rel"}  # compared with the entry's published `value`
+
+
+class ReferenceError(Exception):
+    """A reference.toml that cannot be read or does not match VALUES / CRITERIA."""
+
+
+def _is_number(x):
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def _is_text(x):
+    return isinstance(x, str)
+
+
+def _numbers(x):
+    return _is_number(x) or (isinstance(x, list) and x != [] and all(map(_is_number, x)))
+
+
+def _texts(x):
+    return _is_text(x) or (isinstance(x, list) and x != [] and all(map(_is_text, x)))
+
+
+def _format_spec(x):
+    if not _is_text(x):
+        return False
+    try:
+        format(1.0, x)
+    except ValueError:
+        return False
+    return True
+
+
+# key: (required, check, what it must be)
+QUANTITY_KEYS = {
+    "id": (True, _is_text, "a string"),
+    "case": (True, _is_text, "a string"),
+    "source": (True, _is_text, "a string"),
+    "quantity": (True, _is_text, "a string"),
+    "published": (True, _is_text, "a string"),
+    "value": (False, _is_number, "a number"),
+    "spread": (False, _is_number, "a number"),
+    "unit": (True, _is_text, "a string (\"\" for none)"),
+    "format": (True, _format_spec, "a Python format spec such as \".3f\""),
+    "note": (False, _is_text, "a string"),
+    "criterion": (True, lambda x: isinstance(x, dict), "a table"),
+}
+NOT_RUN_KEYS = {
+    "case": (True, _is_text, "a string"),
+    "source": (True, _is_text, "a string"),
+    "quantity": (True, _is_text, "a string"),
+    "published": (True, _is_text, "a string"),
+    "value": (False, _numbers, "a number or a list of numbers"),
+    "unit": (False, _texts, "a string or a list of strings"),
+    "reason": (True, _is_text, "a string"),
+}
+
+
+def _check_keys(entry, keys, where):
+    for k in entry:
+        if k not in keys:
+            raise ReferenceError(f"{where}: unknown key '{k}' (known: {', '.join(keys)})")
+    for k, (required, ok, what) in keys.items():
+        if k not in entry:
+            if required:
+                raise ReferenceError(f"{where}: missing key '{k}'")
+        elif not ok(entry[k]):
+            raise ReferenceError(f"{where}: key '{k}' must be {what}, not {entry[k]!r}")
+
+
+def _check_criterion(entry, where):
+    c = entry["criterion"]
+    where = f"{where}, criterion"
+    kind = c.get("kind")
+    if kind is None:
+        raise ReferenceError(f"{where}: missing key 'kind'")
+    if kind not in CRITERIA:
+        raise ReferenceError(f"{where}: key 'kind' is {kind!r}: must be one of "
+                             + ", ".join(CRITERIA))
+    params = CRITERIA[kind][0]
+    keys = {"kind": (True, _is_text, "a string"),
+            "text": (True, _is_text, "a string (the report's criterion column)")}
+    keys.update({p: (True, _is_number, "a number") for p in params})
+    _check_keys(c, keys, f"{where} '{kind}'")
+    if kind in NEEDS_VALUE and "value" not in entry:
+        raise ReferenceError(f"{where} '{kind}': missing key 'value' of the quantity (the "
+                             "published number it compares with)")
+    if kind == "within_rel" and entry["value"] == 0:
+        raise ReferenceError(f"{where} 'within_rel': key 'value' is 0")
+
+
+def load_toml(path):
+    try:
+        import tomllib  # Python 3.11+
+    except ImportError:
+        import tomli as tomllib  # the same reader for older Pythons (pip/Debian python3-tomli)
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except OSError as e:
+        raise ReferenceError(f"{path}: cannot be read ({e.strerror})") from e
+    except tomllib.TOMLDecodeError as e:
+        raise ReferenceError(f"{path}: not valid TOML: {e}") from e
+
+
+def load_references(runs, values, cases=None):
+    """The Quantity rows (in the order of `values`) and NotRun rows (in the order of the case
+    folders in `runs`) from cases/<folder>/reference.toml of every case folder of `runs`.
+    Raises ReferenceError, naming the file and the key, for a malformed file, an id without an
+    entry of `values` or an entry of `values` without a reference."""
+    cases = cases or CASES
+    folders = []
+    for r in runs:
+        folder = r.case.split("/")[0]
+        if folder not in folders:
+            folders.append(folder)
+    refs = {}  # id -> (entry, path)
+    not_run = []
+    for folder in folders:
+        path = os.path.join(cases, folder, "reference.toml")
+        data = load_toml(path)
+        for k in data:
+            if k not in ("quantity", "not_run"):
+                raise ReferenceError(f"{path}: unknown key '{k}' (known: [[quantity]], "
+                                     "[[not_run]])")
+        for key in ("quantity", "not_run"):
+            if key in data and not (isinstance(data[key], list)
+                                    and all(isinstance(e, dict) for e in data[key])):
+                raise ReferenceError(f"{path}: '{key}' must be an array of tables ([[{key}]])")
+        for i, e in enumerate(data.get("quantity", [])):
+            where = f"{path}: [[quantity]] {i + 1}" + (f" (id '{e['id']}')" if _is_text(
+                e.get("id")) else "")
+            _check_keys(e, QUANTITY_KEYS, where)
+            _check_criterion(e, where)
+            if e["id"] in refs:
+                raise ReferenceError(f"{where}: key 'id': '{e['id']}' also in {refs[e['id']][1]}")
+            if e["id"] not in values:
+                raise ReferenceError(f"{where}: key 'id': '{e['id']}' is not a quantity "
+                                     "python/fluidem_validate.py knows how to read (VALUES)")
+            refs[e["id"]] = (e, path)
+        for i, e in enumerate(data.get("not_run", [])):
+            _check_keys(e, NOT_RUN_KEYS, f"{path}: [[not_run]] {i + 1}")
+            not_run.append(NotRun(e))
+    missing = [q for q in values if q not in refs]
+    if missing:
+        raise ReferenceError("no [[quantity]] with id " + ", ".join(f"'{q}'" for q in missing)
+                             + " in " + ", ".join(os.path.join(cases, f, "reference.toml")
+                                                  for f in folders))
+    return [Quantity(refs[q][0], *values[q]) for q in values], not_run
 
 
 # ---------------------------------------------------------------------------------------------
@@ -525,12 +622,17 @@ def main():
                     "(WORK/<run>.done) instead of running them again")
     a = ap.parse_args()
 
+    try:
+        all_quantities, not_run = load_references(RUNS, VALUES)
+    except ReferenceError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
     chosen = [r for r in RUNS if not a.only or any(t in r.name for t in a.only)]
     # The hours-long cases run only with --long (never in --quick); their rows say so.
     runs = [r for r in chosen if not r.long or (a.long and not a.quick)]
     long_left = {r.name for r in chosen if r not in runs}
     names = {r.name for r in chosen}
-    quantities = [q for q in QUANTITIES if all(r in names for r in q.runs)]
+    quantities = [q for q in all_quantities if all(r in names for r in q.runs)]
     if a.list:
         for r in chosen:
             kind = "long-run" if r.name in long_left else "run"
@@ -635,7 +737,7 @@ def main():
             failed.append(f"{q.case}: {q.quantity}: not finite ({v})")
         rows.append((q, v, None))
 
-    write_report(report, a.quick, runs, rows, wall, failed, outputs)
+    write_report(report, a.quick, runs, rows, not_run, wall, failed, outputs)
     print(f"report: {report}")
     if failed:
         print("failures:\n  " + "\n  ".join(failed), file=sys.stderr)
@@ -643,7 +745,7 @@ def main():
     return 0
 
 
-def write_report(path, quick, runs, rows, wall, failed, outputs):
+def write_report(path, quick, runs, rows, not_run, wall, failed, outputs):
     pics = os.path.join(os.path.dirname(path), "pictures")
     os.makedirs(pics, exist_ok=True)
     for old in os.listdir(pics):  # the pictures of an earlier report
@@ -672,7 +774,7 @@ def write_report(path, quick, runs, rows, wall, failed, outputs):
         other = len(rows) - agree - disagree
         w(f"**{len(rows)} quantities: {agree} agree, {disagree} do not, {other} without a "
           f"criterion, not computed or not run (the full-size cases need `--long`: hours each); "
-          f"{len(NOT_RUN)} seed case cannot be set up (last row, with the reason).** Where a seed lost the data a case needs, the case file says what was "
+          f"{len(not_run)} seed case cannot be set up (last row, with the reason).** Where a seed lost the data a case needs, the case file says what was "
           "chosen; the notes say where that matters. Wall times below are of one thread on a "
           "shared two-core machine (not benchmarks).")
         w("")
@@ -682,7 +784,7 @@ def write_report(path, quick, runs, rows, wall, failed, outputs):
         if v is None:
             val, agree = err, "n/a"
         else:
-            val = q.fmt.format(v)
+            val = q.show(v)
             ok = q.agrees(v)
             if quick:
                 agree = "n/a (quick)"
@@ -692,7 +794,7 @@ def write_report(path, quick, runs, rows, wall, failed, outputs):
                 agree = "**yes**" if ok else "**no**"
         w(f"| {q.case} | {q.paper} | {q.quantity} | {q.published} | {val} | {q.criterion} | "
           f"{agree} | {q.note} |")
-    for n in NOT_RUN:
+    for n in not_run:
         w(f"| {n.case} | {n.paper} | {n.quantity} | {n.published} | not run | - | n/a | "
           f"{n.reason} |")
     w("")
