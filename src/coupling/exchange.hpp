@@ -1,88 +1,28 @@
 // Particle-gas momentum exchange, coupling schemes 1-3 of [Zhu07 §3.2] (`c.scheme`), for gas
-// Model A or Model B [Zhu07 eq. 4-7] (`gas.model`).
+// Model A or Model B [Zhu07 eq. 4-7] (`gas.model`). Derivations and checks: docs/coupling.md
+// ("Model A and Model B", "Forces and exchange").
 //
-// Scheme 3 (default): the force on each particle is computed first (drag closure + the Model A
-// pressure-gradient force or the Model B buoyancy term), and the gas receives minus the same
-// forces, distributed to the velocity faces with the SAME stencil weights as the interpolation
-// [Hoomans96 eq. 40-41] (interpolation.hpp), per unit cell volume.
-//
-// Model A and Model B. The gas solver (gas_equations.cpp) solves, per unit volume,
-//   Model A [Zhu07 eq. 5]: d(eps rho u)/dt + conv = -eps grad p - F_A + visc + eps rho g,
-//   Model B [Zhu07 eq. 7]: d(eps rho u)/dt + conv = -grad p   - F_B + visc + eps rho g,
-// (gravity eps rho g from gas.gravity in both), F = the particle force on the gas per unit
-// volume with the sign of the force ON THE PARTICLES. In Model A the particle i gets
-// f_d,i - V_i grad p (drag f_d,i = V_i K_i (u_i - v_i) plus the pressure force) and
-// F_A = sum_i f_d,i / V_cell (drag only: the pressure part is the -eps grad p of the gas).
-// Model B: the particles get the WHOLE particle-fluid force f_pf,i, no separate pressure force,
-// and F_B = sum_i f_pf,i / V_cell. Derivation (Feng & Yu 2004, quoted in [Zhu07 §3.1] after
-// eq. 7: F_B = F_A/eps_f - rho_f eps_s g): drop the inertial and viscous terms of the Model A
-// equation, eps grad p = -F_A + eps rho g, so grad p = -F_A/eps + rho g; the total force on the
-// particles per unit volume is then F_A - eps_s grad p = F_A (1 + eps_s/eps) - eps_s rho g
-// = F_A/eps - eps_s rho g (eps + eps_s = 1). Model B calls this F_B; with eps_s V_cell =
-// sum_i V_i it is sum_i f_pf,i / V_cell with, per particle,
-//   f_pf,i = f_d,i / eps_i - V_i rho_i g
-// (drag scaled by 1/eps, plus a buoyancy-like term that uses the gas weight rho g instead of the
-// pressure gradient). Check, steady uniform fixed bed, Model B gas: 0 = -grad p - F_B + eps rho g
-// = -grad p - F_A/eps + eps_s rho g + eps rho g  ->  grad p = -F_A/eps + rho g: the same pressure
-// gradient as Model A. The total force on the particles per unit volume is the same as well
-// (F_B = F_A - eps_s grad p), = -grad p + eps rho g: the pressure drop per length less the
-// weight of the gas in the bed per volume (g points down; 0 gravity: the pressure drop alone).
-//
-// Per particle i (V_i = pi d_i^3 / 6, also in 2-D: spheres confined to the x-z plane):
-//   u_i   = gas velocity at x_i, eps_i = porosity at x_i, rho_i = gas density at x_i;
-//   K_i   = closure K = beta/(1 - eps) at (eps_i, d_i, mu, rho_i, |u_i - v_i|) [Deen07 eq. 1];
-//   c_i   = V_i K_i (Model A), V_i K_i / eps_i (Model B)   (kg/s)
-//   drag_i = c_i (u_i - v_i)                            (N, on the particle)
-//   pres_i = -V_i grad p (x_i)   (N, Model A [Zhu07 eq. 5])
-//   pres_i = -V_i rho_i g        (N, Model B: the buoyancy term of f_pf,i; g = gas.gravity)
-// Gas source (semi-implicit form of GasSolver: S = K_us - K u + f per face, N m^-3):
-//   K_face = sum_i w_if c_i / V_cell,  K_us,face = sum_i w_if c_i v_i / V_cell,
-//   f_face = 0 (Model A),  f_face = -sum_i w_if pres_i / V_cell (Model B),
-// so that with the gas velocity used for the particles sum_f S_f V_cell = -sum_i drag_i (A),
-// -sum_i (drag_i + pres_i) (B) to round-off (Newton's third law). Stencil weights on faces the
-// solver does not solve (walls, inflow, ghosts) are given to the solved faces of the stencil in
-// proportion to their weights (the whole c_i and pres_i reach the gas); near walls this breaks
-// the exact equality of the drag by O(h grad u). Periodic axes: stencil nodes in the ghost
-// layer (or the copy face 0 along d) are the images of unknowns at the other end
-// (interpolation.hpp, periodic_image): their weights go there, so the equalities above hold
-// across periodic faces too.
-//
-// Cell averages (schemes 1 and 2), per interior cell c over the particles whose CENTRE is in c
-// (GasGrid::cell_of, points outside clamped onto the domain):
-//   V_s,c = sum_i V_i,  v_c = sum_i m_i v_i / sum_i m_i (mass-weighted),
-//   d_c = sum_i d_i^3 / sum_i d_i^2 (Sauter mean: the diameter with the cell's solids volume
-//         per surface area; = d for identical particles),
-//   eps_c, rho_c = the cell's porosity and gas density, u_c = mean of the two faces of c per
-//   component (as in the fields output);
-//   K_c = closure K at (eps_c, d_c, mu, rho_c, |u_c - v_c|),
-//   C_c = V_s,c K_c (Model A), V_s,c K_c / eps_c (Model B) (kg/s),
-//   F_c = C_c (u_c - v_c) = beta_c V_cell (u_c - v_c) (Model A) when V_s,c = (1 - eps_c) V_cell
-//         [Chang08 eq. 2.10].
-// Gas source of schemes 1 and 2: -F_c in semi-implicit form, split HALF to each of the two
-// faces of c along each axis d (our choice; [Zhu07 §3.2] and [Chang08 eq. 2.10] only say "per
-// cell"; the half/half split is the one for which the face sum is exactly -C_c (u_c - v_c)
-// with u_c the mean of the two faces):
-//   K_face += C_c / (2 V_cell),  K_us,face += C_c v_c,d / (2 V_cell)   (both faces of c along d)
-// so sum_f S_f V_cell = C_c (v_c - u_c) = -F_c for ANY u. A face the solver does not solve
-// (wall, inflow, ghost; all v_y faces in 2-D) gives its half to the other face, as in scheme 3
-// (within a cell of such a face the equality then holds only up to O(h grad u)). Model B: the
-// buoyancy terms pres_i of the particles of c go the same way, f_face -= pres_i / (2 V_cell).
-//   Scheme 2 [Zhu07 §3.2; Chang08 eq. 2.11]: F_c is distributed to the particles of c by
-//     surface area: drag_i = s_i F_c, s_i = d_i^2 / sum_{j in c} d_j^2; coeff[i] = s_i C_c,
-//     u_i = u_c, eps[i] = eps_c. Newton's third law holds to round-off (away from walls), also
-//     after the gas step (update_particle_forces recomputes u_c with the new gas velocity and
-//     keeps C_c, v_c: the exact minus of what the gas received).
-//   Scheme 1 [Zhu07 §3.2]: each particle gets its own scheme-3 drag c_i (u_i - v_i), the gas
-//     gets -F_c of the cell averages: the third law holds only ON AVERAGE (exactly only when the
-//     cell averages reproduce the particles' own state, e.g. identical particles with one
-//     velocity in a uniform gas field and porosity). [Zhu07 §3.2] calls it "not reasonable"
-//     and lists the early codes (Tsuji 1993, Hoomans 1996) under it. It has their exchange
-//     structure, not their models: [Hoomans96 eq. 34-37] gives the particles gravity and a
-//     single-particle Wen-Yu force with no pressure force, and the gas a beta from another
-//     closure (eq. 45-46); here both sides use one closure and the particles also get the
-//     pressure force (docs/coupling.md).
-// The pressure force (Model A: -V_i grad p at x_i) or buoyancy term (Model B: -V_i rho_i g) is
-// per particle in all three schemes.
+// Per particle i (V_i = pi d_i^3 / 6; u_i, eps_i, rho_i interpolated at x_i [Hoomans96 eq. 40-41];
+// K_i = beta/(1 - eps) of the closure [Deen07 eq. 1]):
+//   c_i    = V_i K_i (Model A),  V_i K_i / eps_i (Model B)            kg/s
+//   drag_i = c_i (u_i - v_i)                                          N, on the particle
+//   pres_i = -V_i grad p(x_i) (A [Zhu07 eq. 5]),  -V_i rho_i g (B, f_pf = f_d/eps - V rho g
+//            [Zhu07 §3.1 after eq. 7, Feng & Yu 2004])
+// Gas source, semi-implicit S = K_us - K u + f per face (N m^-3), with the interpolation's own
+// stencil weights w_if:
+//   Scheme 3 (default): K_face = sum_i w_if c_i / V_cell, K_us,face = sum_i w_if c_i v_i / V_cell,
+//     f_face = 0 (A), -sum_i w_if pres_i / V_cell (B): sum_f S_f V_cell = -sum_i drag_i (A),
+//     -sum_i (drag_i + pres_i) (B) to round-off (Newton's third law).
+//   Schemes 1, 2: per cell c (particles whose centre is in c), C_c = V_s,c K_c (A; / eps_c in B)
+//     at the cell averages (v_c mass-weighted, d_c Sauter mean), F_c = C_c (u_c - v_c)
+//     [Chang08 eq. 2.10]; the gas gets -F_c, half to each face of c along each axis.
+//     Scheme 2 [Chang08 eq. 2.11] shares F_c among the particles of c by surface area
+//     (d_i^2 / sum d_j^2); scheme 1 gives each particle its own scheme-3 drag, so the third law
+//     holds only on average (the exchange structure of the early codes, not their particle
+//     force: docs/coupling.md).
+// Weights on faces the solver does not solve (walls, ghosts; all v_y faces in 2-D) go to the
+// solved faces of the stencil in proportion; an inflow face keeps its weight (it sets the face's
+// pressure: gas_solver.hpp). Periodic ghost nodes pass their weights to their images.
 #pragma once
 #include "coupling/drag/drag_model.hpp"
 #include "coupling/interpolation.hpp"
