@@ -79,73 +79,68 @@ RunOutputs RunOutputs::resume(const OutputDirectory& dir, const OutputLayout& la
         "output.collisions cannot change when a run continues in the same directory; continue "
         "it into a new directory with --out)",
         where, names(recorded), names(wanted)));
-  // 1. Check every file, read-only.
-  const auto checked = [&](auto&& check) {
-    try {
-      check();
-    } catch (const std::runtime_error& e) {
-      throw InputError(e.what());
-    }
+  // Each writer's resume, with check_only: first all of them only check, read-only; then each
+  // cuts its file back to the checkpoint (atomically, file by file: cutting again is harmless,
+  // so an interruption here leaves a directory that the same restart continues).
+  const auto particles = [&](bool check_only) {
+    return H5mdWriter::resume(dir.file("particles.h5"), marks.frame_times, marks.run_id,
+                              layout.particles, layout.dimension, layout.box, layout.layers,
+                              check_only);
   };
-  checked([&] {
-    H5mdWriter::resume(dir.file("particles.h5"), marks.frame_times, marks.run_id, layout.particles,
-                       layout.dimension, layout.box, layout.layers, true);
-  });
-  for (const auto& [name, columns] : layout.csv)
-    checked([&] { SeriesWriter::resume(dir.file(name), columns, marks.csv.at(name), true); });
-  if (layout.fields)
-    checked([&] {
-      FieldsWriter::resume(dir.file("fields.h5"), marks.frame_times, marks.run_id,
-                           layout.fields->grid, layout.fields->scalars, layout.fields->vectors,
-                           true);
-    });
-  if (layout.continuum)
-    checked([&] {
-      FieldsWriter::resume(dir.file("continuum.h5"), marks.continuum_times, marks.run_id,
-                           layout.continuum->grid, layout.continuum->scalars,
-                           layout.continuum->vectors, true);
-    });
-  // 2. Cut each back to the checkpoint (atomically, file by file: cutting again is harmless, so
-  //    an interruption here leaves a directory that the same restart continues).
+  const auto series = [&](const std::string& name, bool check_only) {
+    return SeriesWriter::resume(dir.file(name), layout.csv.at(name), marks.csv.at(name),
+                                check_only);
+  };
+  const auto fields = [&](const char* file, const OutputLayout::Grid& f,
+                          const std::vector<double>& times, bool check_only) {
+    return FieldsWriter::resume(dir.file(file), times, marks.run_id, f.grid, f.scalars, f.vectors,
+                                check_only);
+  };
+  try {
+    particles(true);
+    for (const auto& [name, columns] : layout.csv) series(name, true);
+    if (layout.fields) fields("fields.h5", *layout.fields, marks.frame_times, true);
+    if (layout.continuum) fields("continuum.h5", *layout.continuum, marks.continuum_times, true);
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
   RunOutputs o(dir, layout);
   o.run_id_ = marks.run_id;
-  o.particles_ = std::make_unique<H5mdWriter>(
-      H5mdWriter::resume(dir.file("particles.h5"), marks.frame_times, marks.run_id,
-                         layout.particles, layout.dimension, layout.box, layout.layers));
+  o.particles_ = std::make_unique<H5mdWriter>(particles(false));
   for (const auto& [name, columns] : layout.csv)
-    o.csv_[name] = std::make_unique<SeriesWriter>(
-        SeriesWriter::resume(dir.file(name), columns, marks.csv.at(name)));
+    o.csv_[name] = std::make_unique<SeriesWriter>(series(name, false));
   if (layout.fields)
     o.fields_ = std::make_unique<FieldsWriter>(
-        FieldsWriter::resume(dir.file("fields.h5"), marks.frame_times, marks.run_id,
-                             layout.fields->grid, layout.fields->scalars, layout.fields->vectors));
+        fields("fields.h5", *layout.fields, marks.frame_times, false));
   if (layout.continuum)
-    o.continuum_ = std::make_unique<FieldsWriter>(FieldsWriter::resume(
-        dir.file("continuum.h5"), marks.continuum_times, marks.run_id, layout.continuum->grid,
-        layout.continuum->scalars, layout.continuum->vectors));
+    o.continuum_ = std::make_unique<FieldsWriter>(
+        fields("continuum.h5", *layout.continuum, marks.continuum_times, false));
   o.frame_times_ = marks.frame_times;
   o.continuum_times_ = marks.continuum_times;
-  write_particles_xdmf(dir.file("particles.xmf"), "particles.h5", layout.particles, o.frame_times_);
-  if (layout.fields)
-    write_fields_xdmf(dir.file("fields.xmf"), "fields.h5", layout.fields->grid,
-                      layout.fields->scalars, layout.fields->vectors, o.frame_times_);
-  if (layout.continuum)
-    write_fields_xdmf(dir.file("continuum.xmf"), "continuum.h5", layout.continuum->grid,
-                      layout.continuum->scalars, layout.continuum->vectors, o.continuum_times_);
+  o.write_frame_indexes();
+  if (layout.continuum) o.write_continuum_index();
   o.write_resolved_case(resolved_case, version);
   return o;
 }
 
 void RunOutputs::frame_written(double time) {
   frame_times_.push_back(time);
+  write_frame_indexes();
+}
+
+void RunOutputs::continuum_written(double time) {
+  continuum_times_.push_back(time);
+  write_continuum_index();
+}
+
+void RunOutputs::write_frame_indexes() const {
   write_particles_xdmf(dir_ + "/particles.xmf", "particles.h5", layout_.particles, frame_times_);
   if (layout_.fields)
     write_fields_xdmf(dir_ + "/fields.xmf", "fields.h5", layout_.fields->grid,
                       layout_.fields->scalars, layout_.fields->vectors, frame_times_);
 }
 
-void RunOutputs::continuum_written(double time) {
-  continuum_times_.push_back(time);
+void RunOutputs::write_continuum_index() const {
   write_fields_xdmf(dir_ + "/continuum.xmf", "continuum.h5", layout_.continuum->grid,
                     layout_.continuum->scalars, layout_.continuum->vectors, continuum_times_);
 }

@@ -86,6 +86,9 @@ public:
 private:
   RunOutputs(const OutputDirectory& dir, const OutputLayout& layout);
   void write_resolved_case(const std::string& resolved_case, const std::string& version) const;
+  /// The XDMF indexes of particles.h5 (and fields.h5) for frame_times_; of continuum.h5.
+  void write_frame_indexes() const;
+  void write_continuum_index() const;
 
   std::string dir_;
   OutputLayout layout_;
