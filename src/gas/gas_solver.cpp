@@ -211,6 +211,22 @@ void GasSolver::build_boundary_lists() {
       if (id == g_.n[d]) domain_faces_.push_back({d, static_cast<long>(q), 1.0});
     }
   }
+  // The scalar ghosts along another axis whose source lies in the ghost layer of an axis with
+  // inflow faces (set_inflow_ghost_pressures), in the order apply_scalar_bcs fills them.
+  std::array<bool, 3> inflow_axis{};
+  for (int d = 0; d < 3; ++d)
+    for (const FixedFace& f : fixed_faces_[d]) inflow_axis[d] = inflow_axis[d] || f.inflow;
+  for (std::size_t k = 0; k < scalar_ghosts_.size(); ++k) {
+    const ScalarGhost& sg = scalar_ghosts_[k];
+    const long step = sg.q > sg.in ? sg.q - sg.in : sg.in - sg.q;
+    bool in_layer = false;
+    for (int d = 0; d < 3; ++d) {
+      if (!inflow_axis[d] || step == g_.stride[d]) continue;
+      const long cd = (sg.in / g_.stride[d]) % g_.padded[d];
+      in_layer = in_layer || cd == 0 || cd == g_.n[d] + 1;
+    }
+    if (in_layer) inflow_layer_ghosts_.push_back(k);
+  }
 }
 
 void GasSolver::fill_periodic(std::vector<double>& a) const {
@@ -360,7 +376,6 @@ double GasSolver::inflow_face_pressure(int d, long q) const {
 }
 
 void GasSolver::set_inflow_ghost_pressures() {
-  std::array<bool, 3> inflow_axis{};
   for (int d = 0; d < 3; ++d)
     for (const FixedFace& f : fixed_faces_[d]) {
       if (f.inflow == nullptr) continue;
@@ -368,21 +383,13 @@ void GasSolver::set_inflow_ghost_pressures() {
       const long c = f.sign > 0.0 ? f.q + sd : f.q, ghost = f.sign > 0.0 ? f.q : f.q + sd;
       const double pb = inflow_face_pressure(d, f.q);
       p_[static_cast<std::size_t>(ghost)] = 2.0 * pb - p_[static_cast<std::size_t>(c)];
-      inflow_axis[static_cast<std::size_t>(d)] = true;
     }
   // The edge and corner ghosts beside them copy them again, as apply_scalar_bcs would have: a
-  // ghost along another axis e that copied the old inflow ghost would otherwise make a pressure
-  // difference across the wall on e in the ghost layer, a force along e on the particles whose
+  // ghost along another axis that copied the old inflow ghost would otherwise make a pressure
+  // difference across that axis's wall in the ghost layer, a force on the particles whose
   // stencils reach it (it set a disc one particle deep bouncing between its two y walls).
-  for (const ScalarGhost& sg : scalar_ghosts_) {
-    const long step = sg.q > sg.in ? sg.q - sg.in : sg.in - sg.q;
-    bool in_layer = false;
-    for (int d = 0; d < 3; ++d) {
-      if (!inflow_axis[static_cast<std::size_t>(d)] || step == g_.stride[d]) continue;
-      const long cd = (sg.in / g_.stride[d]) % g_.padded[d];
-      in_layer = in_layer || cd == 0 || cd == g_.n[d] + 1;
-    }
-    if (!in_layer) continue;
+  for (const std::size_t k : inflow_layer_ghosts_) {
+    const ScalarGhost& sg = scalar_ghosts_[k];
     const auto q = static_cast<std::size_t>(sg.q), in = static_cast<std::size_t>(sg.in);
     p_[q] = sg.patch->type == BoundaryType::pressure ? 2.0 * sg.patch->pressure - p_[in] : p_[in];
   }

@@ -226,6 +226,8 @@ private:
     double sign; ///< -1 low face, +1 high face
   };
   std::vector<ScalarGhost> scalar_ghosts_;
+  /// Indexes into scalar_ghosts_ of the edge and corner ghosts beside inflow ghosts.
+  std::vector<std::size_t> inflow_layer_ghosts_;
   std::array<std::vector<FaceCopy>, 3> outflow_copies_, tangential_ghosts_;
   std::array<std::vector<FixedFace>, 3> fixed_faces_;
   std::vector<FaceCopy> pc_ghosts_; ///< pressure-correction ghosts: -1 (pressure) or 1 * interior
