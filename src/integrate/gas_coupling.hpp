@@ -20,6 +20,7 @@
 #include "core/case_spec.hpp"
 #include "coupling/exchange.hpp"
 #include "gas/gas_solver.hpp"
+#include "integrate/force_sources.hpp"
 #include "particles/particle_store.hpp"
 
 namespace fluidem {
@@ -100,6 +101,20 @@ private:
   double solver_seconds_ = 0.0;
   int vertical_ = 2;      ///< the axis of gravity (z if there is none)
   bool falls_low_ = true; ///< gravity points to the low side of that axis
+};
+
+/// The gas's force on the particles (drag + pressure) as a force source: held over each flow
+/// step; its work is done by the gas, from outside the particle system's energy balance.
+class GasForceSource final : public ForceSource {
+public:
+  explicit GasForceSource(GasCoupling& gas) : gas_(gas) {}
+  std::string_view name() const override { return "gas"; }
+  EnergyRole energy_role() const override { return EnergyRole::External; }
+  const double* force(int axis) const override { return gas_.force(axis).data(); }
+  void permute(const std::vector<std::uint32_t>& new_to_old) override { gas_.permute(new_to_old); }
+
+private:
+  GasCoupling& gas_;
 };
 
 } // namespace fluidem

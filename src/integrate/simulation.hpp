@@ -1,14 +1,10 @@
-// The Simulation owns everything of one run (no global state): the case, the particle store,
-// the neighbour list, the contact table, the outputs. A pure granular run advances with
-// velocity Verlet (second order in translation and rotation, unlike the first-order scheme of
-// [Deen07 eq. 40]):
-//   v += F/m dt/2, w += T/I dt/2;  x += v dt;  [rebuild list];  F, T <- contacts + gravity;
-//   v += F/m dt/2, w += T/I dt/2.
-// Damping forces are evaluated with the half-step velocities. The last step's second half kick
-// is done with the next step's first (the same increment), in one pass over the particles with
-// the drift; on most steps of a run without gas forces or a body-force field that pass runs
-// slab by slab inside the contact loop (the folded step, integrate/drift_bound.hpp), bitwise the
-// same.
+// The scheduler of a run: it owns everything of one run (no global
+// state) and reads like the design. Set-up assembles the case's parts: the particles, the force
+// sources (force_sources.hpp: gravity, the body-force field, the gas, ...), the particle engine
+// (soft_sphere_stepper.hpp or hard_sphere_stepper.hpp), the gas (gas_coupling.hpp), the analyses
+// fed every step, and chooses the time steps (time_step_rule.hpp). A step is: a flow step when
+// one is due, one particle step, the analyses. run() adds the outputs and checkpoints
+// (run_recorder.hpp) and the stability guard (stability_guard.hpp).
 #pragma once
 #include <atomic>
 #include <functional>
@@ -20,12 +16,12 @@
 #include "analysis/continuum_averaging.hpp"
 #include "analysis/energies.hpp"
 #include "contact/contact_forces.hpp"
-#include "contact/contact_table.hpp"
 #include "core/case_spec.hpp"
-#include "hardsphere/hard_sphere_engine.hpp"
-#include "integrate/drift_bound.hpp"
+#include "integrate/force_sources.hpp"
 #include "integrate/gas_coupling.hpp"
-#include "neighbour/neighbour_list.hpp"
+#include "integrate/hard_sphere_stepper.hpp"
+#include "integrate/soft_sphere_stepper.hpp"
+#include "integrate/stability_guard.hpp"
 #include "output/output_directory.hpp"
 #include "output/run_outputs.hpp"
 #include "particles/particle_store.hpp"
@@ -99,12 +95,16 @@ struct OutputClock {
   bool started = false; ///< e0, escale and the first "next" times are set
 };
 
+class RunRecorder;
+
 class Simulation {
 public:
   /// Builds the contact table, inserts the particles and chooses the time step.
   /// Throws InputError for anything wrong with the case.
   explicit Simulation(CaseSpec spec);
   ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
   /// The simulation saved in a checkpoint (write_checkpoint), ready to continue. `overrides`
   /// ("section.key=value") may change only simulation.end_time and output.* intervals.
@@ -135,6 +135,12 @@ public:
   /// Advance n steps without output (tests, benchmarks).
   void advance(long n);
 
+  /// Adds a force on the particles (force_sources.hpp) before the first step; a source
+  /// evaluated every step is evaluated at once. Soft spheres take every kind, hard spheres the
+  /// held ones (std::logic_error otherwise). (For tests and embedding programs: a source added
+  /// here is not part of the case, so checkpoints do not hold it and a restart lacks it.)
+  void add_force_source(std::unique_ptr<ForceSource> source);
+
   /// The files run() writes, and their shapes.
   OutputLayout output_layout() const;
   /// About how many bytes the rest of the run writes (with a margin of 2), for the disk check.
@@ -142,19 +148,22 @@ public:
   /// What the run had written when its checkpoint was taken (restart()); empty otherwise.
   const OutputMarks& output_marks() const { return marks_; }
 
-  /// Current energies and contact statistics.
-  Energies energies() const { return particle_energies(p_, spec_.simulation.gravity); }
-  const ContactStats& contact_stats() const { return stats_; }
+  /// Current energies (e_pot: gravity's and the conservative sources') and contact statistics.
+  Energies energies() const;
+  const ContactStats& contact_stats() const { return stepper_->contact_stats(); }
   /// Contact force (N) and torque (N m) on particle i from the last force evaluation (soft
   /// spheres; the particle store keeps no forces).
-  Vec3 contact_force(std::size_t i) const { return nc_.force(i); }
-  Vec3 contact_torque(std::size_t i) const { return nc_.torque(i); }
+  Vec3 contact_force(std::size_t i) const { return soft_->scratch().force(i); }
+  Vec3 contact_torque(std::size_t i) const { return soft_->scratch().torque(i); }
   /// The contact loop's per-particle sums: force, torque and their non-conservative parts
   /// (ContactScratch::acc, kAcc doubles per particle; empty for hard spheres).
-  const std::vector<double>& contact_sums() const { return nc_.acc; }
+  const std::vector<double>& contact_sums() const {
+    static const std::vector<double> none;
+    return soft_ ? soft_->scratch().acc : none;
+  }
   /// The hard-sphere engine, or nullptr for the soft-sphere DEM.
-  const HardSphereEngine* hard_sphere() const { return hard_.get(); }
-  double dissipated_energy() const { return e_dsp_; }
+  const HardSphereEngine* hard_sphere() const { return hard_ ? &hard_->engine() : nullptr; }
+  double dissipated_energy() const { return stepper_->dissipated_energy(); }
   /// The gas phase and coupling, or nullptr for a granular run.
   const GasCoupling* gas() const { return gas_.get(); }
   /// The collision statistics (output.collisions = true), or nullptr. Fed after every step,
@@ -166,81 +175,69 @@ public:
   /// or nullptr when the case has none.
   const ContinuumAverager* continuum() const { return continuum_.get(); }
   /// Spatial sorts of the store done by this process (neighbour.sort_interval).
-  long spatial_sorts() const { return sorts_; }
-  /// Builds of the soft-sphere neighbour list so far (checkpointed).
-  long neighbour_builds() const { return nl_->builds(); }
+  long spatial_sorts() const { return soft_ ? soft_->sorts() : 0; }
+  /// Builds of the soft-sphere neighbour list so far (checkpointed; 0 for hard spheres).
+  long neighbour_builds() const { return soft_ ? soft_->list().builds() : 0; }
   /// Particle-wall entries in the neighbour list of the last build.
-  std::size_t neighbour_wall_entries() const { return nl_->wall_particle.size(); }
+  std::size_t neighbour_wall_entries() const {
+    return soft_ ? soft_->list().wall_particle.size() : 0;
+  }
   /// Steps whose integration pass ran inside the contact loop, slab by slab (step()), in this
   /// process (not checkpointed: a log figure).
-  long folded_steps() const { return folded_steps_; }
+  long folded_steps() const { return soft_ ? soft_->folded_steps() : 0; }
   /// Whether steps may be folded (default true). The folded and the separate pass give bitwise
   /// the same particles; the dissipated energy is summed per slab instead of per chunk of
   /// particles (the same round-off with any thread count). For tests and benchmarks.
   void set_folded_integration(bool on) {
-    fold_enabled_ = on;
-    drift_bound_ = DriftBound{}; // not kept up to date while off: the next step measures it
+    if (soft_) soft_->set_folded_integration(on);
   }
   /// Steps fold only while the neighbour list holds at least this many pairs per particle
-  /// (default 3: sparser beds ran slower folded, integrate/simulation.cpp). For all simulations
-  /// of the process; tests set 0 to fold sparse beds.
-  static double fold_pairs_per_particle();
-  static void set_fold_pairs_per_particle(double pairs);
-  /// Neighbour-list pair entries per particle (soft spheres; 0 without particles).
-  double neighbour_pairs_per_particle() const {
-    return p_.size() ? static_cast<double>(nl_->partner.size()) / static_cast<double>(p_.size())
-                     : 0.0;
+  /// (default 3: sparser beds ran slower folded, bench/RESULTS.md). For all simulations of the
+  /// process; tests set 0 to fold sparse beds.
+  static double fold_pairs_per_particle() { return SoftSphereStepper::fold_pairs_per_particle(); }
+  static void set_fold_pairs_per_particle(double pairs) {
+    SoftSphereStepper::set_fold_pairs_per_particle(pairs);
   }
+  /// Neighbour-list pair entries per particle (soft spheres; 0 without particles).
+  double neighbour_pairs_per_particle() const { return soft_ ? soft_->pairs_per_particle() : 0.0; }
   /// The contacts of the last step, when that step recorded them (else empty).
   const ContactRecord& contact_record() const { return record_; }
 
 private:
+  friend class RunRecorder;
   Simulation(CaseSpec spec, const ParticleStore* initial);
-  void compute_forces(ScratchState scratch = ScratchState::Stale);
-  /// v += h a(x) for every particle: the `[body_force]` field at its position (none: no-op).
-  void body_force_kick(double h);
-  /// One step. defer_second_kick: the step's second half kick is left for the next step to do
-  /// in its first pass over the particles (bitwise the same), or for finish_kick(); the caller
-  /// then reads no velocity, energy or dissipated energy before either.
+  /// The set-up of the analyses that read every step (collision statistics, continuum
+  /// averages).
+  void set_up_analyses();
+  /// The set-up of the particle engine, after the time steps are chosen.
+  void set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_first, double skin,
+                      double max_diameter);
+  /// One step. defer_second_kick: see StepNeeds.
   void step(bool defer_second_kick = false);
-  /// The second half kick a step left pending (none: nothing to do), after sync_particles().
-  void finish_kick();
-  /// Brings p_'s positions and velocities up to date from the contact view, which holds them
-  /// after a step's first pass (particles_current_ false), for whatever reads p_.
-  void sync_particles();
-  struct Kick;
-  /// The contact forces of a folded step: the step's pass over the particles (the pending
-  /// second half kick, its dissipation, the first half kick, the drift, the packing) runs slab
-  /// by slab inside the contact loop (compute_contact_forces' before_slab), each slab's
-  /// dissipation sum and largest squared drift speed into slab_sums_.
-  void compute_forces_folded(const SlabHook& slab_pass);
-  /// Sort the particles in space (neighbour/spatial_order.hpp) and rebuild the neighbour list
-  /// in the new order, keeping the contact histories and the gas forces with their particles.
-  void sort_and_rebuild();
-  /// Finishes a pending half kick, then stops the run (InstabilityError) on a non-finite
-  /// state, a particle outside the domain or an overlap beyond contact.max_overlap.
+  /// The gas step and the new held forces, at the start of a flow step of DT.
+  void flow_step();
+  /// The analyses fed by the step just taken.
+  void feed_analyses(bool sampled_continuum);
+  /// Finishes a pending half kick, then the stability guard (InstabilityError).
   void check_stability();
-  void record_collisions();
   /// The step at which the run ends: the first at or after simulation.end_time.
   long total_steps() const;
   /// True when the step about to be taken (number step_ + 1) is averaged by [output.continuum].
   bool continuum_samples_next_step() const;
+  RunSummary summary(long steps, double seconds, double seconds_output, long folded) const;
 
   CaseSpec spec_;
   ParticleStore p_;
-  std::unique_ptr<ContactTable> table_;
-  std::unique_ptr<NeighbourList> nl_;
-  std::unique_ptr<HardSphereEngine> hard_; ///< set when engine = "hard_sphere"
-  std::unique_ptr<GasCoupling> gas_;       ///< set when the case has [gas]
-  long steps_per_flow_ = 1;                ///< soft sphere: DEM steps per gas step
+  ForceSources forces_;
+  std::unique_ptr<GasCoupling> gas_; ///< set when the case has [gas]
+  std::unique_ptr<ParticleStepper> stepper_;
+  SoftSphereStepper* soft_ = nullptr; ///< stepper_ when engine = "soft_sphere"
+  HardSphereStepper* hard_ = nullptr; ///< stepper_ when engine = "hard_sphere"
+  long steps_per_flow_ = 1;           ///< particle steps per gas step
+  double flow_dt_ = 0.0;              ///< s
   CaseReport report_;
-  ContactStats stats_;
-  ContactScratch nc_;
-  double dt_ = 0.0, time_ = 0.0, e_dsp_ = 0.0;
-  bool kick_pending_ = false; ///< the last step's second half kick is still to do (step())
-  /// p_'s positions and velocities are current (else the contact view, ContactScratch::view,
-  /// holds them: after a step's first pass, until sync_particles()).
-  bool particles_current_ = true;
+  StabilityLimits limits_;
+  double dt_ = 0.0, time_ = 0.0;
   long step_ = 0;
   OutputClock clock_;
   /// The outputs of run() while it goes (their marks go into checkpoints), and the marks a
@@ -254,20 +251,7 @@ private:
   std::vector<InstantCollision> instant_;        ///< hard spheres: scratch
   std::unique_ptr<ContinuumAverager> continuum_; ///< set with [output.continuum]
   double continuum_interval_ = 0.0;              ///< s
-  double t_contacts_ = 0.0, t_integration_ = 0.0, t_neighbour_ = 0.0, t_gas_ = 0.0;
-  long sorts_ = 0; ///< spatial sorts in this process (not checkpointed: a log figure)
-  /// The folded step (step()): whether it may run, the bound that decides it from the last step,
-  /// the particles' largest 1/m, its per-slab sums (dissipation, largest squared speed) and the
-  /// steps it ran.
-  bool fold_enabled_ = true;
-  DriftBound drift_bound_;
-  double max_inv_mass_ = 0.0;
-  std::vector<double> slab_sums_;
-  long folded_steps_ = 0;
-  /// The store's indices in ascending particle id, for output frames (empty: the store is in id
-  /// order); stale after a sort, recomputed when a frame is written.
-  std::vector<std::uint32_t> output_order_;
-  bool output_order_valid_ = false;
+  double t_gas_ = 0.0;
 };
 
 } // namespace fluidem

@@ -88,14 +88,15 @@ const char* const kGasForce[3] = {"gas/force_x", "gas/force_y", "gas/force_z"};
 } // namespace
 
 void Simulation::write_checkpoint(const std::string& path) {
-  finish_kick(); // the full-step velocities (and their dissipated energy) are the state
+  stepper_->finish_kick(); // the full-step velocities (and their dissipated energy) are the state
+  const ContactStats& stats = contact_stats();
   CheckpointWriter w(path);
   w.put_string("meta/fluidem_version", kVersion);
   w.put_string("case/resolved", write_case_toml(spec_));
   w.put_scalar("run/step", static_cast<std::int64_t>(step_));
   w.put_scalar("run/time", time_);
   w.put_scalar("run/dt", dt_);
-  w.put_scalar("run/e_dsp", e_dsp_);
+  w.put_scalar("run/e_dsp", dissipated_energy());
   w.put_scalar("run/clock/next_frame", clock_.next_frame);
   w.put_scalar("run/clock/next_series", clock_.next_series);
   w.put_scalar("run/clock/next_checkpoint", clock_.next_checkpoint);
@@ -120,32 +121,33 @@ void Simulation::write_checkpoint(const std::string& path) {
     w.put("continuum/sums", continuum_->state().sums);
     w.put_scalar("continuum/samples", static_cast<std::int64_t>(continuum_->state().samples));
   }
-  w.put_scalar("stats/n_contacts", static_cast<std::int64_t>(stats_.n_contacts));
-  w.put_scalar("stats/max_overlap_ratio", stats_.max_overlap_ratio);
-  w.put_scalar("stats/max_overlap_particle",
-               static_cast<std::int64_t>(stats_.max_overlap_particle));
-  w.put_scalar("stats/elastic_energy", stats_.elastic_energy);
-  w.put_scalar("stats/spring_losses", stats_.spring_losses);
+  w.put_scalar("stats/n_contacts", static_cast<std::int64_t>(stats.n_contacts));
+  w.put_scalar("stats/max_overlap_ratio", stats.max_overlap_ratio);
+  w.put_scalar("stats/max_overlap_particle", static_cast<std::int64_t>(stats.max_overlap_particle));
+  w.put_scalar("stats/elastic_energy", stats.elastic_energy);
+  w.put_scalar("stats/spring_losses", stats.spring_losses);
   // The particle arrays and the list's state as views (no second copy of the run's largest
   // arrays while the checkpoint is written); they stay unchanged until w.commit() below.
   for (const auto& [name, v] : double_arrays(p_)) w.put_view(std::string("particles/") + name, *v);
   // zero for the hard-sphere engine, which keeps no contact forces
-  const bool have_forces = nc_.acc.size() == ContactScratch::kAcc * p_.size();
+  const std::vector<double>& acc = contact_sums();
+  const bool have_forces = acc.size() == ContactScratch::kAcc * p_.size();
   std::array<std::vector<double>, 6> contact_force;
   for (std::size_t a = 0; a < 6; ++a) {
     contact_force[a].assign(p_.size(), 0.0);
     if (have_forces)
       for (std::size_t i = 0; i < p_.size(); ++i)
-        contact_force[a][i] = nc_.acc[ContactScratch::kAcc * i + a];
+        contact_force[a][i] = acc[ContactScratch::kAcc * i + a];
     w.put_view(std::string("particles/") + kContactForce[a], contact_force[a]);
   }
   w.put_view("particles/species", p_.species);
   w.put_view("particles/id", p_.id);
   w.put_view("particles/layer", p_.layer);
-  put_list(w, "neighbour", nl_->state_view()); // the list's own arrays, unchanged until commit
-  HardSphereEngine::State h;                   // its list goes in as views: alive until w.commit()
+  if (soft_) // the list's own arrays, unchanged until commit
+    put_list(w, "neighbour", soft_->list().state_view());
+  HardSphereEngine::State h; // its list goes in as views: alive until w.commit()
   if (hard_) {
-    h = hard_->state();
+    h = hard_->engine().state();
     w.put("hardsphere/last_collision", h.last_collision);
     w.put("hardsphere/built_x", h.built_x);
     w.put("hardsphere/built_y", h.built_y);
@@ -237,11 +239,12 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
                                       "one its case gives, {:.17g} s",
                                       checkpoint, dt, s.dt_));
   s.p_ = p; // the constructor computed forces and moved nothing; the saved arrays win
-  if (!s.hard_) {
-    s.nc_.resize(p.size());
+  if (s.soft_) {
+    ContactScratch& nc = s.soft_->scratch();
+    nc.resize(p.size());
     for (std::size_t a = 0; a < 6; ++a)
       for (std::size_t i = 0; i < p.size(); ++i)
-        s.nc_.acc[ContactScratch::kAcc * i + a] = contact_force[a][i];
+        nc.acc[ContactScratch::kAcc * i + a] = contact_force[a][i];
   }
   s.step_ = static_cast<long>(r.integer("run/step"));
   s.time_ = static_cast<double>(s.step_) * s.dt_;
@@ -251,7 +254,7 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
         "(step {}): there is nothing to run; continue with --set simulation.end_time=T, T > "
         "{:.6g}",
         s.spec_.simulation.end_time, checkpoint, s.time_, s.step_, s.time_));
-  s.e_dsp_ = r.scalar("run/e_dsp");
+  if (s.soft_) s.soft_->set_dissipated_energy(r.scalar("run/e_dsp")); // (hard: the engine's)
   s.clock_.next_frame = r.scalar("run/clock/next_frame");
   s.clock_.next_series = r.scalar("run/clock/next_series");
   s.clock_.next_checkpoint = r.scalar("run/clock/next_checkpoint");
@@ -271,11 +274,14 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
                             static_cast<std::uint64_t>(r.integer(key + "/hash"))};
     }
   }
-  s.stats_.n_contacts = static_cast<long>(r.integer("stats/n_contacts"));
-  s.stats_.max_overlap_ratio = r.scalar("stats/max_overlap_ratio");
-  s.stats_.max_overlap_particle = static_cast<long>(r.integer("stats/max_overlap_particle"));
-  s.stats_.elastic_energy = r.scalar("stats/elastic_energy");
-  s.stats_.spring_losses = r.scalar("stats/spring_losses");
+  if (s.soft_) {
+    ContactStats& stats = s.soft_->stats();
+    stats.n_contacts = static_cast<long>(r.integer("stats/n_contacts"));
+    stats.max_overlap_ratio = r.scalar("stats/max_overlap_ratio");
+    stats.max_overlap_particle = static_cast<long>(r.integer("stats/max_overlap_particle"));
+    stats.elastic_energy = r.scalar("stats/elastic_energy");
+    stats.spring_losses = r.scalar("stats/spring_losses");
+  }
   try {
     if (s.continuum_) {
       if (r.has("continuum/sums")) {
@@ -285,7 +291,7 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
         s.clock_.next_continuum = s.time_ + s.continuum_interval_;
       }
     }
-    s.nl_->restore(s.p_, get_list(r, "neighbour"));
+    if (s.soft_) s.soft_->list().restore(s.p_, get_list(r, "neighbour"));
     if (s.hard_) {
       HardSphereEngine::State h;
       h.last_collision = r.doubles("hardsphere/last_collision");
@@ -306,7 +312,7 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
       h.stats.dissipated = e[0];
       h.stats.tc_energy_kept = e[1];
       h.list = get_list(r, "hardsphere/list");
-      s.hard_->restore(s.p_, h);
+      s.hard_->engine().restore(s.p_, h);
     }
     // Collision statistics: continued when the checkpoint holds them; a run that switches
     // them on at the restart (--set output.collisions=true) starts them there.
