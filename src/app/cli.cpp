@@ -133,6 +133,153 @@ std::string check_threads(const std::string& text) {
   return {};
 }
 
+/// The options of `fluidem run`.
+struct RunArgs {
+  std::string case_path, out_dir, restart_path;
+  std::vector<std::string> overrides;
+  int threads = 0;
+  bool force = false;
+};
+
+/// The log of a finished run: where the time went, the counts, the main files.
+void print_run_summary(const Simulation& sim, const RunSummary& s, const std::string& out_dir) {
+  fmt::print("done: {} steps in {:.3f} s wall, {:.4g} particle-steps/s\n", s.steps, s.wall_seconds,
+             s.particle_steps_per_second);
+  // Where the time went: the particles (contacts, integration and lists; the event-driven
+  // engine does all three), the gas solver, the coupling (porosity, forces both ways, the
+  // gas kicks) and the output.
+  const std::string gas_time =
+      sim.gas() ? fmt::format(", gas solver {:.3f} s, coupling {:.3f} s", s.seconds_gas_solver,
+                              s.seconds_gas - s.seconds_gas_solver)
+                : "";
+  if (sim.hard_sphere())
+    fmt::print("time in the collision engine {:.3f} s (events and neighbour lists, {} builds), "
+               "output {:.3f} s{}\n",
+               s.seconds_contacts + s.seconds_integration + s.seconds_neighbour, s.neighbour_builds,
+               s.seconds_output, gas_time);
+  else
+    fmt::print("time in contacts {:.3f} s, integration {:.3f} s, neighbour lists {:.3f} s "
+               "({} builds{}), output {:.3f} s{}\n",
+               s.seconds_contacts, s.seconds_integration, s.seconds_neighbour, s.neighbour_builds,
+               s.spatial_sorts > 0 ? fmt::format(", {} spatial sorts", s.spatial_sorts) : "",
+               s.seconds_output, gas_time);
+  if (s.folded_steps > 0)
+    fmt::print("integration folded into the contact loop on {} of {} steps (its time counted "
+               "in contacts)\n",
+               s.folded_steps, s.steps);
+  if (s.collisions == 0 && s.pairs_per_particle > 0.0)
+    fmt::print("neighbour pairs {:.2f} and wall entries {:.2f} per particle, {} contacts (pairs "
+               "and walls) at the end\n",
+               s.pairs_per_particle, s.walls_per_particle, s.contacts);
+  if (s.collisions > 0)
+    fmt::print("{} collisions, {:.4g} collisions per second of wall time\n", s.collisions,
+               static_cast<double>(s.collisions) / std::max(s.wall_seconds, 1e-9));
+  if (sim.gas()) // the gas does work on the particles: their energy sum is not conserved
+    fmt::print("memory {} bytes per particle\n", s.bytes_per_particle);
+  else
+    fmt::print("memory {} bytes per particle; energy balance drift {:.3g} (relative)\n",
+               s.bytes_per_particle, s.energy_drift);
+  fmt::print("results: {}/particles.h5 (+ particles.xmf for ParaView), {}/series.csv\n", out_dir,
+             out_dir);
+  fmt::print("         {} (continue with --restart and --set simulation.end_time=...)\n",
+             s.checkpoint);
+  if (sim.gas())
+    fmt::print("         {}/fields.h5 (+ fields.xmf){}\n", out_dir,
+               sim.spec().output.probes.empty() ? "" : fmt::format(", {}/probes.csv", out_dir));
+}
+
+/// The files of the analyses that ran with the run.
+void print_analysis_files(const Simulation& sim, const std::string& out_dir) {
+  if (sim.collisions())
+    fmt::print("         {}/collisions.csv, {}/collision_overlap.csv\n", out_dir, out_dir);
+  if (sim.continuum())
+    fmt::print("         {}/continuum.h5 (+ continuum.xmf for ParaView)\n", out_dir);
+}
+
+/// `fluidem run`: a case, or a checkpoint to continue, into its output directory; the exit
+/// code.
+int run_command(RunArgs& a) {
+  if (a.threads > 0) omp_set_num_threads(a.threads);
+  if (a.threads > omp_get_num_procs())
+    fmt::print(stderr,
+               "warning: --threads {} on a machine with {} cores: the results are the same, "
+               "but threads that share a core wait for each other (--threads {} is faster)\n",
+               a.threads, omp_get_num_procs(), omp_get_num_procs());
+  std::unique_ptr<Simulation> sim_owner;
+  bool resuming = false;
+  if (!a.restart_path.empty()) {
+    const std::string ckpt_dir = std::filesystem::path(a.restart_path).parent_path().string();
+    if (a.out_dir.empty()) a.out_dir = ckpt_dir.empty() ? "." : ckpt_dir;
+    std::error_code ec;
+    resuming = std::filesystem::equivalent(a.out_dir, ckpt_dir.empty() ? "." : ckpt_dir, ec);
+    try {
+      sim_owner = Simulation::restart(a.restart_path, a.overrides);
+    } catch (const CheckpointError& e) {
+      throw InputError(e.what());
+    }
+  } else {
+    if (a.out_dir.empty()) a.out_dir = default_out_dir(a.case_path);
+    sim_owner = std::make_unique<Simulation>(read_case_file(a.case_path, a.overrides));
+  }
+  Simulation& sim = *sim_owner;
+  // Locked for the run (and its analysis) before anything in it is looked at.
+  const OutputDirectory dir(a.out_dir, "this run");
+  prepare_out_dir(dir, a.force, resuming, sim);
+  print_report(sim.spec(), sim.report());
+  fmt::print("threads            {}\noutput             {}\n", omp_get_max_threads(), a.out_dir);
+  if (omp_get_max_threads() > 1)
+    if (const auto busy = busy_cores(200))
+      if (const auto w = busy_machine_warning(*busy, omp_get_num_procs(), omp_get_max_threads()))
+        fmt::print(stderr, "{}\n", *w);
+  if (!a.restart_path.empty())
+    fmt::print("restart            from {} at t = {:.6g} s (step {}){}\n", a.restart_path,
+               sim.time(), sim.step_count(),
+               resuming ? ", appending to the outputs there" : ", new output files");
+  std::fflush(stdout);
+  ProgressDisplay progress(stdout);
+  RunSummary s;
+  RunOptions ro;
+  ro.resume = resuming;
+  ro.directory = &dir;
+  ro.stop = &install_stop_handlers();
+  try {
+    s = sim.run(
+        a.out_dir, [&](const RunStatus& st) { progress(st); }, ro);
+  } catch (const InstabilityError&) {
+    remove_stop_handlers();
+    progress.finish();
+    throw;
+  }
+  remove_stop_handlers();
+  progress.finish();
+  if (s.stopped_by_signal != 0) {
+    const int sig = s.stopped_by_signal;
+    fmt::print(stderr,
+               "stopped by {} at t = {:.6g} s (step {}): checkpoint {}, outputs flushed in "
+               "{}\ncontinue with: fluidem run --restart {}\n",
+               sig == SIGINT ? "SIGINT" : (sig == SIGTERM ? "SIGTERM" : "a signal"), sim.time(),
+               sim.step_count(), s.checkpoint, a.out_dir, s.checkpoint);
+    return 128 + sig;
+  }
+  print_run_summary(sim, s, a.out_dir);
+  if (sim.spec().output.analyse) { // output.analyse: the run's analysis, as `fluidem analyse`
+    AnalyseOptions ao;
+    ao.out_dir = a.out_dir;
+    ao.directory = &dir;
+    fmt::print("analysis (output.analyse = true):\n");
+    try {
+      analyse(ao);
+    } catch (const InputError& e) { // the run's results are safe: say why, keep exit 0
+      fmt::print(stderr,
+                 "warning: the analysis was not written: {}\n(run `fluidem analyse {} "
+                 "--from T0 --to T1` with another window)\n",
+                 e.what(), a.out_dir);
+    }
+  }
+  print_analysis_files(sim, a.out_dir);
+  return 0;
+}
+
 } // namespace
 
 int run_cli(int argc, char** argv) {
@@ -145,25 +292,22 @@ int run_cli(int argc, char** argv) {
   app.set_version_flag("--version", std::string("fluidem ") + kVersion);
   app.require_subcommand(1);
 
-  std::string case_path, out_dir, restart_path;
-  std::vector<std::string> overrides;
-  int threads = 0;
-  bool force = false;
+  RunArgs a;
   auto* run = app.add_subcommand("run", "Run a case and write its results to OUT");
-  auto* case_opt = run->add_option("case", case_path, "Case file (TOML)");
+  auto* case_opt = run->add_option("case", a.case_path, "Case file (TOML)");
   auto* restart_opt =
-      run->add_option("--restart", restart_path,
+      run->add_option("--restart", a.restart_path,
                       "Continue the run saved in this checkpoint (OUT/checkpoint.h5) instead of "
                       "starting a case; --set may then change only simulation.end_time and "
                       "output.*");
   case_opt->excludes(restart_opt);
-  run->add_flag("--force", force, "Overwrite the results of another run in the output directory");
+  run->add_flag("--force", a.force, "Overwrite the results of another run in the output directory");
   auto* out_opt =
-      run->add_option("--out,-o", out_dir, "Output directory (default: out/<case name>)");
-  run->add_option("--set", overrides,
+      run->add_option("--out,-o", a.out_dir, "Output directory (default: out/<case name>)");
+  run->add_option("--set", a.overrides,
                   "Override a case value: section.key=value (repeatable), e.g. "
                   "--set simulation.end_time=0.5");
-  run->add_option("--threads,-t", threads, "OpenMP threads, 1 to 1024 (default: all cores)")
+  run->add_option("--threads,-t", a.threads, "OpenMP threads, 1 to 1024 (default: all cores)")
       ->check(CLI::Validator(check_threads, "1..1024", "threads"))
       ->type_name("N");
 
@@ -190,9 +334,9 @@ int run_cli(int argc, char** argv) {
   }
   try {
     app.parse(argc, argv);
-    if (*run && out_opt->count() > 0 && out_dir.empty())
+    if (*run && out_opt->count() > 0 && a.out_dir.empty())
       throw CLI::ValidationError("--out", "the output directory is an empty path");
-    if (*run && case_path.empty() && restart_path.empty())
+    if (*run && a.case_path.empty() && a.restart_path.empty())
       throw CLI::RequiredError("a case file (or --restart CHECKPOINT)");
   } catch (const CLI::Success& e) {
     return app.exit(e);
@@ -211,130 +355,7 @@ int run_cli(int argc, char** argv) {
       fmt::print("case is valid\n");
       return 0;
     }
-    if (threads > 0) omp_set_num_threads(threads);
-    if (threads > omp_get_num_procs())
-      fmt::print(stderr,
-                 "warning: --threads {} on a machine with {} cores: the results are the same, "
-                 "but threads that share a core wait for each other (--threads {} is faster)\n",
-                 threads, omp_get_num_procs(), omp_get_num_procs());
-    std::unique_ptr<Simulation> sim_owner;
-    bool resuming = false;
-    if (!restart_path.empty()) {
-      const std::string ckpt_dir = std::filesystem::path(restart_path).parent_path().string();
-      if (out_dir.empty()) out_dir = ckpt_dir.empty() ? "." : ckpt_dir;
-      std::error_code ec;
-      resuming = std::filesystem::equivalent(out_dir, ckpt_dir.empty() ? "." : ckpt_dir, ec);
-      try {
-        sim_owner = Simulation::restart(restart_path, overrides);
-      } catch (const CheckpointError& e) {
-        throw InputError(e.what());
-      }
-    } else {
-      if (out_dir.empty()) out_dir = default_out_dir(case_path);
-      sim_owner = std::make_unique<Simulation>(read_case_file(case_path, overrides));
-    }
-    Simulation& sim = *sim_owner;
-    // Locked for the run (and its analysis) before anything in it is looked at.
-    const OutputDirectory dir(out_dir, "this run");
-    prepare_out_dir(dir, force, resuming, sim);
-    print_report(sim.spec(), sim.report());
-    fmt::print("threads            {}\noutput             {}\n", omp_get_max_threads(), out_dir);
-    if (omp_get_max_threads() > 1)
-      if (const auto busy = busy_cores(200))
-        if (const auto w = busy_machine_warning(*busy, omp_get_num_procs(), omp_get_max_threads()))
-          fmt::print(stderr, "{}\n", *w);
-    if (!restart_path.empty())
-      fmt::print("restart            from {} at t = {:.6g} s (step {}){}\n", restart_path,
-                 sim.time(), sim.step_count(),
-                 resuming ? ", appending to the outputs there" : ", new output files");
-    std::fflush(stdout);
-    ProgressDisplay progress(stdout);
-    RunSummary s;
-    RunOptions ro;
-    ro.resume = resuming;
-    ro.directory = &dir;
-    ro.stop = &install_stop_handlers();
-    try {
-      s = sim.run(
-          out_dir, [&](const RunStatus& st) { progress(st); }, ro);
-    } catch (const InstabilityError&) {
-      remove_stop_handlers();
-      progress.finish();
-      throw;
-    }
-    remove_stop_handlers();
-    progress.finish();
-    if (s.stopped_by_signal != 0) {
-      const int sig = s.stopped_by_signal;
-      fmt::print(stderr,
-                 "stopped by {} at t = {:.6g} s (step {}): checkpoint {}, outputs flushed in "
-                 "{}\ncontinue with: fluidem run --restart {}\n",
-                 sig == SIGINT ? "SIGINT" : (sig == SIGTERM ? "SIGTERM" : "a signal"), sim.time(),
-                 sim.step_count(), s.checkpoint, out_dir, s.checkpoint);
-      return 128 + sig;
-    }
-    fmt::print("done: {} steps in {:.3f} s wall, {:.4g} particle-steps/s\n", s.steps,
-               s.wall_seconds, s.particle_steps_per_second);
-    // Where the time went: the particles (contacts, integration and lists; the event-driven
-    // engine does all three), the gas solver, the coupling (porosity, forces both ways, the
-    // gas kicks) and the output.
-    const std::string gas_time =
-        sim.gas() ? fmt::format(", gas solver {:.3f} s, coupling {:.3f} s", s.seconds_gas_solver,
-                                s.seconds_gas - s.seconds_gas_solver)
-                  : "";
-    if (sim.hard_sphere())
-      fmt::print("time in the collision engine {:.3f} s (events and neighbour lists, {} builds), "
-                 "output {:.3f} s{}\n",
-                 s.seconds_contacts + s.seconds_integration + s.seconds_neighbour,
-                 s.neighbour_builds, s.seconds_output, gas_time);
-    else
-      fmt::print("time in contacts {:.3f} s, integration {:.3f} s, neighbour lists {:.3f} s "
-                 "({} builds{}), output {:.3f} s{}\n",
-                 s.seconds_contacts, s.seconds_integration, s.seconds_neighbour, s.neighbour_builds,
-                 s.spatial_sorts > 0 ? fmt::format(", {} spatial sorts", s.spatial_sorts) : "",
-                 s.seconds_output, gas_time);
-    if (s.folded_steps > 0)
-      fmt::print("integration folded into the contact loop on {} of {} steps (its time counted "
-                 "in contacts)\n",
-                 s.folded_steps, s.steps);
-    if (s.collisions == 0 && s.pairs_per_particle > 0.0)
-      fmt::print("neighbour pairs {:.2f} and wall entries {:.2f} per particle, {} contacts (pairs "
-                 "and walls) at the end\n",
-                 s.pairs_per_particle, s.walls_per_particle, s.contacts);
-    if (s.collisions > 0)
-      fmt::print("{} collisions, {:.4g} collisions per second of wall time\n", s.collisions,
-                 static_cast<double>(s.collisions) / std::max(s.wall_seconds, 1e-9));
-    if (sim.gas()) // the gas does work on the particles: their energy sum is not conserved
-      fmt::print("memory {} bytes per particle\n", s.bytes_per_particle);
-    else
-      fmt::print("memory {} bytes per particle; energy balance drift {:.3g} (relative)\n",
-                 s.bytes_per_particle, s.energy_drift);
-    fmt::print("results: {}/particles.h5 (+ particles.xmf for ParaView), {}/series.csv\n", out_dir,
-               out_dir);
-    fmt::print("         {} (continue with --restart and --set simulation.end_time=...)\n",
-               s.checkpoint);
-    if (sim.gas())
-      fmt::print("         {}/fields.h5 (+ fields.xmf){}\n", out_dir,
-                 sim.spec().output.probes.empty() ? "" : fmt::format(", {}/probes.csv", out_dir));
-    if (sim.spec().output.analyse) { // output.analyse: the run's analysis, as `fluidem analyse`
-      AnalyseOptions ao;
-      ao.out_dir = out_dir;
-      ao.directory = &dir;
-      fmt::print("analysis (output.analyse = true):\n");
-      try {
-        analyse(ao);
-      } catch (const InputError& e) { // the run's results are safe: say why, keep exit 0
-        fmt::print(stderr,
-                   "warning: the analysis was not written: {}\n(run `fluidem analyse {} "
-                   "--from T0 --to T1` with another window)\n",
-                   e.what(), out_dir);
-      }
-    }
-    if (sim.collisions())
-      fmt::print("         {}/collisions.csv, {}/collision_overlap.csv\n", out_dir, out_dir);
-    if (sim.continuum())
-      fmt::print("         {}/continuum.h5 (+ continuum.xmf for ParaView)\n", out_dir);
-    return 0;
+    return run_command(a);
   } catch (const InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;
@@ -342,14 +363,14 @@ int run_cli(int argc, char** argv) {
     fmt::print(stderr,
                "error: {}\nthe outputs up to the last good frame are in {}; the last good "
                "checkpoint (if one was written) is {}/checkpoint.h5\n",
-               e.what(), out_dir, out_dir);
+               e.what(), a.out_dir, a.out_dir);
     return 3;
   } catch (const OutputError& e) {
     fmt::print(stderr,
                "error: {}\nthe run stopped; the last good checkpoint (if one was written) is "
                "{}/checkpoint.h5: continue with fluidem run --restart {}/checkpoint.h5 once "
                "there is room\n",
-               e.what(), out_dir, out_dir);
+               e.what(), a.out_dir, a.out_dir);
     return 4;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());

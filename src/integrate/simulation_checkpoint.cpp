@@ -85,6 +85,124 @@ const char* const kContactForce[6] = {"fx", "fy", "fz", "tx", "ty", "tz"};
 const char* const kGasVelocity[3] = {"gas/u_x", "gas/u_y", "gas/u_z"};
 const char* const kGasForce[3] = {"gas/force_x", "gas/force_y", "gas/force_z"};
 
+/// Only simulation.end_time and output.* may change at a restart (InputError otherwise).
+void check_restart_overrides(const std::vector<std::string>& overrides) {
+  for (const std::string& o : overrides) {
+    const std::string key = o.substr(0, o.find('='));
+    if (key != "simulation.end_time" && key.rfind("output.", 0) != 0)
+      throw InputError(fmt::format("--set {}: a restarted run continues the checkpointed one; "
+                                   "only simulation.end_time and output.* may change",
+                                   o));
+    if (key.rfind("output.continuum", 0) == 0) // its grid and sums are in the checkpoint
+      throw InputError(fmt::format("--set {}: the continuum averaging of a restarted run is the "
+                                   "checkpointed one (its sums are in the checkpoint)",
+                                   o));
+    if (key == "output.layers") // the layers are those of t = 0, kept in the checkpoint
+      throw InputError(fmt::format("--set {}: the layers are assigned at t = 0; a restarted run "
+                                   "keeps those of the checkpointed one",
+                                   o));
+  }
+}
+
+/// The particle store of the checkpoint, and the contact forces and torques of its last step.
+ParticleStore read_particles(const CheckpointReader& r, const std::string& checkpoint,
+                             std::array<std::vector<double>, 6>& contact_force) {
+  ParticleStore p;
+  for (const auto& [name, v] : double_arrays(p)) *v = r.doubles(std::string("particles/") + name);
+  p.species = r.int32s("particles/species");
+  p.id = r.int64s("particles/id");
+  // Checkpoints written before layers existed hold none: every particle in layer 0.
+  p.layer = r.has("particles/layer") ? r.int32s("particles/layer")
+                                     : std::vector<std::int32_t>(p.id.size(), 0);
+  for (std::size_t a = 0; a < 6; ++a) {
+    contact_force[a] = r.doubles(std::string("particles/") + kContactForce[a]);
+    if (contact_force[a].size() != p.id.size())
+      throw CheckpointError(fmt::format("checkpoint '{}': particle array '{}' has {} entries for "
+                                        "{} particles",
+                                        checkpoint, kContactForce[a], contact_force[a].size(),
+                                        p.id.size()));
+  }
+  for (const auto& [name, v] : double_arrays(p))
+    if (v->size() != p.id.size() || p.species.size() != p.id.size() ||
+        p.layer.size() != p.id.size())
+      throw CheckpointError(fmt::format("checkpoint '{}': particle array '{}' has {} entries for "
+                                        "{} particles",
+                                        checkpoint, name, v->size(), p.id.size()));
+  return p;
+}
+
+/// What the outputs held at the checkpoint (empty for checkpoints without a run ID: they
+/// cannot resume in place).
+OutputMarks read_marks(const CheckpointReader& r) {
+  OutputMarks marks;
+  if (!r.has("outputs/run_id")) return marks;
+  marks.run_id = r.string("outputs/run_id");
+  marks.frame_times = r.doubles("run/clock/frame_times");
+  marks.continuum_times = r.doubles("outputs/continuum_times");
+  const std::string names = r.string("outputs/csv_names");
+  for (std::size_t at = 0, end = 0; (end = names.find('\n', at)) != std::string::npos;
+       at = end + 1) {
+    const std::string name = names.substr(at, end - at);
+    const std::string key = "outputs/csv/" + name;
+    marks.csv[name] = {static_cast<std::uint64_t>(r.integer(key + "/bytes")),
+                       static_cast<std::uint64_t>(r.integer(key + "/hash"))};
+  }
+  return marks;
+}
+
+HardSphereEngine::State read_hard_sphere(const CheckpointReader& r, const std::string& checkpoint) {
+  HardSphereEngine::State h;
+  h.last_collision = r.doubles("hardsphere/last_collision");
+  h.built_x = r.doubles("hardsphere/built_x");
+  h.built_y = r.doubles("hardsphere/built_y");
+  h.built_z = r.doubles("hardsphere/built_z");
+  h.counter = r.uint32s("hardsphere/counter");
+  h.list_builds = r.integer("hardsphere/list_builds");
+  const auto c = r.int64s("hardsphere/stats/counts");
+  const auto e = r.doubles("hardsphere/stats/energies");
+  if (c.size() != 5 || e.size() != 2)
+    throw CheckpointError("checkpoint '" + checkpoint + "': bad hard-sphere statistics");
+  h.stats.collisions = static_cast<long>(c[0]);
+  h.stats.wall_collisions = static_cast<long>(c[1]);
+  h.stats.tc_elastic = static_cast<long>(c[2]);
+  h.stats.slow_elastic = static_cast<long>(c[3]);
+  h.stats.events_last_step = static_cast<long>(c[4]);
+  h.stats.dissipated = e[0];
+  h.stats.tc_energy_kept = e[1];
+  h.list = get_list(r, "hardsphere/list");
+  return h;
+}
+
+CollisionStatistics::State read_collisions(const CheckpointReader& r) {
+  CollisionStatistics::State c;
+  c.keys = r.int64s("collisions/keys");
+  c.ongoing = r.doubles("collisions/ongoing");
+  c.counters = r.int64s("collisions/counters");
+  c.sums = r.doubles("collisions/sums");
+  c.histogram = r.int64s("collisions/histogram");
+  return c;
+}
+
+GasCoupling::State read_gas(const CheckpointReader& r, const std::string& checkpoint) {
+  GasCoupling::State g;
+  for (int d = 0; d < 3; ++d) {
+    g.gas.u[static_cast<std::size_t>(d)] = r.doubles(kGasVelocity[d]);
+    g.force[static_cast<std::size_t>(d)] = r.doubles(kGasForce[d]);
+  }
+  g.gas.p = r.doubles("gas/p");
+  g.gas.eps = r.doubles("gas/eps");
+  g.gas.eps_old = r.doubles("gas/eps_old");
+  g.gas.rho = r.doubles("gas/rho");
+  g.gas.last_iterations = r.integer("gas/last_iterations");
+  const auto diag = r.doubles("gas/diagnostics");
+  if (diag.size() != 3)
+    throw CheckpointError("checkpoint '" + checkpoint + "': bad gas diagnostics");
+  g.gas.last_mass_residual = diag[0];
+  g.gas.last_velocity_change = diag[1];
+  g.gas.boundary_outflow = diag[2];
+  return g;
+}
+
 } // namespace
 
 void Simulation::write_checkpoint(const std::string& path) {
@@ -193,44 +311,10 @@ void Simulation::write_checkpoint(const std::string& path) {
 std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
                                                 const std::vector<std::string>& overrides) {
   const CheckpointReader r(checkpoint);
-  for (const std::string& o : overrides) {
-    const std::string key = o.substr(0, o.find('='));
-    if (key != "simulation.end_time" && key.rfind("output.", 0) != 0)
-      throw InputError(fmt::format("--set {}: a restarted run continues the checkpointed one; "
-                                   "only simulation.end_time and output.* may change",
-                                   o));
-    if (key.rfind("output.continuum", 0) == 0) // its grid and sums are in the checkpoint
-      throw InputError(fmt::format("--set {}: the continuum averaging of a restarted run is the "
-                                   "checkpointed one (its sums are in the checkpoint)",
-                                   o));
-    if (key == "output.layers") // the layers are those of t = 0, kept in the checkpoint
-      throw InputError(fmt::format("--set {}: the layers are assigned at t = 0; a restarted run "
-                                   "keeps those of the checkpointed one",
-                                   o));
-  }
+  check_restart_overrides(overrides);
   CaseSpec spec = read_case_string(r.string("case/resolved"), checkpoint, overrides);
-  ParticleStore p;
-  for (const auto& [name, v] : double_arrays(p)) *v = r.doubles(std::string("particles/") + name);
-  p.species = r.int32s("particles/species");
-  p.id = r.int64s("particles/id");
-  // Checkpoints written before layers existed hold none: every particle in layer 0.
-  p.layer = r.has("particles/layer") ? r.int32s("particles/layer")
-                                     : std::vector<std::int32_t>(p.id.size(), 0);
   std::array<std::vector<double>, 6> contact_force;
-  for (std::size_t a = 0; a < 6; ++a) {
-    contact_force[a] = r.doubles(std::string("particles/") + kContactForce[a]);
-    if (contact_force[a].size() != p.id.size())
-      throw CheckpointError(fmt::format("checkpoint '{}': particle array '{}' has {} entries for "
-                                        "{} particles",
-                                        checkpoint, kContactForce[a], contact_force[a].size(),
-                                        p.id.size()));
-  }
-  for (const auto& [name, v] : double_arrays(p))
-    if (v->size() != p.id.size() || p.species.size() != p.id.size() ||
-        p.layer.size() != p.id.size())
-      throw CheckpointError(fmt::format("checkpoint '{}': particle array '{}' has {} entries for "
-                                        "{} particles",
-                                        checkpoint, name, v->size(), p.id.size()));
+  const ParticleStore p = read_particles(r, checkpoint, contact_force);
   std::unique_ptr<Simulation> sim(new Simulation(std::move(spec), &p));
   Simulation& s = *sim;
   const double dt = r.scalar("run/dt");
@@ -261,19 +345,7 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
   s.clock_.e0 = r.scalar("run/clock/e0");
   s.clock_.escale = r.scalar("run/clock/escale");
   s.clock_.started = r.integer("run/clock/started") != 0;
-  if (r.has("outputs/run_id")) { // (older checkpoints have none: they cannot resume in place)
-    s.marks_.run_id = r.string("outputs/run_id");
-    s.marks_.frame_times = r.doubles("run/clock/frame_times");
-    s.marks_.continuum_times = r.doubles("outputs/continuum_times");
-    const std::string names = r.string("outputs/csv_names");
-    for (std::size_t at = 0, end = 0; (end = names.find('\n', at)) != std::string::npos;
-         at = end + 1) {
-      const std::string name = names.substr(at, end - at);
-      const std::string key = "outputs/csv/" + name;
-      s.marks_.csv[name] = {static_cast<std::uint64_t>(r.integer(key + "/bytes")),
-                            static_cast<std::uint64_t>(r.integer(key + "/hash"))};
-    }
-  }
+  s.marks_ = read_marks(r);
   if (s.soft_) {
     ContactStats& stats = s.soft_->stats();
     stats.n_contacts = static_cast<long>(r.integer("stats/n_contacts"));
@@ -292,60 +364,14 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
       }
     }
     if (s.soft_) s.soft_->list().restore(s.p_, get_list(r, "neighbour"));
-    if (s.hard_) {
-      HardSphereEngine::State h;
-      h.last_collision = r.doubles("hardsphere/last_collision");
-      h.built_x = r.doubles("hardsphere/built_x");
-      h.built_y = r.doubles("hardsphere/built_y");
-      h.built_z = r.doubles("hardsphere/built_z");
-      h.counter = r.uint32s("hardsphere/counter");
-      h.list_builds = r.integer("hardsphere/list_builds");
-      const auto c = r.int64s("hardsphere/stats/counts");
-      const auto e = r.doubles("hardsphere/stats/energies");
-      if (c.size() != 5 || e.size() != 2)
-        throw CheckpointError("checkpoint '" + checkpoint + "': bad hard-sphere statistics");
-      h.stats.collisions = static_cast<long>(c[0]);
-      h.stats.wall_collisions = static_cast<long>(c[1]);
-      h.stats.tc_elastic = static_cast<long>(c[2]);
-      h.stats.slow_elastic = static_cast<long>(c[3]);
-      h.stats.events_last_step = static_cast<long>(c[4]);
-      h.stats.dissipated = e[0];
-      h.stats.tc_energy_kept = e[1];
-      h.list = get_list(r, "hardsphere/list");
-      s.hard_->engine().restore(s.p_, h);
-    }
+    if (s.hard_) s.hard_->engine().restore(s.p_, read_hard_sphere(r, checkpoint));
     // Collision statistics: continued when the checkpoint holds them; a run that switches
     // them on at the restart (--set output.collisions=true) starts them there.
-    if (s.collisions_ && r.has("collisions/counters")) {
-      CollisionStatistics::State c;
-      c.keys = r.int64s("collisions/keys");
-      c.ongoing = r.doubles("collisions/ongoing");
-      c.counters = r.int64s("collisions/counters");
-      c.sums = r.doubles("collisions/sums");
-      c.histogram = r.int64s("collisions/histogram");
-      s.collisions_->restore(c);
-    } else if (s.collisions_) {
+    if (s.collisions_ && r.has("collisions/counters"))
+      s.collisions_->restore(read_collisions(r));
+    else if (s.collisions_)
       s.collisions_ = std::make_unique<CollisionStatistics>(s.collisions_->settings(), s.time_);
-    }
-    if (s.gas_) {
-      GasCoupling::State g;
-      for (int d = 0; d < 3; ++d) {
-        g.gas.u[static_cast<std::size_t>(d)] = r.doubles(kGasVelocity[d]);
-        g.force[static_cast<std::size_t>(d)] = r.doubles(kGasForce[d]);
-      }
-      g.gas.p = r.doubles("gas/p");
-      g.gas.eps = r.doubles("gas/eps");
-      g.gas.eps_old = r.doubles("gas/eps_old");
-      g.gas.rho = r.doubles("gas/rho");
-      g.gas.last_iterations = r.integer("gas/last_iterations");
-      const auto diag = r.doubles("gas/diagnostics");
-      if (diag.size() != 3)
-        throw CheckpointError("checkpoint '" + checkpoint + "': bad gas diagnostics");
-      g.gas.last_mass_residual = diag[0];
-      g.gas.last_velocity_change = diag[1];
-      g.gas.boundary_outflow = diag[2];
-      s.gas_->restore(g);
-    }
+    if (s.gas_) s.gas_->restore(read_gas(r, checkpoint));
   } catch (const CheckpointError&) {
     throw;
   } catch (const std::exception& e) {
