@@ -1,9 +1,8 @@
 // A warning for threaded runs on a busy machine. The parallel loops end in barriers: each step
 // waits for its slowest thread, and a thread the operating system has descheduled for another
-// process holds all the others. On the 2-core development machine, two threads at a load
-// average of 12 ran 5-15x slower than one thread (bench/RESULTS.md). fluidem cannot fix that,
-// but it can say so at the start of the run instead of leaving the user with a mysteriously slow
-// run.
+// process holds all the others: such a run can be several times slower than one thread
+// (bench/RESULTS.md). fluidem cannot fix that, but it can say so at the start of the run instead
+// of leaving the user with a mysteriously slow run.
 #pragma once
 #include <optional>
 #include <string>

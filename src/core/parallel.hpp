@@ -1,8 +1,7 @@
 // Loops over particles (or rows) that run on the OpenMP threads only when that pays, and enter
 // no OpenMP region at all otherwise. A `#pragma omp parallel ... if (false)` region still costs a
-// system call: libgomp ends every region, even one of a single thread, with a futex wake-up
-// (1.2 us measured in this VM, against 0.03 us for the loop it wrapped). With seven such regions
-// per DEM step, 0.1 s of the coupled Tsuji bed on one thread made 36 000 of them.
+// system call: libgomp ends every region, even one of a single thread, with a futex wake-up,
+// which costs far more than the short loops of a small bed (bench/RESULTS.md, "futex").
 #pragma once
 #include <cstddef>
 
@@ -17,10 +16,9 @@ inline bool go_parallel(bool large_enough) {
 }
 
 /// Loops over particles go parallel above this many particles (soft-sphere DEM, neighbour
-/// lists, coupling, porosity). Below it the threads cost more than they share out: on a bed of
-/// 2400 particles the worker thread's reads of what the main thread had just written (the gas
-/// fields, the contact accumulators) made two threads slower than one (bench/RESULTS.md,
-/// 2026-12-03).
+/// lists, coupling, porosity). Below it the threads cost more than they share out: a worker
+/// thread's reads of what the main thread has just written (the gas fields, the contact
+/// accumulators) outweigh its share of the work (bench/RESULTS.md).
 inline constexpr std::size_t kThreadedParticles = 4096;
 
 /// go_parallel for a loop over n particles.

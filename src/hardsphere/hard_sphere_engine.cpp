@@ -281,8 +281,8 @@ void HardSphereEngine::first_events(double now) {
 // the step, keyed by the time of their one current event (next_[i]); ties by index. A new
 // prediction replaces the particle's entry in place, so no stale events pile up. Each entry
 // holds its key (the time) beside the particle, so that a sift compares within the heap's own
-// array instead of looking up next_ per comparison (bubble bed: the engine ~5% faster; with
-// four or eight children per node less so, bench/RESULTS.md). The keys (t, i) are distinct, so the
+// array instead of looking up next_ per comparison (faster; the measurements, with four and
+// eight children per node, in bench/RESULTS.md). The keys (t, i) are distinct, so the
 // earliest event, and with it the order of the collisions, does not depend on the heap's shape.
 bool HardSphereEngine::earlier(const QueueEntry& a, const QueueEntry& b) {
   return a.t < b.t || (a.t == b.t && a.i < b.i);

@@ -11,13 +11,11 @@ namespace fluidem {
 namespace {
 
 /// A coupled run per gas cell, bytes: the solver's fields and matrices, hypre's multigrid
-/// hierarchy, porosity and exchange fields, the fields writer. Measured: maximum resident size
-/// of `fluidem run` (3-D, model A, ideal gas, 10 particles) at 40^3, 80^3 and 100^3 cells:
-/// 84, 406 and 750 MB, i.e. 723-728 bytes per cell (2026-12, this tree).
+/// hierarchy, porosity and exchange fields, the fields writer. From the maximum resident size
+/// of whole runs (bench/RESULTS.md, "Memory per cell").
 constexpr double kGasBytesPerCell = 750.0;
 /// A run with [output.continuum] per averaging cell, bytes: the 36 running sums, the 35 fields
-/// of a result and the writer's copy. Measured as above at 40^3 and 100^3 cells: 110 and 899 MB,
-/// 864 bytes per cell.
+/// of a result and the writer's copy. Calibrated as above.
 constexpr double kContinuumBytesPerCell = 870.0;
 
 double product(const std::array<int, 3>& n) {

@@ -6,8 +6,8 @@
 // (the curve visits a block of 2^k x 2^k cells before it leaves it, so a particle's partners lie
 // within a few blocks of it in memory on both axes). Slab-major order keeps the particles of a
 // slab contiguous: the two threads of the slab-parallel contact loop then write to separate
-// memory (a plain 3-D Morton order interleaved the slabs in memory; two threads ran slower than
-// one on the 10^4 bed, measured). LAMMPS sorts by bins for the same reason (atom_modify sort);
+// memory (a plain 3-D Morton order interleaves the slabs in memory, and the threads then share
+// cache lines). LAMMPS sorts by bins for the same reason (atom_modify sort);
 // a fluidised bed mixes within seconds, so the store must be sorted again periodically.
 #pragma once
 #include <array>
