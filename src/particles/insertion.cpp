@@ -211,6 +211,77 @@ void check_random_fill(const CaseSpec& spec, const InsertSpec& ins, const std::s
                   two_d ? "Hinrichsen et al. 1986" : "Zhang & Torquato 2013", limit, limit));
 }
 
+/// The sites of a simple cubic (square) lattice of spacing d between the centres' bounds lo and
+/// hi: per axis (m, clamped to 4e9) and in all (clamped to 4e18).
+long lattice_sites(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double d,
+                   bool two_d, std::array<long, 3>& m) {
+  double sites = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    const double ma = std::floor((hi[a] - lo[a]) / d * (1 + 1e-12)) + 1.0;
+    const double axis_sites = (two_d && a == 1) ? 1.0 : ma;
+    sites *= axis_sites;
+    m[a] = static_cast<long>(std::min(axis_sites, 4.0e9));
+  }
+  return static_cast<long>(std::min(sites, 4.0e18));
+}
+
+/// Every particle inside the domain, and no overlap beyond the tolerance (InputError naming the
+/// particles otherwise).
+void check_inserted(const CaseSpec& spec, const ParticleStore& store, double dmax) {
+  const auto& dom = spec.domain;
+  const bool two_d = spec.simulation.dimension == 2;
+  const double tol = spec.simulation.insertion_overlap_tolerance;
+  InsertionGrid check(std::max(dmax, 1e-12));
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    const Vec3 x = store.position(i);
+    const double ri = store.radius[i];
+    for (int a = 0; a < 3; ++a) {
+      if ((two_d && a == 1) || dom.periodic[a]) continue;
+      if (x[a] < dom.lo[a] || x[a] > dom.hi[a]) {
+        throw InputError(spec.where("insert"), "insert",
+                         fmt::format("particle {} at ({}, {}, {}) m lies outside the domain "
+                                     "along {} (allowed: centre in [{}, {}])",
+                                     store.id[i], x.x, x.y, x.z, "xyz"[a], dom.lo[a], dom.hi[a]));
+      }
+      const double wall_overlap = ri - std::min(x[a] - dom.lo[a], dom.hi[a] - x[a]);
+      // A fixed particle can never be pushed off a wall (and has no contact with one): it may
+      // touch a wall, not cut into it (1e-9 of its diameter: the round-off of a lattice row
+      // placed at the wall).
+      if (store.fixed(i) && wall_overlap > 1e-9 * 2.0 * ri) {
+        throw InputError(spec.where("insert"), "insert",
+                         fmt::format("fixed particle {} at ({}, {}, {}) m overlaps the {} wall by "
+                                     "{:.3g} of its diameter (allowed: a fixed particle may "
+                                     "touch a wall, not overlap it)",
+                                     store.id[i], x.x, x.y, x.z,
+                                     x[a] - dom.lo[a] < dom.hi[a] - x[a] ? kFaceNames[2 * a]
+                                                                         : kFaceNames[2 * a + 1],
+                                     wall_overlap / (2.0 * ri)));
+      }
+      if (wall_overlap > tol * 2.0 * ri) {
+        throw InputError(spec.where("insert"), "insert",
+                         fmt::format("particle {} at ({}, {}, {}) m overlaps the {} wall by "
+                                     "{:.3g} of its diameter at insertion (allowed: "
+                                     "simulation.insertion_overlap_tolerance = {})",
+                                     store.id[i], x.x, x.y, x.z,
+                                     x[a] - dom.lo[a] < dom.hi[a] - x[a] ? kFaceNames[2 * a]
+                                                                         : kFaceNames[2 * a + 1],
+                                     wall_overlap / (2.0 * ri), tol));
+      }
+    }
+    std::size_t who = 0;
+    const double ov = check.max_overlap(store, x, ri, &who);
+    if (ov > tol * 2.0 * std::min(ri, store.radius[who])) {
+      throw InputError(spec.where("insert"), "insert",
+                       fmt::format("particles {} and {} overlap by {:.3g} of the smaller "
+                                   "diameter at insertion (allowed: "
+                                   "simulation.insertion_overlap_tolerance = {})",
+                                   store.id[who], store.id[i],
+                                   ov / (2.0 * std::min(ri, store.radius[who])), tol));
+    }
+    check.add(i, x);
+  }
+}
+
 } // namespace
 
 void insert_particles(const CaseSpec& spec, ParticleStore& store) {
@@ -220,7 +291,6 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
   double dmax = 0.0;
   for (const auto& s : spec.species) dmax = std::max(dmax, s.diameter);
   InsertionGrid grid(std::max(dmax, 1e-12));
-  const double tol = spec.simulation.insertion_overlap_tolerance;
   require_memory(spec, {particle_memory_share(spec)});
 
   for (std::size_t k = 0; k < spec.inserts.size(); ++k) {
@@ -293,14 +363,7 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
       // would overflow the integers (the count is at most 2^31 - 1, so a capacity above that
       // is enough and is clamped).
       std::array<long, 3> m{};
-      double sites = 1.0;
-      for (int a = 0; a < 3; ++a) {
-        const double ma = std::floor((hi[a] - lo[a]) / sp.diameter * (1 + 1e-12)) + 1.0;
-        const double axis_sites = (two_d && a == 1) ? 1.0 : ma;
-        sites *= axis_sites;
-        m[a] = static_cast<long>(std::min(axis_sites, 4.0e9));
-      }
-      const long capacity = static_cast<long>(std::min(sites, 4.0e18));
+      const long capacity = lattice_sites(lo, hi, sp.diameter, two_d, m);
       if (capacity < ins.count) {
         throw InputError(spec.where(key + ".count"), key + ".count",
                          fmt::format("the region holds at most {} particles of diameter {} m on "
@@ -344,56 +407,7 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
     }
   }
 
-  // Every particle inside the domain, and no overlap beyond the tolerance.
-  InsertionGrid check(std::max(dmax, 1e-12));
-  for (std::size_t i = 0; i < store.size(); ++i) {
-    const Vec3 x = store.position(i);
-    const double ri = store.radius[i];
-    for (int a = 0; a < 3; ++a) {
-      if ((two_d && a == 1) || dom.periodic[a]) continue;
-      if (x[a] < dom.lo[a] || x[a] > dom.hi[a]) {
-        throw InputError(spec.where("insert"), "insert",
-                         fmt::format("particle {} at ({}, {}, {}) m lies outside the domain "
-                                     "along {} (allowed: centre in [{}, {}])",
-                                     store.id[i], x.x, x.y, x.z, "xyz"[a], dom.lo[a], dom.hi[a]));
-      }
-      const double wall_overlap = ri - std::min(x[a] - dom.lo[a], dom.hi[a] - x[a]);
-      // A fixed particle can never be pushed off a wall (and has no contact with one): it may
-      // touch a wall, not cut into it (1e-9 of its diameter: the round-off of a lattice row
-      // placed at the wall).
-      if (store.fixed(i) && wall_overlap > 1e-9 * 2.0 * ri) {
-        throw InputError(spec.where("insert"), "insert",
-                         fmt::format("fixed particle {} at ({}, {}, {}) m overlaps the {} wall by "
-                                     "{:.3g} of its diameter (allowed: a fixed particle may "
-                                     "touch a wall, not overlap it)",
-                                     store.id[i], x.x, x.y, x.z,
-                                     x[a] - dom.lo[a] < dom.hi[a] - x[a] ? kFaceNames[2 * a]
-                                                                         : kFaceNames[2 * a + 1],
-                                     wall_overlap / (2.0 * ri)));
-      }
-      if (wall_overlap > tol * 2.0 * ri) {
-        throw InputError(spec.where("insert"), "insert",
-                         fmt::format("particle {} at ({}, {}, {}) m overlaps the {} wall by "
-                                     "{:.3g} of its diameter at insertion (allowed: "
-                                     "simulation.insertion_overlap_tolerance = {})",
-                                     store.id[i], x.x, x.y, x.z,
-                                     x[a] - dom.lo[a] < dom.hi[a] - x[a] ? kFaceNames[2 * a]
-                                                                         : kFaceNames[2 * a + 1],
-                                     wall_overlap / (2.0 * ri), tol));
-      }
-    }
-    std::size_t who = 0;
-    const double ov = check.max_overlap(store, x, ri, &who);
-    if (ov > tol * 2.0 * std::min(ri, store.radius[who])) {
-      throw InputError(spec.where("insert"), "insert",
-                       fmt::format("particles {} and {} overlap by {:.3g} of the smaller "
-                                   "diameter at insertion (allowed: "
-                                   "simulation.insertion_overlap_tolerance = {})",
-                                   store.id[who], store.id[i],
-                                   ov / (2.0 * std::min(ri, store.radius[who])), tol));
-    }
-    check.add(i, x);
-  }
+  check_inserted(spec, store, dmax);
 }
 
 MemoryShare particle_memory_share(const CaseSpec& spec) {
