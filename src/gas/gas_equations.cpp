@@ -124,6 +124,8 @@ void GasSolver::balance_outflow(double dt) {
     }
 }
 
+// One function of about 200 lines on purpose: its rows are the flow step's hot loop, and the
+// fields it reads are taken into locals once for them (bench/gas_bench.cpp measures it).
 void GasSolver::solve_momentum(int d, double dt) {
   const double V = g_.cell_volume(), Ad = g_.face_area(d), mu = s_.viscosity;
   const double alpha = s_.velocity_relaxation;

@@ -160,6 +160,8 @@ void NeighbourList::build_slabs(std::size_t n) {
   nslab_ = static_cast<int>(slab_start.size() - 1);
 }
 
+// One function of about 180 lines on purpose: the list build is a hot loop of the soft-sphere
+// step (bench/compare_dem.sh), its pair and wall passes share the cell walk's locals.
 void NeighbourList::build_with_skin(const ParticleStore& p,
                                     const std::vector<std::uint32_t>* new_to_old) {
   const std::size_t n = p.size();
