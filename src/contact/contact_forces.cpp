@@ -445,6 +445,73 @@ void add_stats(ContactStats& total, const ContactStats& part) {
   }
 }
 
+/// Whether every species meets every wall face with the same coefficients (bit for bit): the
+/// kernel then reads them once for all wall contacts (Uniformity).
+bool walls_alike(const ContactTable& table) {
+  const PairParams* first = &table.wall(0, 0);
+  for (int sp = 0; sp < table.species_count(); ++sp)
+    for (int f = 0; f < 6; ++f)
+      if (std::memcmp(&table.wall(sp, f), first, sizeof(PairParams)) != 0) return false;
+  return true;
+}
+
+/// Whether every particle has one radius and mass, into nc.same_particles (NeighbourList::
+/// generation() keys the check: the radii and masses change only with the particles, and any
+/// change of those rebuilds the list). Fixed particles (1/m = 0) differ from the others.
+void find_same_particles(const ParticleStore& p, const NeighbourList& nl, ContactScratch& nc) {
+  const std::size_t n = p.size();
+  if (nc.same_particles_generation == nl.generation() && nc.same_particles_count == n &&
+      !(n > 0 && (p.radius[0] != nc.same_radius || p.inv_mass[0] != nc.same_inv_mass)))
+    return;
+  nc.same_particles = n > 0;
+  for (std::size_t i = 1; i < n && nc.same_particles; ++i)
+    nc.same_particles = p.radius[i] == p.radius[0] && p.inv_mass[i] == p.inv_mass[0];
+  nc.same_radius = n > 0 ? p.radius[0] : 0.0;
+  nc.same_inv_mass = n > 0 ? p.inv_mass[0] : 0.0;
+  nc.same_particles_generation = nl.generation();
+  nc.same_particles_count = n;
+}
+
+/// The particle whose row holds each pair entry of the list (nc.entry_owner), for the flat walk
+/// of beds small enough (compute()); released otherwise.
+void find_entry_owners(const NeighbourList& nl, std::size_t n, bool flat_walk, ContactScratch& nc) {
+  if (!flat_walk) {
+    nc.entry_owner = {};
+  } else if (nc.entry_owner_generation != nl.generation()) {
+    const std::uint32_t* row_offset = nl.offset.data();
+    nc.entry_owner.resize(nl.partner.size());
+    for (std::size_t i = 0; i < n; ++i)
+      std::fill(nc.entry_owner.begin() + row_offset[i], nc.entry_owner.begin() + row_offset[i + 1],
+                static_cast<std::uint32_t>(i));
+    nc.entry_owner_generation = nl.generation();
+  }
+}
+
+/// The slabs' and wall chunks' statistics summed in their order into `st`, and (rec given) their
+/// samples concatenated in that order: the result does not depend on the thread count.
+void join_parts(const std::vector<ContactStats>& slab_stats,
+                const std::vector<ContactStats>& wall_stats,
+                const std::vector<std::vector<ContactSample>>& slab_samples,
+                const std::vector<std::vector<ContactSample>>& chunk_samples,
+                std::size_t wall_entries, ContactRecord* rec, ContactStats& st) {
+  if (rec) {
+    std::size_t total = 0;
+    for (const auto& b : slab_samples) total += b.size();
+    rec->samples.reserve(total + wall_entries);
+    for (const auto& b : slab_samples) rec->samples.insert(rec->samples.end(), b.begin(), b.end());
+  }
+  for (const auto& ss : slab_stats) add_stats(st, ss);
+  for (std::size_t k = 0; k < wall_stats.size(); ++k) {
+    add_stats(st, wall_stats[k]);
+    if (rec)
+      rec->samples.insert(rec->samples.end(), chunk_samples[k].begin(), chunk_samples[k].end());
+  }
+}
+
+/// The contact loop of one combination of sub-models. A measured hot loop (bench/ab.sh,
+/// bench/RESULTS.md): its passes are lambdas over the same locals so that GCC keeps the walk's
+/// pointers in registers and inlines the batch kernel; the per-call preparations are the named
+/// functions above.
 template <class Normal, class Tangential, class Rolling>
 ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTable& table,
                      double dt, ContactScratch& nc, ContactRecord* rec, const SlabHook* hook) {
@@ -511,25 +578,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // One set of parameters for all pairs (one species), or for all wall contacts (every
   // species against every face alike, compared bit for bit): the kernel reads it once.
   const bool pairs_uniform = n_species == 1;
-  const bool walls_uniform = [&] {
-    for (int sp = 0; sp < n_species; ++sp)
-      for (int f = 0; f < 6; ++f)
-        if (std::memcmp(&table.wall(sp, f), wall_params, sizeof(PairParams)) != 0) return false;
-    return true;
-  }();
-  // Every particle of one radius and mass (NeighbourList::generation() keys the check: the
-  // radii and masses change only with the particles, and any change of those rebuilds the list).
-  // Fixed particles (1/m = 0) differ from the others.
-  if (nc.same_particles_generation != nl.generation() || nc.same_particles_count != n ||
-      (n > 0 && (p.radius[0] != nc.same_radius || p.inv_mass[0] != nc.same_inv_mass))) {
-    nc.same_particles = n > 0;
-    for (std::size_t i = 1; i < n && nc.same_particles; ++i)
-      nc.same_particles = p.radius[i] == p.radius[0] && p.inv_mass[i] == p.inv_mass[0];
-    nc.same_radius = n > 0 ? p.radius[0] : 0.0;
-    nc.same_inv_mass = n > 0 ? p.inv_mass[0] : 0.0;
-    nc.same_particles_generation = nl.generation();
-    nc.same_particles_count = n;
-  }
+  const bool walls_uniform = walls_alike(table);
+  find_same_particles(p, nl, nc);
   // Uniformity::Particles for the pairs, for the walls (it needs their parameters uniform).
   const bool pairs_same = pairs_uniform && nc.same_particles;
   const bool walls_same = walls_uniform && nc.same_particles;
@@ -726,15 +776,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // alternated pairs, bench/RESULTS.md). 4 bytes per entry (bed10k: 14 bytes per particle).
   constexpr std::size_t kFlatWalkParticles = kPrefetchParticles;
   const bool flat_walk = n <= kFlatWalkParticles;
-  if (!flat_walk) {
-    nc.entry_owner = {};
-  } else if (nc.entry_owner_generation != nl.generation()) {
-    nc.entry_owner.resize(nl.partner.size());
-    for (std::size_t i = 0; i < n; ++i)
-      std::fill(nc.entry_owner.begin() + row_offset[i], nc.entry_owner.begin() + row_offset[i + 1],
-                static_cast<std::uint32_t>(i));
-    nc.entry_owner_generation = nl.generation();
-  }
+  find_entry_owners(nl, n, flat_walk, nc);
   // Pass 1 for the entries [e_begin, e_end), as gather_row for each of their rows in turn.
   auto gather_entries =
       [&, view, partner, species, pair_history, any_periodic,
@@ -996,18 +1038,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       run_slabs(1, 0);
     }
   }
-  if (recording) {
-    std::size_t total = 0;
-    for (const auto& b : slab_samples) total += b.size();
-    rec->samples.reserve(total + nl.wall_particle.size());
-    for (const auto& b : slab_samples) rec->samples.insert(rec->samples.end(), b.begin(), b.end());
-  }
-  for (const auto& ss : slab_stats) add_stats(st, ss);
-  for (std::size_t k = 0; k < nchunk; ++k) {
-    add_stats(st, wall_stats[k]);
-    if (recording)
-      rec->samples.insert(rec->samples.end(), chunk_samples[k].begin(), chunk_samples[k].end());
-  }
+  join_parts(slab_stats, wall_stats, slab_samples, chunk_samples, nl.wall_particle.size(),
+             recording ? rec : nullptr, st);
   // The contact forces and torques stay in nc.acc: the integrator's kicks read them there (the
   // gas forces and gravity join them in the kick).
   return st;
