@@ -35,13 +35,17 @@ void print_contact_models(const CaseSpec& spec) {
   const cm::Chosen chosen = cm::choose(spec);
   fmt::print("contact model      normal {}, tangential {}, rolling {}\n", chosen.normal->name,
              chosen.tangential->name, chosen.rolling->name);
-  for (const cm::Kind kind : cm::kKinds)
-    for (const cm::Coefficient& k : chosen.of(kind).coefficients) {
+  for (const cm::Kind kind : cm::kKinds) {
+    const cm::ModelInfo& m = chosen.of(kind);
+    fmt::print("  {} {}: {}{}{}\n", cm::kind_key(kind), m.name, m.summary,
+               m.mixing.empty() ? "" : "; mixing: ", m.mixing);
+    for (const cm::Coefficient& k : m.coefficients) {
       if (k.given == cm::Given::AutoOnly) continue; // derived by the model
       const auto v = cm::coefficient(cm::of(spec.contact, kind).coefficients, std::string(k.key));
-      fmt::print("  contact.{:<16} {}{}{} ({})\n", k.key, v ? fmt::format("{:.6g}", *v) : "auto",
+      fmt::print("    contact.{:<23} {}{}{} ({})\n", k.key, v ? fmt::format("{:.6g}", *v) : "auto",
                  k.unit.empty() || !v ? "" : " ", v ? k.unit : std::string_view{}, k.meaning);
     }
+  }
 }
 
 void print_gas_report(const CaseSpec& spec, const CaseReport& r) {

@@ -3,6 +3,7 @@
 // reader validates against these declarations, the writer writes from them, `fluidem check`
 // prints them, the ContactTable mixes with them (contact_models.hpp: the registry).
 #pragma once
+#include <cmath>
 #include <limits>
 #include <map>
 #include <optional>
@@ -31,8 +32,7 @@ struct Interval {
   static constexpr Interval unit() { return {0.0, 1.0, true, true}; }
   static constexpr Interval open_unit() { return {0.0, 1.0, false, false}; }
   bool contains(double x) const {
-    return (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi) && x == x &&
-           x != Interval{}.hi;
+    return std::isfinite(x) && (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
   }
   /// "a number > 0", "a number in [0, 1]", ... (the reader's wording)
   std::string allowed() const;
