@@ -17,6 +17,7 @@
 #include "app/progress.hpp"
 #include "app/signals.hpp"
 #include "app/validate.hpp"
+#include "contact/contact_models.hpp"
 #include "core/error.hpp"
 #include "fluidem_version.hpp"
 #include "integrate/simulation.hpp"
@@ -27,6 +28,25 @@
 namespace fluidem {
 
 namespace {
+
+/// The contact sub-models, and the coefficients they take, as the models declare them.
+void print_contact_models(const CaseSpec& spec) {
+  namespace cm = contact_models;
+  const cm::Chosen chosen = cm::choose(spec);
+  fmt::print("contact model      normal {}, tangential {}, rolling {}\n", chosen.normal->name,
+             chosen.tangential->name, chosen.rolling->name);
+  for (const cm::Kind kind : cm::kKinds) {
+    const cm::ModelInfo& m = chosen.of(kind);
+    fmt::print("  {} {}: {}{}{}\n", cm::kind_key(kind), m.name, m.summary,
+               m.mixing.empty() ? "" : "; mixing: ", m.mixing);
+    for (const cm::Coefficient& k : m.coefficients) {
+      if (k.given == cm::Given::AutoOnly) continue; // derived by the model
+      const auto v = cm::coefficient(cm::of(spec.contact, kind).coefficients, std::string(k.key));
+      fmt::print("    contact.{:<23} {}{}{} ({})\n", k.key, v ? fmt::format("{:.6g}", *v) : "auto",
+                 k.unit.empty() || !v ? "" : " ", v ? k.unit : std::string_view{}, k.meaning);
+    }
+  }
+}
 
 void print_gas_report(const CaseSpec& spec, const CaseReport& r) {
   if (!spec.gas) return;
@@ -66,12 +86,10 @@ void print_report(const CaseSpec& spec, const CaseReport& r) {
     print_gas_report(spec, r);
     return;
   }
-  fmt::print("contact model      normal {}, tangential {}, rolling {}\n",
-             to_string(spec.contact.normal), to_string(spec.contact.tangential),
-             to_string(spec.contact.rolling));
+  print_contact_models(spec);
   fmt::print("particles          {}\n", r.particle_count);
   fmt::print("total mass         {:.6g} kg\n", r.total_mass);
-  if (spec.contact.normal == NormalModel::Hertz)
+  if (contact_models::choose(spec).normal->uses_impact_speed)
     fmt::print("impact speed       {:.4g} m/s (for Hertz contact durations)\n",
                r.characteristic_velocity);
   fmt::print("contact duration per pair:\n");

@@ -9,59 +9,35 @@
 #include <string>
 #include <utility>
 
-#include "contact/kernels/history_rotation.hpp"
 #include "contact/kernels/normal_force.hpp"
-#include "contact/kernels/rolling_torque.hpp"
-#include "contact/kernels/tangential_force.hpp"
+#include "contact/models/model_list.hpp"
 #include "core/parallel.hpp"
 #include "core/simd_clones.hpp"
 
 namespace fluidem {
 
 int contact_history_width(const ContactTable& t) {
-  return (t.tangential() == TangentialModel::History ? 3 : 0) +
-         (t.rolling() == RollingModel::SpringDashpot ? 3 : 0);
+  return t.history_width();
 }
 
 namespace {
 
-/// One contact between particle i and partner b (a particle or a wall of infinite mass).
-struct ContactInput {
-  Vec3 n;                    ///< unit normal from i towards the partner
-  Vec3 d_prev;               ///< separation one step earlier, unnormalised (rotates the history)
-  bool fixed_normal = false; ///< wall contact: the normal never turns
-  double overlap;            ///< m, > 0
-  Vec3 v_rel; ///< contact-point velocity of i relative to the partner [Deen07 eq. 12]
-  Vec3 w_rel; ///< w_i - w_partner
-  double r_eff, m_eff, inv_inertia_sum;
-};
+using contact_models::ContactInput;
+using contact_models::ContactOutput;
 
-struct ContactOutput {
-  Vec3 force;       ///< on i
-  Vec3 torque_unit; ///< n x F_t: torque on i is r_i * this, on a partner particle r_j * this
-  Vec3 torque_roll; ///< rolling torque on i (partner gets the opposite)
-  Vec3 nc_force, nc_torque_unit, nc_torque_roll; ///< the non-conservative parts of the above
-  double fn_abs = 0.0;
-  double elastic = 0.0, spring_loss = 0.0;
-};
-
-template <NormalModel Normal, bool Tangential, RollingModel Rolling>
+/// One contact of the models Normal x Tangential x Rolling (contact/models/): the normal model's
+/// response, floored, then the tangential and rolling models, each on its own part of the
+/// history (normal | tangential | rolling).
+template <class Normal, class Tangential, class Rolling>
 [[gnu::always_inline]] inline ContactOutput evaluate(const ContactInput& c, const PairParams& pp,
                                                      double* hist, double dt) {
   ContactOutput out;
-  // Normal force [Deen07 eq. 24-27] or Hertz-Tsuji [Chang08 eq. 2.15, 2.22].
+  // Declared, then assigned (not initialised from the call): so GCC splits it into scalars and
+  // the batch loop stays vectorised (a struct initialised from a call may stay in memory).
   kernels::NormalResponse nr;
-  double k_tangent_ref; // normal stiffness used to scale rolling springs
-  double k_t;           // tangential stiffness [Deen07 eq. 28] or Mindlin [Chang08 eq. 2.16]
-  if constexpr (Normal == NormalModel::Linear) {
-    nr = kernels::linear_normal(pp.kn, pp.normal_damping, c.m_eff, c.overlap);
-    k_tangent_ref = pp.kn;
-    k_t = pp.kt;
-  } else {
-    nr = kernels::hertz_normal(pp.kn, c.r_eff, pp.normal_damping, c.m_eff, c.overlap);
-    k_tangent_ref = nr.stiffness;
-    k_t = pp.kt * nr.contact_radius; // kt sqrt(R* delta)
-  }
+  nr = Normal::respond(pp, c.r_eff, c.m_eff, c.overlap);
+  const double k_t = Normal::tangential_stiffness(pp, nr);
+  const double k_rolling = Normal::rolling_stiffness(pp, nr);
   const double vn = dot(c.v_rel, c.n); // > 0 when approaching
   // The normal force never pulls [Schwager & Poeschel 2008]: the Coulomb and rolling limits
   // ([Deen07 eq. 28] |F_n|) scale with the same force whose impulse the normal direction gets,
@@ -72,56 +48,15 @@ template <NormalModel Normal, bool Tangential, RollingModel Rolling>
   out.fn_abs = fn.magnitude;
   out.elastic = nr.energy;
   out.nc_force = c.n * (-fn.nonconservative);
-
-  // The history turns with the contact normal (from the separation one step earlier) [Deen07
-  // eq. 31-32]; a wall's normal never turns.
-  auto turned = [&c](const Vec3& v) {
-    return c.fixed_normal ? v : kernels::rotate_with_separation(v, c.d_prev, c.n);
-  };
-  if constexpr (Tangential) {
-    // [Deen07 eq. 28-32]
-    const Vec3 v_t = c.v_rel - c.n * vn;
-    Vec3 delta{hist[0], hist[1], hist[2]};
-    if (norm2(delta) > 0.0) delta = turned(delta);
-    // eta_t = factor sqrt(2/7 m* k_t) [Deen07 eq. 30], from the normal dashpot's sqrt(m* K).
-    const double eta_t = pp.tangential_damping * pp.tangential_root * nr.damping_scale;
-    const auto tr = kernels::tangential_spring(delta, v_t, k_t, eta_t, pp.mu, out.fn_abs, dt);
-    hist[0] = delta.x, hist[1] = delta.y, hist[2] = delta.z;
-    out.force += tr.force;
-    out.torque_unit = cross(c.n, tr.force);
-    out.nc_force += tr.nonconservative;
-    out.nc_torque_unit = cross(c.n, tr.nonconservative);
-    out.elastic += tr.energy;
-    out.spring_loss += tr.spring_loss;
-  }
-  if constexpr (Rolling != RollingModel::None) {
-    // [Zhu07 Table 1], methods 2 and 1.
-    const Vec3 w_roll = c.w_rel - c.n * dot(c.w_rel, c.n);
-    kernels::RollingResult rr;
-    if constexpr (Rolling == RollingModel::ConstantTorque) {
-      rr = kernels::rolling_constant_torque(w_roll, pp.mu_r, c.r_eff, out.fn_abs, c.inv_inertia_sum,
-                                            dt);
-    } else {
-      double* th = hist + (Tangential ? 3 : 0);
-      Vec3 theta{th[0], th[1], th[2]};
-      if (norm2(theta) > 0.0) theta = turned(theta);
-      const double k_r = 2.25 * k_tangent_ref * pp.mu_r * pp.mu_r * c.r_eff * c.r_eff;
-      const double c_r = pp.rolling_damping * std::sqrt(k_r / c.inv_inertia_sum);
-      rr = kernels::rolling_spring_dashpot(theta, w_roll, k_r, c_r, pp.mu_r, c.r_eff, out.fn_abs,
-                                           dt);
-      th[0] = theta.x, th[1] = theta.y, th[2] = theta.z;
-    }
-    out.torque_roll = rr.torque;
-    out.nc_torque_roll = rr.nonconservative;
-    out.elastic += rr.energy;
-    out.spring_loss += rr.spring_loss;
-  }
+  double* own = hist + Normal::history_width;
+  Tangential::add(out, c, pp, nr, k_t, vn, own, dt);
+  Rolling::add(out, c, pp, k_rolling, own + Tangential::history_width, dt);
   return out;
 }
 
-template <bool Tangential, RollingModel Rolling>
-constexpr int kHistoryWidth = (Tangential ? 3 : 0) +
-                              (Rolling == RollingModel::SpringDashpot ? 3 : 0);
+template <class Normal, class Tangential, class Rolling>
+constexpr int kHistoryWidth =
+    Normal::history_width + Tangential::history_width + Rolling::history_width;
 
 /// `flag` as 0 or 1 in an integer register that the compiler cannot see through: in a loop
 /// that adds it to a counter (the contact walk's batch fill) GCC may otherwise branch on the
@@ -176,8 +111,7 @@ enum class Uniformity {
 /// of one: NeighbourList::build).
 /// U: what every contact of the batch has alike (Uniformity); with Uniformity::Particles the
 /// particles' radius and inverse mass are r0 and im0, and their columns are not read.
-template <NormalModel Normal, bool Tangential, RollingModel Rolling, bool Wall, Uniformity U,
-          int HW>
+template <class Normal, class Tangential, class Rolling, bool Wall, Uniformity U, int HW>
 FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* params, double r0,
                                         double im0, double dt) {
   const int n = b.n;
@@ -189,7 +123,7 @@ FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* p
     const Vec3 dv{b.dv[0][k], b.dv[1][k], b.dv[2][k]};
     const Vec3 wi{b.wi[0][k], b.wi[1][k], b.wi[2][k]};
     ContactInput c;
-    c.inv_inertia_sum = Rolling != RollingModel::None ? b.inv_inertia_sum[k] : 0.0; // rolling only
+    c.inv_inertia_sum = Rolling::has_torque ? b.inv_inertia_sum[k] : 0.0; // rolling only
     if constexpr (Wall) {
       c.n = b.get(b.normal, k);
       c.fixed_normal = true;
@@ -228,11 +162,11 @@ FLUIDEM_SIMD_CLONES void evaluate_batch(ContactBatch<HW>& b, const PairParams* p
     for (int a = 0; a < 3; ++a) {
       b.force[a][k] = out.force[a];
       b.nc_force[a][k] = out.nc_force[a];
-      if constexpr (Tangential) {
+      if constexpr (Tangential::has_force) {
         b.torque_unit[a][k] = out.torque_unit[a];
         b.nc_torque_unit[a][k] = out.nc_torque_unit[a];
       }
-      if constexpr (Rolling != RollingModel::None) {
+      if constexpr (Rolling::has_torque) {
         b.torque_roll[a][k] = out.torque_roll[a];
         b.nc_torque_roll[a][k] = out.nc_torque_roll[a];
       }
@@ -511,12 +445,79 @@ void add_stats(ContactStats& total, const ContactStats& part) {
   }
 }
 
-template <NormalModel Normal, bool Tangential, RollingModel Rolling>
+/// Whether every species meets every wall face with the same coefficients (bit for bit): the
+/// kernel then reads them once for all wall contacts (Uniformity).
+bool walls_alike(const ContactTable& table) {
+  const PairParams* first = &table.wall(0, 0);
+  for (int sp = 0; sp < table.species_count(); ++sp)
+    for (int f = 0; f < 6; ++f)
+      if (std::memcmp(&table.wall(sp, f), first, sizeof(PairParams)) != 0) return false;
+  return true;
+}
+
+/// Whether every particle has one radius and mass, into nc.same_particles (NeighbourList::
+/// generation() keys the check: the radii and masses change only with the particles, and any
+/// change of those rebuilds the list). Fixed particles (1/m = 0) differ from the others.
+void find_same_particles(const ParticleStore& p, const NeighbourList& nl, ContactScratch& nc) {
+  const std::size_t n = p.size();
+  if (nc.same_particles_generation == nl.generation() && nc.same_particles_count == n &&
+      !(n > 0 && (p.radius[0] != nc.same_radius || p.inv_mass[0] != nc.same_inv_mass)))
+    return;
+  nc.same_particles = n > 0;
+  for (std::size_t i = 1; i < n && nc.same_particles; ++i)
+    nc.same_particles = p.radius[i] == p.radius[0] && p.inv_mass[i] == p.inv_mass[0];
+  nc.same_radius = n > 0 ? p.radius[0] : 0.0;
+  nc.same_inv_mass = n > 0 ? p.inv_mass[0] : 0.0;
+  nc.same_particles_generation = nl.generation();
+  nc.same_particles_count = n;
+}
+
+/// The particle whose row holds each pair entry of the list (nc.entry_owner), for the flat walk
+/// of beds small enough (compute()); released otherwise.
+void find_entry_owners(const NeighbourList& nl, std::size_t n, bool flat_walk, ContactScratch& nc) {
+  if (!flat_walk) {
+    nc.entry_owner = {};
+  } else if (nc.entry_owner_generation != nl.generation()) {
+    const std::uint32_t* row_offset = nl.offset.data();
+    nc.entry_owner.resize(nl.partner.size());
+    for (std::size_t i = 0; i < n; ++i)
+      std::fill(nc.entry_owner.begin() + row_offset[i], nc.entry_owner.begin() + row_offset[i + 1],
+                static_cast<std::uint32_t>(i));
+    nc.entry_owner_generation = nl.generation();
+  }
+}
+
+/// The slabs' and wall chunks' statistics summed in their order into `st`, and (rec given) their
+/// samples concatenated in that order: the result does not depend on the thread count.
+void join_parts(const std::vector<ContactStats>& slab_stats,
+                const std::vector<ContactStats>& wall_stats,
+                const std::vector<std::vector<ContactSample>>& slab_samples,
+                const std::vector<std::vector<ContactSample>>& chunk_samples,
+                std::size_t wall_entries, ContactRecord* rec, ContactStats& st) {
+  if (rec) {
+    std::size_t total = 0;
+    for (const auto& b : slab_samples) total += b.size();
+    rec->samples.reserve(total + wall_entries);
+    for (const auto& b : slab_samples) rec->samples.insert(rec->samples.end(), b.begin(), b.end());
+  }
+  for (const auto& ss : slab_stats) add_stats(st, ss);
+  for (std::size_t k = 0; k < wall_stats.size(); ++k) {
+    add_stats(st, wall_stats[k]);
+    if (rec)
+      rec->samples.insert(rec->samples.end(), chunk_samples[k].begin(), chunk_samples[k].end());
+  }
+}
+
+/// The contact loop of one combination of sub-models. A measured hot loop (bench/ab.sh,
+/// bench/RESULTS.md): its passes are lambdas over the same locals so that GCC keeps the walk's
+/// pointers in registers and inlines the batch kernel; the per-call preparations are the named
+/// functions above.
+template <class Normal, class Tangential, class Rolling>
 ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTable& table,
                      double dt, ContactScratch& nc, ContactRecord* rec, const SlabHook* hook) {
   ContactStats st;
   const bool recording = rec != nullptr && rec->enabled;
-  constexpr int hw = kHistoryWidth<Tangential, Rolling>;
+  constexpr int hw = kHistoryWidth<Normal, Tangential, Rolling>;
   if (nl.history_width() != hw)
     throw std::logic_error("contact loop: the neighbour list keeps " +
                            std::to_string(nl.history_width()) +
@@ -534,16 +535,15 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // A contact that ends takes its spring energy with it: count it as dissipated. (Hertz springs
   // have k_t -> 0 as the overlap closes, so only the linear springs hold energy at separation.)
   auto release = [&](ContactStats& acc, double* hist, const PairParams& pp, double r_eff) {
-    if constexpr (Normal == NormalModel::Linear) {
-      if constexpr (Tangential) {
+    if constexpr (Normal::springs_hold_energy_at_separation) {
+      const kernels::NormalResponse separated{}; // the stiffnesses as the overlap closes
+      const double* own = hist + Normal::history_width;
+      if constexpr (Tangential::history_width > 0)
         acc.spring_losses +=
-            0.5 * pp.kt * (hist[0] * hist[0] + hist[1] * hist[1] + hist[2] * hist[2]);
-      }
-      if constexpr (Rolling == RollingModel::SpringDashpot) {
-        const double* th = hist + (Tangential ? 3 : 0);
-        const double k_r = 2.25 * pp.kn * pp.mu_r * pp.mu_r * r_eff * r_eff;
-        acc.spring_losses += 0.5 * k_r * (th[0] * th[0] + th[1] * th[1] + th[2] * th[2]);
-      }
+            Tangential::stored_energy(own, Normal::tangential_stiffness(pp, separated));
+      if constexpr (Rolling::history_width > 0)
+        acc.spring_losses += Rolling::stored_energy(
+            own + Tangential::history_width, pp, Normal::rolling_stiffness(pp, separated), r_eff);
     }
     std::fill_n(hist, hw, 0.0);
   };
@@ -563,7 +563,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   const PairParams* pair_params = &table.pair(0, 0);
   const PairParams* wall_params = &table.wall(0, 0);
   const int n_species = table.species_count();
-  using Batch = ContactBatch<kHistoryWidth<Tangential, Rolling>>;
+  using Batch = ContactBatch<hw>;
   constexpr std::false_type kPairs;
   constexpr std::true_type kWalls;
   // Passes 2 and 3 for a full batch: gather the inputs, evaluate, then add the forces to the
@@ -578,25 +578,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // One set of parameters for all pairs (one species), or for all wall contacts (every
   // species against every face alike, compared bit for bit): the kernel reads it once.
   const bool pairs_uniform = n_species == 1;
-  const bool walls_uniform = [&] {
-    for (int sp = 0; sp < n_species; ++sp)
-      for (int f = 0; f < 6; ++f)
-        if (std::memcmp(&table.wall(sp, f), wall_params, sizeof(PairParams)) != 0) return false;
-    return true;
-  }();
-  // Every particle of one radius and mass (NeighbourList::generation() keys the check: the
-  // radii and masses change only with the particles, and any change of those rebuilds the list).
-  // Fixed particles (1/m = 0) differ from the others.
-  if (nc.same_particles_generation != nl.generation() || nc.same_particles_count != n ||
-      (n > 0 && (p.radius[0] != nc.same_radius || p.inv_mass[0] != nc.same_inv_mass))) {
-    nc.same_particles = n > 0;
-    for (std::size_t i = 1; i < n && nc.same_particles; ++i)
-      nc.same_particles = p.radius[i] == p.radius[0] && p.inv_mass[i] == p.inv_mass[0];
-    nc.same_radius = n > 0 ? p.radius[0] : 0.0;
-    nc.same_inv_mass = n > 0 ? p.inv_mass[0] : 0.0;
-    nc.same_particles_generation = nl.generation();
-    nc.same_particles_count = n;
-  }
+  const bool walls_uniform = walls_alike(table);
+  find_same_particles(p, nl, nc);
   // Uniformity::Particles for the pairs, for the walls (it needs their parameters uniform).
   const bool pairs_same = pairs_uniform && nc.same_particles;
   const bool walls_same = walls_uniform && nc.same_particles;
@@ -617,7 +600,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       for (int a = 0; a < 3; ++a) b.wi[a][k] = pi[8 + a];
       if constexpr (wall) {
         for (int a = 0; a < 3; ++a) b.dv[a][k] = pi[4 + a];
-        if constexpr (Rolling != RollingModel::None) b.inv_inertia_sum[k] = pi[11];
+        if constexpr (Rolling::has_torque) b.inv_inertia_sum[k] = pi[11];
         // The wall's normal, overlap and gap, here for the touching entries only (the walk
         // tests the gap of every entry).
         const int f = wall_face_of[b.e[k]];
@@ -637,7 +620,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
           b.dv[a][k] = pi[4 + a] - pj[4 + a];
           b.wj[a][k] = pj[8 + a];
         }
-        if constexpr (Rolling != RollingModel::None) b.inv_inertia_sum[k] = pi[11] + pj[11];
+        if constexpr (Rolling::has_torque) b.inv_inertia_sum[k] = pi[11] + pj[11];
       }
       const double* hist = history + static_cast<std::size_t>(b.e[k]) * Batch::kHistory;
       for (int m = 0; m < Batch::kHistory; ++m) b.hist[m][k] = hist[m];
@@ -661,17 +644,17 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     const AddColumns<Batch::kSize> columns{b.force,          b.torque_unit, b.nc_force,
                                            b.nc_torque_unit, b.torque_roll, b.nc_torque_roll};
     if (same_particles)
-      add_to_particles<!wall, Tangential, Rolling != RollingModel::None, true, Batch::kSize>(
+      add_to_particles<!wall, Tangential::has_force, Rolling::has_torque, true, Batch::kSize>(
           b.n, b.i, b.j, b.ri, b.rj, r0, columns, acc_f);
     else
-      add_to_particles<!wall, Tangential, Rolling != RollingModel::None, false, Batch::kSize>(
+      add_to_particles<!wall, Tangential::has_force, Rolling::has_torque, false, Batch::kSize>(
           b.n, b.i, b.j, b.ri, b.rj, r0, columns, acc_f);
     for (int k = 0; k < b.n; ++k) {
       const std::uint32_t i = b.i[k];
       const double ri = same_particles ? r0 : b.ri[k];
       const Vec3 f = b.get(b.force, k);
       Vec3 tr{}; // the rolling torque on i, for the record
-      if constexpr (Rolling != RollingModel::None) tr = b.get(b.torque_roll, k);
+      if constexpr (Rolling::has_torque) tr = b.get(b.torque_roll, k);
       double* hist = history + static_cast<std::size_t>(b.e[k]) * Batch::kHistory;
       for (int m = 0; m < Batch::kHistory; ++m) hist[m] = b.hist[m][k];
       elastic += b.elastic[k];
@@ -793,15 +776,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // alternated pairs, bench/RESULTS.md). 4 bytes per entry (bed10k: 14 bytes per particle).
   constexpr std::size_t kFlatWalkParticles = kPrefetchParticles;
   const bool flat_walk = n <= kFlatWalkParticles;
-  if (!flat_walk) {
-    nc.entry_owner = {};
-  } else if (nc.entry_owner_generation != nl.generation()) {
-    nc.entry_owner.resize(nl.partner.size());
-    for (std::size_t i = 0; i < n; ++i)
-      std::fill(nc.entry_owner.begin() + row_offset[i], nc.entry_owner.begin() + row_offset[i + 1],
-                static_cast<std::uint32_t>(i));
-    nc.entry_owner_generation = nl.generation();
-  }
+  find_entry_owners(nl, n, flat_walk, nc);
   // Pass 1 for the entries [e_begin, e_end), as gather_row for each of their rows in turn.
   auto gather_entries =
       [&, view, partner, species, pair_history, any_periodic,
@@ -1063,45 +1038,11 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       run_slabs(1, 0);
     }
   }
-  if (recording) {
-    std::size_t total = 0;
-    for (const auto& b : slab_samples) total += b.size();
-    rec->samples.reserve(total + nl.wall_particle.size());
-    for (const auto& b : slab_samples) rec->samples.insert(rec->samples.end(), b.begin(), b.end());
-  }
-  for (const auto& ss : slab_stats) add_stats(st, ss);
-  for (std::size_t k = 0; k < nchunk; ++k) {
-    add_stats(st, wall_stats[k]);
-    if (recording)
-      rec->samples.insert(rec->samples.end(), chunk_samples[k].begin(), chunk_samples[k].end());
-  }
+  join_parts(slab_stats, wall_stats, slab_samples, chunk_samples, nl.wall_particle.size(),
+             recording ? rec : nullptr, st);
   // The contact forces and torques stay in nc.acc: the integrator's kicks read them there (the
   // gas forces and gravity join them in the kick).
   return st;
-}
-
-template <NormalModel Normal, bool Tangential>
-ContactStats dispatch_rolling(const ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                              double dt, ContactScratch& nc, ContactRecord* rec,
-                              const SlabHook* hook) {
-  switch (t.rolling()) {
-  case RollingModel::None:
-    return compute<Normal, Tangential, RollingModel::None>(p, nl, t, dt, nc, rec, hook);
-  case RollingModel::ConstantTorque:
-    return compute<Normal, Tangential, RollingModel::ConstantTorque>(p, nl, t, dt, nc, rec, hook);
-  case RollingModel::SpringDashpot:
-    return compute<Normal, Tangential, RollingModel::SpringDashpot>(p, nl, t, dt, nc, rec, hook);
-  }
-  return {};
-}
-
-template <NormalModel Normal>
-ContactStats dispatch_tangential(const ParticleStore& p, NeighbourList& nl, const ContactTable& t,
-                                 double dt, ContactScratch& nc, ContactRecord* rec,
-                                 const SlabHook* hook) {
-  return t.tangential() == TangentialModel::History
-             ? dispatch_rolling<Normal, true>(p, nl, t, dt, nc, rec, hook)
-             : dispatch_rolling<Normal, false>(p, nl, t, dt, nc, rec, hook);
 }
 
 } // namespace
@@ -1129,15 +1070,20 @@ ContactStats compute_contact_forces(const ParticleStore& p, NeighbourList& nl,
     nc.reset(p);
   }
   if (rec && rec->enabled) rec->samples.clear(); // also for a model that computes nothing
-  switch (t.normal()) {
-  case NormalModel::Linear:
-    return dispatch_tangential<NormalModel::Linear>(p, nl, t, dt, nc, rec, hook);
-  case NormalModel::Hertz:
-    return dispatch_tangential<NormalModel::Hertz>(p, nl, t, dt, nc, rec, hook);
-  case NormalModel::WaltonBraun:
-    break; // rejected when the ContactTable was built
-  }
-  return {};
+  // The models' combination, chosen once per call; compute<> inlines their kernels. A refused
+  // model (declared with a refusal) is never instantiated: the ContactTable refused it.
+  using namespace contact_models;
+  const Chosen& m = t.models();
+  return with_model(NormalModels{}, m.normal->index, [&]<class N>(N) {
+    return with_model(TangentialModels{}, m.tangential->index, [&]<class T>(T) {
+      return with_model(RollingModels{}, m.rolling->index, [&]<class R>(R) {
+        if constexpr (is_refused<N>() || is_refused<T>() || is_refused<R>())
+          return ContactStats{};
+        else
+          return compute<N, T, R>(p, nl, t, dt, nc, rec, hook);
+      });
+    });
+  });
 }
 
 } // namespace fluidem

@@ -8,8 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "contact/kernels/normal_damping.hpp"
-#include "contact/kernels/normal_force.hpp"
+#include "contact/models/model_list.hpp"
 #include "core/material_mixing.hpp"
 #include "particles/particle_store.hpp"
 
@@ -17,13 +16,8 @@ namespace fluidem {
 
 namespace {
 
-// A rigid wall (youngs_modulus = inf) adds nothing: the particle's compliance alone remains.
-double inv_e_part(const MaterialSpec& m) {
-  return (1.0 - m.poisson_ratio * m.poisson_ratio) / m.youngs_modulus;
-}
-double inv_g_part(const MaterialSpec& m) {
-  return (2.0 - m.poisson_ratio) / shear_modulus_of(m);
-}
+using contact_models::inv_e_part;
+using contact_models::with_model;
 
 /// Why a soft-sphere contact refuses e = 0 (docs/contact.md).
 std::string plastic_limit_message() {
@@ -55,55 +49,18 @@ double auto_characteristic_velocity(const CaseSpec& spec) {
 } // namespace
 
 ContactTable::ContactTable(const CaseSpec& spec, std::vector<bool> with_particles)
-    : n_(static_cast<int>(spec.species.size())), normal_(spec.contact.normal),
-      tangential_(spec.contact.tangential), rolling_(spec.contact.rolling) {
+    : n_(static_cast<int>(spec.species.size())), models_(contact_models::check(spec)),
+      contact_(spec.contact) {
+  for (const contact_models::Kind kind : contact_models::kKinds)
+    if (!models_.of(kind).refusal.empty()) {
+      const std::string key = std::string("contact.") + contact_models::kind_key(kind);
+      throw InputError(spec.where(key), key, contact_models::refusal(models_.of(kind)));
+    }
   const auto& c = spec.contact;
-  if (normal_ == NormalModel::WaltonBraun) {
-    throw InputError(spec.where("contact.normal"), "contact.normal",
-                     "\"walton_braun\" is not implemented yet (implemented: \"linear\", "
-                     "\"hertz\")");
-  }
   v_char_ =
       c.characteristic_velocity ? *c.characteristic_velocity : auto_characteristic_velocity(spec);
-
-  if (normal_ == NormalModel::Hertz && c.stiffness_ratio) {
-    throw InputError(spec.where("contact.stiffness_ratio"), "contact.stiffness_ratio",
-                     "not allowed with normal = \"hertz\" (Mindlin's k_t = 8 G* sqrt(R* delta) "
-                     "follows from the materials: set poisson_ratio or shear_modulus per "
-                     "species and wall)");
-  }
   auto make = [&](const MaterialSpec& a, const MaterialSpec& b, bool wall, const std::string& key) {
-    PairParams p;
-    const MixedCoefficients mixed = wall ? wall_coefficients(b) : mix_pair(a, b);
-    const double e = mixed.restitution;
-    const double beta0 = mixed.tangential_restitution;
-    if (!(e > 0.0)) throw InputError(spec.where(key), key, plastic_limit_message());
-    p.mu = mixed.friction; // inf: never sliding (tangential_spring)
-    p.mu_r = mixed.rolling_friction;
-    p.restitution = e;
-    p.e_star = 1.0 / (inv_e_part(a) + inv_e_part(b));
-    p.tangential_damping = kernels::restitution_damping_factor(beta0);
-    p.rolling_damping = kernels::restitution_damping_factor(e);
-    if (normal_ == NormalModel::Linear) {
-      p.kn = c.stiffness;
-      p.normal_damping = kernels::linear_damping_factor(e);
-      // [Deen07 eq. 43]: equal normal and tangential contact durations [Deen07 eq. 41-42] (for
-      // a force that may pull; kept as published).
-      const double lb = beta0 > 0.0 ? std::log(beta0) : 0.0;
-      const double le = std::log(e);
-      const double pi2 = std::numbers::pi * std::numbers::pi;
-      const double ratio =
-          c.stiffness_ratio ? *c.stiffness_ratio : 2.0 / 7.0 * (pi2 + lb * lb) / (pi2 + le * le);
-      p.kt = ratio * p.kn;
-    } else {
-      p.kn = 4.0 / 3.0 * p.e_star;
-      p.normal_damping = kernels::hertz_damping_alpha(e);
-      // Mindlin k_t = 8 G* sqrt(R* delta) [Chang08 eq. 2.16], 1/G* = (2 - nu_a)/G_a +
-      // (2 - nu_b)/G_b [Zhu07 Table 1].
-      p.kt = 8.0 / (inv_g_part(a) + inv_g_part(b));
-    }
-    p.tangential_root = std::sqrt(2.0 * p.kt / (7.0 * p.kn));
-    return p;
+    return mix(spec, a, b, wall, key, contact_.normal.coefficients);
   };
 
   // Only species with particles meet: the others get no coefficients, no durations and no say
@@ -159,15 +116,52 @@ MemoryShare ContactTable::memory_share(const CaseSpec& spec) {
               n * 6.0 * static_cast<double>(sizeof(PairParams))};
 }
 
+PairParams ContactTable::mix(const CaseSpec& spec, const MaterialSpec& a, const MaterialSpec& b,
+                             bool wall, const std::string& key,
+                             const contact_models::Coefficients& normal) const {
+  PairParams p;
+  const MixedCoefficients mixed = wall ? wall_coefficients(b) : mix_pair(a, b);
+  if (!(mixed.restitution > 0.0)) throw InputError(spec.where(key), key, plastic_limit_message());
+  p.restitution = mixed.restitution;
+  p.e_star = 1.0 / (inv_e_part(a) + inv_e_part(b));
+  const contact_models::MaterialPair pair{a, b, wall, mixed};
+  // The normal model first: the tangential and rolling models scale with its stiffnesses.
+  with_model(contact_models::NormalModels{}, models_.normal->index, [&]<class M>(M) {
+    if constexpr (!contact_models::is_refused<M>()) M::mix(p, pair, normal);
+  });
+  with_model(contact_models::TangentialModels{}, models_.tangential->index,
+             [&]<class M>(M) { M::mix(p, pair, contact_.tangential.coefficients); });
+  with_model(contact_models::RollingModels{}, models_.rolling->index,
+             [&]<class M>(M) { M::mix(p, pair, contact_.rolling.coefficients); });
+  return p;
+}
+
+int ContactTable::history_width() const {
+  return models_.normal->history_width + models_.tangential->history_width +
+         models_.rolling->history_width;
+}
+
 double ContactTable::contact_duration(double m_eff, double r_eff, const PairParams& p,
                                       bool wall) const {
   // The force pulse, which ends when the floored force vanishes (normal_damping.hpp): shorter
-  // than the time the overlap lasts ([Deen07 eq. 41] for a force that may pull). Hertz at
-  // impact_speed(wall): a pair's relative speed, not one particle's.
-  if (normal_ == NormalModel::Linear)
-    return kernels::linear_contact_duration(m_eff, p.kn, p.normal_damping);
-  return kernels::hertz_contact_duration(m_eff, p.kn * std::sqrt(r_eff), p.normal_damping,
-                                         impact_speed(wall));
+  // than the time the overlap lasts ([Deen07 eq. 41] for a force that may pull). At
+  // impact_speed(wall) for a model whose duration depends on it: a pair's relative speed, not
+  // one particle's.
+  return with_model(contact_models::NormalModels{}, models_.normal->index, [&]<class M>(M) {
+    if constexpr (contact_models::is_refused<M>())
+      return 0.0;
+    else
+      return M::duration(m_eff, r_eff, p, impact_speed(wall));
+  });
+}
+
+double ContactTable::overlap_under(double f, double r_eff, const PairParams& p) const {
+  return with_model(contact_models::NormalModels{}, models_.normal->index, [&]<class M>(M) {
+    if constexpr (contact_models::is_refused<M>())
+      return 0.0;
+    else
+      return M::overlap_under(f, r_eff, p);
+  });
 }
 
 } // namespace fluidem

@@ -1,41 +1,33 @@
 // Per-run contact coefficients for every species pair and every (species, wall face), built once
-// from the case's materials with the mixing rules below, outside the hot loop.
+// from the case's materials and the chosen sub-models' declarations (contact/models/), outside
+// the hot loop.
 //
-// Mixing for unlike materials: E* = 1/((1-nu_a^2)/E_a + (1-nu_b^2)/E_b) [Zhu07 Table 1],
-// G* = 1/((2-nu_a)/G_a + (2-nu_b)/G_b) with G given or E/(2(1+nu)) [Zhu07 Table 1; Chang08
-// eq. 2.16; Di Renzo & Di Maio 2004]; a rigid wall (E = inf) adds no compliance, so E* and G*
-// are the particle's own. e, mu, beta0 and mu_r of a particle pair are the arithmetic means of
-// the two materials. A particle-wall contact uses the wall's e, mu, beta0, mu_r and a wall of
-// infinite mass. Which keys each normal model takes: docs/case-file.md, docs/contact.md.
+// Mixing for unlike materials: e, mu, beta0 and mu_r of a particle pair are the arithmetic means
+// of the two materials (core/material_mixing.hpp); a particle-wall contact uses the wall's e, mu,
+// beta0, mu_r and a wall of infinite mass; E* = 1/((1-nu_a^2)/E_a + (1-nu_b^2)/E_b) [Zhu07
+// Table 1] (a rigid wall adds no compliance). What else each model takes, and how it mixes, is
+// its `mix` function (docs/contact.md, docs/case-file.md).
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "contact/contact_models.hpp"
+#include "contact/models/material_pair.hpp"
+#include "contact/pair_params.hpp"
 #include "core/case_spec.hpp"
 #include "core/memory_budget.hpp"
 
 namespace fluidem {
 
-struct PairParams {
-  double kn = 0;                 ///< linear: k_n, N/m; Hertz: 4/3 E*, Pa (K = kn sqrt(R*))
-  double normal_damping = 0;     ///< linear: eta_n / sqrt(m* k_n); Hertz: Tsuji's alpha
-  double kt = 0;                 ///< linear: k_t, N/m; Hertz: c_t, Pa (k_t = c_t sqrt(R* delta))
-  double tangential_damping = 0; ///< factor of [Deen07 eq. 30] from beta0
-  double tangential_root = 0;    ///< sqrt(2 kt / (7 kn)): eta_t from the normal damping scale
-  double mu = 0;                 ///< Coulomb friction (inf: never sliding)
-  double mu_r = 0;               ///< rolling friction, dimensionless
-  double rolling_damping = 0;    ///< factor of [Deen07 eq. 27] from e (rolling spring-dashpot)
-  double restitution = 0;        ///< e_n (for reports)
-  double e_star = 0;             ///< effective Young's modulus, Pa (reports)
-};
-
 class ContactTable {
 public:
   /// Build from the case. Throws InputError (naming the key) for a model that is named but
-  /// not implemented, or parameters the model cannot accept (e = 0; contact.stiffness_ratio
-  /// with Hertz). `with_particles[s]` is false for a species no particle has (empty: every
-  /// species has some): it gets no pair coefficients (they are never read), no durations and no
-  /// say in the time step.
+  /// refused (contact_models::refusal), coefficients its models do not take
+  /// (contact_models::check), or materials no soft-sphere contact can take (e = 0).
+  /// `with_particles[s]` is false for a species no particle has (empty: every species has some):
+  /// it gets no pair coefficients (they are never read), no durations and no say in the time
+  /// step.
   explicit ContactTable(const CaseSpec& spec, std::vector<bool> with_particles = {});
 
   const PairParams& pair(int si, int sj) const { return pp_[si * n_ + sj]; }
@@ -44,22 +36,25 @@ public:
   /// Whether species s has coefficients with the other species (the constructor's
   /// with_particles).
   bool has_particles(int s) const { return used_[s]; }
-  NormalModel normal() const { return normal_; }
-  TangentialModel tangential() const { return tangential_; }
-  RollingModel rolling() const { return rolling_; }
+  /// The chosen sub-models (their index in contact/models/model_list.hpp's lists).
+  const contact_models::Chosen& models() const { return models_; }
+  /// History doubles per contact that the chosen sub-models keep.
+  int history_width() const;
 
-  /// The speed of a particle used for Hertz contact durations, m/s (case value or the automatic
-  /// one: free fall over the domain height plus the fastest insertion speed, at least 0.1 m/s).
+  /// The speed of a particle used for impact-speed contact durations (Hertz), m/s (case value
+  /// or the automatic one: free fall over the domain height plus the fastest insertion speed, at
+  /// least 0.1 m/s).
   double characteristic_velocity() const { return v_char_; }
-  /// The impact speed of a Hertz contact duration, m/s: a particle at the characteristic
-  /// velocity hits a wall at that speed, and two such particles meet head-on at twice it.
+  /// The impact speed of a contact duration, m/s: a particle at the characteristic velocity
+  /// hits a wall at that speed, and two such particles meet head-on at twice it.
   double impact_speed(bool wall) const { return wall ? v_char_ : 2.0 * v_char_; }
 
-  /// Duration of the normal force pulse of a head-on impact, s (contact/kernels/
-  /// normal_damping.hpp); Hertz at impact_speed(wall).
+  /// Duration of the normal force pulse of a head-on impact, s (the normal model's).
   double contact_duration(double m_eff, double r_eff, const PairParams& p, bool wall) const;
   /// Shortest contact duration over the species pairs and walls that can meet, s.
   double shortest_contact_duration() const { return t_contact_min_; }
+  /// The overlap of a contact with these coefficients under a static force f (N), m.
+  double overlap_under(double f, double r_eff, const PairParams& p) const;
 
   struct DurationRow {
     std::string pair;  ///< e.g. "glass-glass" or "glass-wall z_lo"
@@ -72,16 +67,34 @@ public:
   /// other and with the walls.
   const std::vector<DurationRow>& durations() const { return rows_; }
 
+  /// An input of a contact's duration that the normal model declares (a coefficient with a usual
+  /// range, or the Young's modulus of the softer material when it takes elastic constants), and
+  /// the contact's coefficients as a function of its value (the time-step rule,
+  /// integrate/contact_time_limit.hpp).
+  struct DurationInput {
+    std::string key, unit;
+    double value = 0.0;
+    double usual_lo = 0.0, usual_hi = 0.0; ///< the range met in practice
+    double usual_value = 0.0;              ///< the value compared with it (E* for a modulus)
+    bool longer_when_larger = false;
+    std::function<PairParams(double)> params;
+  };
+  std::vector<DurationInput> duration_inputs(const CaseSpec& spec, const DurationRow& row) const;
+
   /// The memory of the table for the case's species, bytes: every species pair has its
   /// coefficients (the contact loop indexes them by species), so it grows with the square of
   /// the species count.
   static MemoryShare memory_share(const CaseSpec& spec);
 
 private:
+  /// The coefficients of one pair (wall: b is the wall's material) with the normal model's
+  /// coefficients `normal`; InputError at `key` for e = 0.
+  PairParams mix(const CaseSpec& spec, const MaterialSpec& a, const MaterialSpec& b, bool wall,
+                 const std::string& key, const contact_models::Coefficients& normal) const;
+
   int n_ = 0;
-  NormalModel normal_;
-  TangentialModel tangential_;
-  RollingModel rolling_;
+  contact_models::Chosen models_;
+  ContactSpec contact_; ///< the case's [contact] (the models' coefficients)
   double v_char_ = 1.0;
   double t_contact_min_ = 0.0;
   std::vector<PairParams> pp_, pw_;

@@ -24,31 +24,6 @@ const char* to_string(Engine e) {
   return e == Engine::HardSphere ? "hard_sphere" : "soft_sphere";
 }
 
-const char* to_string(NormalModel m) {
-  switch (m) {
-  case NormalModel::Linear:
-    return "linear";
-  case NormalModel::Hertz:
-    return "hertz";
-  case NormalModel::WaltonBraun:
-    return "walton_braun";
-  }
-  return "?";
-}
-const char* to_string(TangentialModel m) {
-  return m == TangentialModel::History ? "history" : "none";
-}
-const char* to_string(RollingModel m) {
-  switch (m) {
-  case RollingModel::None:
-    return "none";
-  case RollingModel::ConstantTorque:
-    return "constant_torque";
-  case RollingModel::SpringDashpot:
-    return "spring_dashpot";
-  }
-  return "?";
-}
 const char* to_string(ContinuumMethod m) {
   return m == ContinuumMethod::Weighted ? "weighted" : "volume";
 }

@@ -70,17 +70,21 @@ struct InsertSpec {
   std::uint64_t seed = 1;
 };
 
-enum class NormalModel { Linear, Hertz, WaltonBraun };
-enum class TangentialModel { None, History };
-enum class RollingModel { None, ConstantTorque, SpringDashpot };
+/// One contact sub-model as the case names it: its name (the case-file string; empty: the kind's
+/// default) and the values of its coefficients (case key in [contact] -> value, SI units; a
+/// coefficient left "auto" is absent). Which models exist, which keys each takes, their units,
+/// ranges, defaults and mixing rules are declared with the models (contact/models/,
+/// docs/contact.md): core does not know them.
+struct ContactModelSpec {
+  std::string name;
+  std::map<std::string, double> coefficients;
+};
 
 struct ContactSpec {
-  NormalModel normal = NormalModel::Hertz;
-  double stiffness = 0.0; ///< k_n, N/m (linear model only; required there)
-  TangentialModel tangential = TangentialModel::History;
-  std::optional<double> stiffness_ratio; ///< k_t/k_n; empty = [Deen07 eq. 43]
-  RollingModel rolling = RollingModel::None;
-  std::optional<double> characteristic_velocity; ///< m/s for Hertz durations; empty = auto
+  ContactModelSpec normal;     ///< default: the model declared as the normal default
+  ContactModelSpec tangential; ///< (likewise)
+  ContactModelSpec rolling;    ///< (likewise)
+  std::optional<double> characteristic_velocity; ///< m/s for impact-speed durations; empty = auto
   double max_overlap = 0.1;                      ///< instability guard: overlap / smaller diameter
 };
 
@@ -198,9 +202,6 @@ struct CaseSpec {
 };
 
 const char* to_string(Engine e);
-const char* to_string(NormalModel m);
-const char* to_string(TangentialModel m);
-const char* to_string(RollingModel m);
 const char* to_string(Placement p);
 const char* to_string(ContinuumMethod m);
 

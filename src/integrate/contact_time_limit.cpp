@@ -53,10 +53,6 @@ std::optional<double> value_for(const Input& in, double target) {
   return good;
 }
 
-double inv_modulus(const MaterialSpec& m, double e) {
-  return (1.0 - m.poisson_ratio * m.poisson_ratio) / e;
-}
-
 std::string format_value(double v) {
   return fmt::format("{:.3g}", v);
 }
@@ -120,38 +116,12 @@ void check_contact_durations(const CaseSpec& spec, const ContactTable& table,
            return duration(diameter, rho, base);
          }});
   }
-  if (table.normal() == NormalModel::Linear) {
-    const double k = spec.contact.stiffness;
-    inputs.push_back({"contact.stiffness", "N/m", k, 1.0, 1e10, k, false, [=](double v) {
-                        PairParams p = base;
-                        p.kn = v;
-                        return duration(diameter, density, p);
+  // The normal model's own inputs: its stiffness, or the softer material's Young's modulus.
+  for (ContactTable::DurationInput& in : table.duration_inputs(spec, *shortest))
+    inputs.push_back({in.key, in.unit, in.value, in.usual_lo, in.usual_hi, in.usual_value,
+                      in.longer_when_larger, [=, params = std::move(in.params)](double v) {
+                        return duration(diameter, density, params(v));
                       }});
-  } else {
-    // Hertz: K = 4/3 E* sqrt(R*), E* from both materials [Zhu07 Table 1]; the softer one sets
-    // E* and is the one named (a pair of one species changes both).
-    const MaterialSpec& ma = spec.species[a].material;
-    const MaterialSpec& mb =
-        wall ? spec.domain.wall_material[shortest->face] : spec.species[b].material;
-    const bool same = !wall && a == b;
-    const bool softer_a = ma.youngs_modulus <= mb.youngs_modulus;
-    const MaterialSpec& soft = softer_a ? ma : mb;
-    const MaterialSpec& other = softer_a ? mb : ma;
-    const std::string key =
-        softer_a ? "species[" + std::to_string(a) + "].youngs_modulus"
-        : wall   ? std::string("walls.") + kFaceNames[shortest->face] + ".youngs_modulus"
-                 : "species[" + std::to_string(b) + "].youngs_modulus";
-    auto e_star = [=](double e) {
-      return 1.0 / (inv_modulus(soft, e) +
-                    (same ? inv_modulus(soft, e) : inv_modulus(other, other.youngs_modulus)));
-    };
-    inputs.push_back({key, "Pa", soft.youngs_modulus, 1e3, 1.2e12, e_star(soft.youngs_modulus),
-                      false, [=](double v) {
-                        PairParams p = base;
-                        p.kn = 4.0 / 3.0 * e_star(v);
-                        return duration(diameter, density, p);
-                      }});
-  }
   // The culprit: the input farthest outside the usual range; simulation.end_time if none is.
   const Input* culprit = nullptr;
   double worst = 0.0;

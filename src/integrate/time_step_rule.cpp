@@ -147,10 +147,7 @@ double expected_overlap_ratio(const CaseSpec& spec, const ParticleStore& p, cons
   const double f = sphere_mass(r, s.density) * gabs * h / s.diameter;
   const int face = 2 * down + (g[down] > 0 ? 1 : 0);
   const PairParams& pp = t.wall(0, face);
-  const double delta = t.normal() == NormalModel::Linear
-                           ? f / pp.kn
-                           : std::pow(f / (pp.kn * std::sqrt(r)), 2.0 / 3.0);
-  return delta / s.diameter;
+  return t.overlap_under(f, r, pp) / s.diameter;
 }
 
 } // namespace fluidem

@@ -15,6 +15,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "contact/contact_models.hpp"
 #include "core/input_file.hpp"
 #include "io/case_writer.hpp"
 #include "io/key_suggest.hpp"
@@ -104,10 +105,16 @@ const Keys& region_keys() {
   static const Keys k = {"lo", "hi"};
   return k;
 }
+/// [contact]: the kinds' model names, the keys of every model's coefficients (declared with the
+/// models, contact/models/), and the keys of every model.
 const Keys& contact_keys() {
-  static const Keys k = {"normal",          "stiffness", "tangential",
-                         "stiffness_ratio", "rolling",   "characteristic_velocity",
-                         "max_overlap"};
+  static const Keys k = [] {
+    Keys all = {"normal", "tangential", "rolling"};
+    const auto& coefficients = contact_models::coefficient_keys();
+    all.insert(all.end(), coefficients.begin(), coefficients.end());
+    all.insert(all.end(), {"characteristic_velocity", "max_overlap"});
+    return all;
+  }();
   return k;
 }
 const Keys& neighbour_keys() {
@@ -1224,55 +1231,80 @@ private:
     }
   }
 
+  /// [contact]: the sub-models and their coefficients, as the models declare them
+  /// (contact/contact_models.hpp), then the keys of every model.
   void read_contact(const toml::table* t) {
+    namespace cm = contact_models;
     ContactSpec& c = spec_.contact;
     const std::string p = "contact";
-    opt_enum<NormalModel>(t, p, "normal",
-                          {{"linear", NormalModel::Linear},
-                           {"hertz", NormalModel::Hertz},
-                           {"walton_braun", NormalModel::WaltonBraun}},
-                          c.normal);
-    const NumRule stiffness{Bound::Positive, "N/m"};
-    const auto k = t ? find(*t, "stiffness", p + ".stiffness") : std::nullopt;
-    if (c.normal == NormalModel::Linear) {
-      if (!k)
-        missing(t, p, "[contact]", "stiffness",
-                allowed(stiffness) + ", required with normal = \"linear\"");
-      c.stiffness = number(*k, p + ".stiffness", stiffness);
-    } else if (k) {
-      throw InputError(k->where, p + ".stiffness",
-                       std::string("not allowed with normal = \"") + to_string(c.normal) +
-                           "\" (only with normal = \"linear\"; Hertzian stiffness follows from "
-                           "the material)");
+    for (const cm::Kind kind : cm::kKinds) {
+      std::vector<std::pair<std::string, const cm::ModelInfo*>> names;
+      for (const cm::ModelInfo& m : cm::models(kind)) names.emplace_back(m.name, &m);
+      const cm::ModelInfo* chosen = &cm::default_model(kind);
+      opt_enum<const cm::ModelInfo*>(t, p, cm::kind_key(kind), names, chosen);
+      cm::of(c, kind) = ContactModelSpec{std::string(chosen->name), {}};
     }
-    opt_enum<TangentialModel>(
-        t, p, "tangential",
-        {{"history", TangentialModel::History}, {"none", TangentialModel::None}}, c.tangential);
-    auto_number(t, p, "stiffness_ratio", {Bound::Positive, ""}, c.stiffness_ratio);
-    if (c.normal == NormalModel::Hertz && c.stiffness_ratio)
-      throw InputError(spec_.where(p + ".stiffness_ratio"), p + ".stiffness_ratio",
-                       "not allowed with normal = \"hertz\" (allowed: \"auto\"): Mindlin's "
-                       "k_t = 8 G* sqrt(R* delta) follows from the materials; set poisson_ratio or "
-                       "shear_modulus per species and wall");
-    if (c.normal == NormalModel::Linear) check_linear_materials();
-    opt_enum<RollingModel>(t, p, "rolling",
-                           {{"none", RollingModel::None},
-                            {"constant_torque", RollingModel::ConstantTorque},
-                            {"spring_dashpot", RollingModel::SpringDashpot}},
-                           c.rolling);
+    const cm::Chosen chosen = cm::choose(spec_);
+    for (const cm::Kind kind : cm::kKinds)
+      for (const cm::Coefficient& k : chosen.of(kind).coefficients)
+        read_coefficient(t, chosen.of(kind), k, cm::of(c, kind).coefficients);
+    // The coefficients of models not chosen: "auto" (which every model takes for a key that may
+    // be "auto": nothing given), or refused.
+    for (const std::string& key : cm::coefficient_keys()) {
+      const auto e = t && !chosen.declaring(key) ? find(*t, key, p + "." + key) : std::nullopt;
+      if (!e || (cm::auto_allowed(key) && e->node->value_exact<std::string>() == "auto")) continue;
+      throw InputError(e->where, p + "." + key, cm::not_taken(key, chosen));
+    }
+    if (chosen.normal->refusal.empty() && !chosen.normal->takes_elastic_constants)
+      check_elastic_constants_unused(*chosen.normal);
     auto_number(t, p, "characteristic_velocity", {Bound::Positive, "m/s"},
                 c.characteristic_velocity);
     opt_number(t, p, "max_overlap", {Bound::OpenUnit, ""}, c.max_overlap);
   }
 
-  /// The linear model's stiffnesses are contact keys, the same for every contact: refuse the
-  /// material keys that would only act with Hertz (a shear modulus, a rigid wall) instead of
-  /// ignoring them. (youngs_modulus and poisson_ratio, which every material has, are unused.)
-  void check_linear_materials() const {
-    const std::string why = "not allowed with contact.normal = \"linear\", whose stiffnesses are "
-                            "contact.stiffness and contact.stiffness_ratio for every contact, "
-                            "walls included (the materials' elastic constants act only with "
-                            "normal = \"hertz\")";
+  /// Coefficient `k` of model `m` into `out` (absent: "auto", or not given).
+  void read_coefficient(const toml::table* t, const contact_models::ModelInfo& m,
+                        const contact_models::Coefficient& k, contact_models::Coefficients& out) {
+    namespace cm = contact_models;
+    const std::string key(k.key), path = "contact." + key;
+    const auto e = t ? find(*t, key, path) : std::nullopt;
+    const std::string rule = cm::allowed(k);
+    if (!e) {
+      if (k.given == cm::Given::Required && m.refusal.empty())
+        missing(t, "contact", "[contact]", key,
+                rule + ", required with " + cm::kind_key(m.kind) + " = " +
+                    in_quotes(std::string(m.name)));
+      return;
+    }
+    const bool may_be_auto = k.given != cm::Given::Required;
+    const std::string allowed_values = rule + (may_be_auto ? ", or \"auto\"" : "");
+    if (const auto s = e->node->value_exact<std::string>(); s && may_be_auto) {
+      if (*s == "auto") return;
+      throw InputError(e->where, path,
+                       "expected a number or \"auto\", got " + describe(*e->node) +
+                           " (allowed: " + allowed_values + ")");
+    }
+    if (!e->node->is_number())
+      throw InputError(e->where, path,
+                       std::string(may_be_auto ? "expected a number or \"auto\", got "
+                                               : "expected a number, got ") +
+                           describe(*e->node) + " (allowed: " + allowed_values + ")");
+    const double x = e->node->is_floating_point()
+                         ? *e->node->value<double>()
+                         : static_cast<double>(*e->node->value<std::int64_t>());
+    if (!k.range.contains(x))
+      throw InputError(e->where, path,
+                       format_double(x) + " is out of range (allowed: " + rule + ")");
+    if (k.given == cm::Given::AutoOnly) throw InputError(e->where, path, cm::only_auto(m, k));
+    out[key] = x;
+  }
+
+  /// A normal model whose stiffnesses are its own coefficients takes no elastic constants:
+  /// refuse the material keys that would only act with the models that do (a shear modulus, a
+  /// rigid wall) instead of ignoring them. (youngs_modulus and poisson_ratio, which every
+  /// material has, are unused.)
+  void check_elastic_constants_unused(const contact_models::ModelInfo& normal) const {
+    const std::string why = contact_models::elastic_constants_not_taken(normal);
     for (std::size_t i = 0; i < spec_.species.size(); ++i)
       if (spec_.species[i].material.shear_modulus) {
         const std::string key = "species[" + std::to_string(i) + "].shear_modulus";

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "contact/contact_models.hpp"
+
 namespace fluidem {
 namespace {
 
@@ -303,15 +305,23 @@ std::string write_case_toml(const CaseSpec& spec) {
        << "seed = " << in.seed << "\n";
   }
 
+  // Each model's name, then its coefficients as it declares them ("auto" when left to it).
   const ContactSpec& c = spec.contact;
-  os << "\n[contact]\n"
-     << "normal = " << toml_string(to_string(c.normal)) << "\n";
-  if (c.normal == NormalModel::Linear)
-    os << "stiffness = " << format_double(c.stiffness) << "  # N/m\n";
-  os << "tangential = " << toml_string(to_string(c.tangential)) << "\n"
-     << "stiffness_ratio = " << auto_or(c.stiffness_ratio) << "\n"
-     << "rolling = " << toml_string(to_string(c.rolling)) << "\n"
-     << "characteristic_velocity = " << auto_or(c.characteristic_velocity) << "  # m/s\n"
+  os << "\n[contact]\n";
+  const contact_models::Chosen chosen = contact_models::choose(spec);
+  for (const contact_models::Kind kind : contact_models::kKinds) {
+    const contact_models::ModelInfo& m = chosen.of(kind);
+    os << contact_models::kind_key(kind) << " = " << toml_string(std::string(m.name)) << "\n";
+    const auto& given = contact_models::of(c, kind).coefficients;
+    for (const contact_models::Coefficient& k : m.coefficients) {
+      const auto v = contact_models::coefficient(given, std::string(k.key));
+      if (!v && k.given == contact_models::Given::Required) continue; // (a refused model)
+      os << k.key << " = " << auto_or(v);
+      if (!k.unit.empty()) os << "  # " << k.unit;
+      os << "\n";
+    }
+  }
+  os << "characteristic_velocity = " << auto_or(c.characteristic_velocity) << "  # m/s\n"
      << "max_overlap = " << format_double(c.max_overlap) << "\n";
 
   os << "\n[neighbour]\n"

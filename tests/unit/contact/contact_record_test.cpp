@@ -39,9 +39,9 @@ CaseSpec make_spec() {
   s.domain.hi = {kL, kL, kH};
   s.domain.periodic = {true, true, false};
   s.species.push_back(test::glass_species_spec("glass")); // d = kD
-  s.contact.normal = NormalModel::Hertz;
-  s.contact.tangential = TangentialModel::History;
-  s.contact.rolling = RollingModel::SpringDashpot;
+  s.contact.normal.name = "hertz";
+  s.contact.tangential.name = "history";
+  s.contact.rolling.name = "spring_dashpot";
   return s;
 }
 

@@ -138,10 +138,10 @@ TEST(CaseReader, DefaultsFilled) {
   EXPECT_EQ(c.inserts[0].velocity, (std::array<double, 3>{0, 0, 0}));
   EXPECT_EQ(c.inserts[0].velocity_spread, 0.0);
   EXPECT_EQ(c.inserts[0].seed, 1u);
-  EXPECT_EQ(c.contact.normal, NormalModel::Hertz);
-  EXPECT_EQ(c.contact.tangential, TangentialModel::History);
-  EXPECT_EQ(c.contact.rolling, RollingModel::None);
-  EXPECT_FALSE(c.contact.stiffness_ratio.has_value());
+  EXPECT_EQ(c.contact.normal.name, "hertz");
+  EXPECT_EQ(c.contact.tangential.name, "history");
+  EXPECT_EQ(c.contact.rolling.name, "none");
+  EXPECT_FALSE(c.contact.normal.coefficients.contains("stiffness_ratio"));
   EXPECT_FALSE(c.contact.characteristic_velocity.has_value());
   EXPECT_EQ(c.contact.max_overlap, d.contact.max_overlap);
   EXPECT_FALSE(c.neighbour.skin.has_value());
@@ -252,11 +252,11 @@ max_events_per_particle = 50
   EXPECT_EQ(in.velocity, (std::array<double, 3>{0.1, 0.0, -0.2}));
   EXPECT_EQ(in.velocity_spread, 0.05);
   EXPECT_EQ(in.seed, 42u);
-  EXPECT_EQ(c.contact.normal, NormalModel::Linear);
-  EXPECT_EQ(c.contact.stiffness, 800.0);
-  EXPECT_EQ(c.contact.tangential, TangentialModel::None);
-  EXPECT_EQ(c.contact.stiffness_ratio, 0.5);
-  EXPECT_EQ(c.contact.rolling, RollingModel::ConstantTorque);
+  EXPECT_EQ(c.contact.normal.name, "linear");
+  EXPECT_EQ(c.contact.normal.coefficients.at("stiffness"), 800.0);
+  EXPECT_EQ(c.contact.tangential.name, "none");
+  EXPECT_EQ(c.contact.normal.coefficients.at("stiffness_ratio"), 0.5);
+  EXPECT_EQ(c.contact.rolling.name, "constant_torque");
   EXPECT_EQ(c.contact.characteristic_velocity, 1.5);
   EXPECT_EQ(c.contact.max_overlap, 0.2);
   EXPECT_EQ(c.neighbour.skin, 0.0008);
@@ -284,8 +284,8 @@ TEST(CaseReader, WaltonBraunAndAutoParse) {
                                                   "stiffness_ratio = \"auto\"\n"
                                                   "[neighbour]\nskin = \"auto\"\n",
                                       "case.toml");
-  EXPECT_EQ(c.contact.normal, NormalModel::WaltonBraun);
-  EXPECT_FALSE(c.contact.stiffness_ratio.has_value());
+  EXPECT_EQ(c.contact.normal.name, "walton_braun");
+  EXPECT_TRUE(c.contact.normal.coefficients.empty());
   EXPECT_FALSE(c.neighbour.skin.has_value());
 }
 
@@ -730,8 +730,8 @@ TEST(CaseReaderOverrides, AppliedByIndexAndByName) {
        "neighbour.skin=auto", "simulation.engine=hard_sphere", "hardsphere.tc_time=0",
        "hardsphere.max_events_per_particle=20"});
   EXPECT_EQ(c.simulation.end_time, 0.25);
-  EXPECT_EQ(c.contact.normal, NormalModel::Linear);
-  EXPECT_EQ(c.contact.stiffness, 1000.0);
+  EXPECT_EQ(c.contact.normal.name, "linear");
+  EXPECT_EQ(c.contact.normal.coefficients.at("stiffness"), 1000.0);
   EXPECT_EQ(c.species[0].material.restitution, 0.8);
   EXPECT_EQ(c.species[1].material.friction, 0.45);
   EXPECT_EQ(c.species[0].material.friction, 0.3);
@@ -741,7 +741,7 @@ TEST(CaseReaderOverrides, AppliedByIndexAndByName) {
   EXPECT_EQ(c.simulation.time_step, 1e-6);
   EXPECT_EQ(c.inserts[0].region_hi[2], 0.1);
   EXPECT_EQ(c.inserts[0].region_lo, c.domain.lo);
-  EXPECT_EQ(c.contact.rolling, RollingModel::SpringDashpot);
+  EXPECT_EQ(c.contact.rolling.name, "spring_dashpot");
   EXPECT_FALSE(c.neighbour.skin.has_value());
   EXPECT_EQ(c.simulation.engine, Engine::HardSphere);
   EXPECT_EQ(c.hardsphere.tc_time, 0.0);
