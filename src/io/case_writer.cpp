@@ -187,7 +187,7 @@ void write_gas(std::ostream& os, const gas::GasSettings& g, Engine engine) {
 
 void write_coupling(std::ostream& os, const coupling::CouplingSettings& c) {
   os << "\n[coupling]\n"
-     << "drag = " << toml_string(std::string(coupling::drag::to_string(c.drag))) << "\n"
+     << "drag = " << toml_string(c.drag) << "\n"
      << "porosity = " << toml_string(std::string(coupling::to_string(c.porosity.method))) << "\n";
   if (c.porosity.method == coupling::PorosityMethod::porous_cube)
     os << "cube_factor = " << format_double(c.porosity.cube_factor) << "\n";
