@@ -138,7 +138,7 @@ double GasCoupling::superficial_velocity(double t) const {
         c[static_cast<std::size_t>(a1)] = a;
         c[static_cast<std::size_t>(a2)] = b;
         const gas::BoundaryPatch& patch = bc.at(side, c[0], c[1], c[2]);
-        if (patch.type == gas::BoundaryType::inflow)
+        if (patch.normal == gas::NormalRule::inflow)
           flow += gas::inflow_velocity(patch.inflow, t) * area;
       }
   }
