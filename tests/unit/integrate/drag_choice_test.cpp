@@ -5,6 +5,7 @@
 // why; a --set override is named as such. Every name a case may choose sets up a run.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,11 @@ const std::string kCase =
     "[[insert]]\nspecies = \"s\"\ncount = 1\n"
     "[gas]\ncells = [4, 4, 4]\n[coupling]\nd_mean = 0.005\n";
 
+/// The line of `drag = ...` appended to kCase.
+std::string drag_line() {
+  return std::to_string(std::count(kCase.begin(), kCase.end(), '\n') + 1);
+}
+
 /// The message of the InputError that setting up `text` (with `overrides`) throws; "" if none.
 std::string setup_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
   try {
@@ -35,8 +41,7 @@ std::string setup_error(const std::string& text, const std::vector<std::string>&
 
 TEST(DragChoice, UnknownNameIsNamedAtItsKeyWithTheAllowedNames) {
   const std::string msg = setup_error(kCase + "drag = \"wen-yu\"\n");
-  const long line = 17; // the drag line of kCase + it
-  EXPECT_EQ(msg.rfind("case.toml:" + std::to_string(line) + ":", 0), 0u) << msg;
+  EXPECT_EQ(msg.rfind("case.toml:" + drag_line() + ":", 0), 0u) << msg;
   EXPECT_NE(msg.find(": coupling.drag: unknown drag model 'wen-yu' (valid: " +
                      coupling::drag::drag_model_names() + ")"),
             std::string::npos)
@@ -49,7 +54,7 @@ TEST(DragChoice, UnknownNameIsNamedAtItsKeyWithTheAllowedNames) {
 
 TEST(DragChoice, RefusedClosureSaysWhyAtItsKey) {
   const std::string msg = setup_error(kCase + "drag = \"wen_yu_single\"\n");
-  EXPECT_EQ(msg.rfind("case.toml:17:", 0), 0u) << msg;
+  EXPECT_EQ(msg.rfind("case.toml:" + drag_line() + ":", 0), 0u) << msg;
   EXPECT_NE(msg.find(": coupling.drag: \"wen_yu_single\" is not allowed in a coupled case"),
             std::string::npos)
       << msg;
