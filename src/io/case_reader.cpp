@@ -376,6 +376,19 @@ std::string types_taking(unsigned group) {
   return s;
 }
 
+/// The boundary types a case may name in `.type` (periodic follows domain.periodic), in
+/// declaration order.
+const std::vector<gas::BoundaryType>& settable_boundary_types() {
+  static const std::vector<gas::BoundaryType> types = [] {
+    std::vector<gas::BoundaryType> v;
+    for (std::size_t k = 0; k < gas::boundary_type_count; ++k)
+      if (gas::boundary_kind(static_cast<gas::BoundaryType>(k)).chosen_in_case)
+        v.push_back(static_cast<gas::BoundaryType>(k));
+    return v;
+  }();
+  return types;
+}
+
 /// The type (and mode) a boundary key is used with; "" for keys of every type.
 std::string boundary_key_needs(const std::string& key) {
   const unsigned group = boundary_key_group(key);
@@ -1563,15 +1576,9 @@ private:
                           bool region, gas::BoundaryType& type, gas::InflowProfile& in,
                           double& porosity, double& pressure) {
     using gas::BoundaryType;
-    // The types a case may name here (periodic follows domain.periodic), in declaration order.
-    std::vector<BoundaryType> settable;
+    const std::vector<BoundaryType>& settable = settable_boundary_types();
     Keys names;
-    for (std::size_t k = 0; k < gas::boundary_type_count; ++k) {
-      const auto b = static_cast<BoundaryType>(k);
-      if (!gas::boundary_kind(b).chosen_in_case) continue;
-      settable.push_back(b);
-      names.push_back(gas::to_string(b));
-    }
+    for (const BoundaryType b : settable) names.push_back(gas::to_string(b));
     const std::string periodic_because = periodic_axis >= 0
                                              ? "the face is periodic because domain.periodic[" +
                                                    std::to_string(periodic_axis) + "] = true"
