@@ -62,8 +62,7 @@ void print_gas_report(const CaseSpec& spec, const CaseReport& r) {
                      : spec.coupling.scheme == coupling::ExchangeScheme::scheme2 ? 2
                                                                                  : 3;
   fmt::print("coupling           drag {}, porosity {}, exchange scheme {} [Zhu07 §3.2]\n",
-             coupling::drag::to_string(spec.coupling.drag),
-             coupling::to_string(spec.coupling.porosity.method), scheme);
+             spec.coupling.drag, coupling::to_string(spec.coupling.porosity.method), scheme);
   fmt::print("gas time step DT   {:.4g} s", r.flow_time_step);
   if (spec.simulation.engine == Engine::SoftSphere)
     fmt::print(" ({} DEM steps each)", r.steps_per_flow_step);

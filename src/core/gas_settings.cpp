@@ -63,15 +63,31 @@ void check_profile(const InflowProfile& p, const std::string& key) {
     bad(key + ".frequency", "must be >= 0 Hz");
 }
 
+/// "a, b, c": the names of every boundary type.
+std::string boundary_type_names() {
+  std::string s;
+  for (std::size_t t = 0; t < boundary_type_count; ++t)
+    s += std::string(t ? ", " : "") + boundary_kind(static_cast<BoundaryType>(t)).name;
+  return s;
+}
+
 void check_type(BoundaryType t, const std::string& key) {
-  const int m = static_cast<int>(t);
-  if (m < 0 || m > 5)
-    bad(key, "unknown boundary type (wall_free_slip, wall_no_slip, inflow, pressure, outflow, "
-             "periodic)");
+  if (static_cast<std::size_t>(t) >= boundary_type_count)
+    bad(key, "unknown boundary type (" + boundary_type_names() + ")");
 }
 
 void check_pressure(double p, const std::string& key) {
-  if (!(p > 0.0) || !std::isfinite(p)) bad(key, "must be > 0 Pa");
+  check_boundary_pressure(p, key);
+}
+
+/// The check a type declares for its own keys (the pressure's, ...).
+void check_own(BoundaryType t, const BoundaryValues& v, const std::string& key) {
+  if (const auto check = boundary_kind(t).check) check(v, key);
+}
+
+bool is_periodic(BoundaryType t) {
+  return static_cast<std::size_t>(t) < boundary_type_count &&
+         boundary_kind(t).normal == NormalRule::periodic;
 }
 
 void check_porosity(double e, const std::string& key) {
@@ -114,24 +130,25 @@ void validate(const GasSettings& s) {
     if (s.dimension == 2 && (f == front || f == back)) continue;
     check_type(b.type, key + ".type");
     const GasBoundary& other = s.boundary[f ^ 1];
-    if ((b.type == BoundaryType::periodic) != (other.type == BoundaryType::periodic))
+    if (is_periodic(b.type) != is_periodic(other.type))
       bad(key + ".type", std::string("periodic must be set on both ") + side_names[f & ~1] +
                              " and " + side_names[f | 1]);
     check_profile(b.inflow, key);
     check_porosity(b.porosity, key + ".porosity");
-    if (b.type == BoundaryType::pressure) check_pressure(b.pressure, key + ".pressure");
+    check_own(b.type, {b.inflow, b.porosity, b.pressure}, key);
     for (std::size_t r = 0; r < b.regions.size(); ++r) {
       const BoundaryRegion& g = b.regions[r];
       const std::string rk = key + ".regions[" + std::to_string(r) + "]";
       check_type(g.type, rk + ".type");
-      if (g.type == BoundaryType::periodic) bad(rk + ".type", "a region cannot be periodic");
-      if (b.type == BoundaryType::periodic) bad(rk, "a periodic face cannot have regions");
+      if (!boundary_kind(g.type).on_regions)
+        bad(rk + ".type", std::string("a region cannot be ") + boundary_kind(g.type).name);
+      if (is_periodic(b.type)) bad(rk, "a periodic face cannot have regions");
       for (int a = 0; a < 2; ++a)
         if (!(g.hi[a] > g.lo[a]) || !std::isfinite(g.hi[a] - g.lo[a]))
           bad(rk + ".hi", "must exceed .lo in both tangential coordinates");
       check_profile(g.inflow, rk);
       check_porosity(g.porosity, rk + ".porosity");
-      if (g.type == BoundaryType::pressure) check_pressure(g.pressure, rk + ".pressure");
+      check_own(g.type, {g.inflow, g.porosity, g.pressure}, rk);
     }
   }
   if (!(s.tolerance > 0.0)) bad("gas.solver.tolerance", "must be > 0");
@@ -149,21 +166,7 @@ void validate(const GasSettings& s) {
 }
 
 std::string to_string(BoundaryType t) {
-  switch (t) {
-  case BoundaryType::wall_free_slip:
-    return "wall_free_slip";
-  case BoundaryType::wall_no_slip:
-    return "wall_no_slip";
-  case BoundaryType::inflow:
-    return "inflow";
-  case BoundaryType::pressure:
-    return "pressure";
-  case BoundaryType::outflow:
-    return "outflow";
-  case BoundaryType::periodic:
-    return "periodic";
-  }
-  return "?";
+  return static_cast<std::size_t>(t) < boundary_type_count ? boundary_kind(t).name : "?";
 }
 
 std::string to_string(InflowMode m) {
@@ -181,12 +184,10 @@ std::string to_string(InflowMode m) {
 }
 
 BoundaryType boundary_type_from_string(const std::string& name, const std::string& key) {
-  for (BoundaryType t :
-       {BoundaryType::wall_free_slip, BoundaryType::wall_no_slip, BoundaryType::inflow,
-        BoundaryType::pressure, BoundaryType::outflow, BoundaryType::periodic})
-    if (to_string(t) == name) return t;
-  bad(key, "unknown boundary type '" + name +
-               "' (wall_free_slip, wall_no_slip, inflow, pressure, outflow, periodic)");
+  for (std::size_t t = 0; t < boundary_type_count; ++t)
+    if (boundary_kind(static_cast<BoundaryType>(t)).name == name)
+      return static_cast<BoundaryType>(t);
+  bad(key, "unknown boundary type '" + name + "' (" + boundary_type_names() + ")");
 }
 
 InflowMode inflow_mode_from_string(const std::string& name, const std::string& key) {

@@ -1,24 +1,16 @@
 // Settings of the gas phase: plain data in SI units, one field per case-file key
 // (`gas.<field>`; the key of each field is named in its comment). validate() throws
 // fluidem::InputError naming the key. Equations: [Deen07 eq. 7-9], Model A/B [Zhu07 eq. 4-7],
-// ideal gas [Hoomans96 eq. 44], boundary cell types [Hoomans96 Table 1].
+// ideal gas [Hoomans96 eq. 44], boundary cell types [Hoomans96 Table 1] (what each type does:
+// core/gas_boundary_kind.hpp, one file per type in core/gas_boundary/).
 #pragma once
+#include "core/gas_boundary_kind.hpp"
 #include "core/vec3.hpp"
 #include <array>
 #include <string>
 #include <vector>
 
 namespace fluidem::gas {
-
-/// Boundary cell types of [Hoomans96 Table 1], assigned per domain face or per region of a face.
-enum class BoundaryType {
-  wall_free_slip, ///< impermeable wall, zero tangential stress
-  wall_no_slip,   ///< impermeable wall, zero tangential velocity
-  inflow,         ///< prescribed (superficial) inflow velocity, tangential velocity zero
-  pressure,       ///< prescribed pressure on the boundary face, normal velocity free
-  outflow,        ///< continuous outflow: zero normal gradient of all quantities
-  periodic        ///< periodic axis (both faces of the axis must say so)
-};
 
 /// Time dependence of an inflow velocity [Deen07 §6.1].
 enum class InflowMode {

@@ -110,11 +110,11 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
 
 void validate(const CouplingSettings& c, const gas::GasSettings& /*gas: Models A and B both*/) {
   validate(c.porosity);
-  if (const auto why = drag::drag_model_refusal(c.drag); !why.empty())
+  const drag::DragModel m = drag::drag_model_from_string(c.drag);
+  if (const auto why = drag::drag_model_refusal(m); !why.empty())
     throw InputError("coupling.drag = " + std::string(why));
-  if (drag::needs_mean_diameter(c.drag) && !(c.d_mean > 0.0))
-    throw InputError(std::string("coupling.d_mean must be > 0 for drag closure '") +
-                     std::string(drag::to_string(c.drag)) + "'");
+  if (drag::needs_mean_diameter(m) && !(c.d_mean > 0.0))
+    throw InputError(std::string("coupling.d_mean must be > 0 for drag closure '") + c.drag + "'");
 }
 
 void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingSettings& c) {
@@ -147,7 +147,8 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const std::array<bool, 3> periodic = periodic_axes(gs);
   out.face_stencils.resize(stencils ? 3 * n : 0);
   if (stencils) face_pressure_differences(gs, out.face_dp);
-  drag::with_drag_closure(c.drag, [&](auto closure) {
+  // The closure by name, once per call (a few string comparisons per flow step).
+  drag::with_drag_closure(drag::drag_model_from_string(c.drag), [&](auto closure) {
     using C = decltype(closure);
     // Independent per particle: parallel, and the same result for any thread count.
     parallel_for_with(

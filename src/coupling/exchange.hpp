@@ -34,10 +34,11 @@
 
 namespace fluidem::coupling {
 
-/// InputError for: a bad cube factor, a polydisperse closure without d_mean, a closure a case may
-/// not choose (drag::drag_model_refusal: wen_yu_single, a total force, to which this exchange
-/// would add the pressure force a second time). Gas Models A and B and schemes 1, 2, 3 are all
-/// accepted.
+/// InputError for: a bad cube factor, an unknown closure name, a polydisperse closure without
+/// d_mean, a closure a case may not choose (its `refusal`: wen_yu_single, a total force, to which
+/// this exchange would add the pressure force a second time). Gas Models A and B and schemes 1,
+/// 2, 3 are all accepted. (The set-up names the case-file key first:
+/// drag::drag_model_of_case.)
 void validate(const CouplingSettings& c, const gas::GasSettings& gas);
 
 /// Per-particle results of the gas -> particle step (all of size p.size()), and the cell

@@ -3,6 +3,12 @@
 
 namespace fluidem::gas {
 
+BoundaryPatch BoundaryPatch::of(BoundaryType t, const InflowProfile& inflow, double porosity,
+                                double pressure) {
+  const BoundaryKind& k = boundary_kind(t);
+  return {t, inflow, porosity, pressure, k.normal, k.pressure, k.porosity, k.tangential};
+}
+
 BoundaryMap::BoundaryMap(const GasSettings& s, const GasGrid& g) : grid_(g) {
   for (int side = 0; side < 6; ++side) {
     const int axis = side / 2;
@@ -10,11 +16,11 @@ BoundaryMap::BoundaryMap(const GasSettings& s, const GasGrid& g) : grid_(g) {
     GasBoundary b = s.boundary[side];
     if (s.dimension == 2 && axis == 1)
       b = GasBoundary{BoundaryType::wall_free_slip, {}, 0.4, s.initial_pressure, {}};
-    if (b.type == BoundaryType::periodic) periodic_[axis] = true;
+    if (boundary_kind(b.type).normal == NormalRule::periodic) periodic_[axis] = true;
     const int base = static_cast<int>(patches_.size());
-    patches_.push_back({b.type, b.inflow, b.porosity, b.pressure});
+    patches_.push_back(BoundaryPatch::of(b.type, b.inflow, b.porosity, b.pressure));
     for (const BoundaryRegion& r : b.regions)
-      patches_.push_back({r.type, r.inflow, r.porosity, r.pressure});
+      patches_.push_back(BoundaryPatch::of(r.type, r.inflow, r.porosity, r.pressure));
     std::vector<int>& index = index_[side];
     index.assign(static_cast<std::size_t>(g.padded[a1]) * g.padded[a2], base);
     for (int q = 1; q <= g.n[a2]; ++q)
@@ -32,11 +38,11 @@ BoundaryMap::BoundaryMap(const GasSettings& s, const GasGrid& g) : grid_(g) {
   for (int side = 0; side < 6; ++side) {
     tangential_[side].resize(index_[side].size());
     for (std::size_t q = 0; q < index_[side].size(); ++q)
-      tangential_[side][q] = tangential_factor(patches_[index_[side][q]].type);
+      tangential_[side][q] = patches_[index_[side][q]].tangential;
   }
   for (const BoundaryPatch& p : patches_) {
-    any_pressure_ = any_pressure_ || p.type == BoundaryType::pressure;
-    any_outflow_ = any_outflow_ || p.type == BoundaryType::outflow;
+    any_pressure_ = any_pressure_ || p.pressure_rule == GhostRule::prescribed;
+    any_outflow_ = any_outflow_ || p.normal == NormalRule::outflow;
   }
 }
 

@@ -10,12 +10,21 @@
 
 namespace fluidem::gas {
 
-/// What one boundary (ghost) cell is.
+/// What one boundary (ghost) cell is: its type's values, and its type's rules
+/// (core/gas_boundary/<type>.hpp) copied here, so that the per-cell loops read them from the
+/// patch and never ask for the type.
 struct BoundaryPatch {
   BoundaryType type = BoundaryType::wall_no_slip;
-  InflowProfile inflow;       ///< inflow only: superficial velocity into the domain, m/s
-  double porosity = 0.4;      ///< inflow only: ghost-cell porosity
-  double pressure = 101325.0; ///< pressure only: value on the boundary face, Pa
+  InflowProfile inflow;                 ///< inflow only: superficial velocity into the domain, m/s
+  double porosity = 0.4;                ///< a prescribed ghost porosity (inflow)
+  double pressure = 101325.0;           ///< a prescribed pressure on the boundary face, Pa
+  NormalRule normal = NormalRule::wall; ///< BoundaryKind::normal
+  GhostRule pressure_rule = GhostRule::copy; ///< BoundaryKind::pressure
+  GhostRule porosity_rule = GhostRule::copy; ///< BoundaryKind::porosity
+  double tangential = -1.0;                  ///< BoundaryKind::tangential
+  /// The patch of a face or region of type `t` with these values.
+  static BoundaryPatch of(BoundaryType t, const InflowProfile& inflow, double porosity,
+                          double pressure);
 };
 
 class BoundaryMap {
@@ -29,20 +38,15 @@ public:
   const BoundaryPatch& at(int side, int i, int j, int k) const {
     return patches_[index_[side][slot(side, i, j, k)]];
   }
-  /// tangential_factor(at(side, i, j, k).type), from a table (the momentum assembly's hot path).
+  /// at(side, i, j, k).tangential, from a table (the momentum assembly's hot path).
   double tangential_factor_at(int side, int i, int j, int k) const {
     return tangential_[side][slot(side, i, j, k)];
   }
   bool periodic(int axis) const { return periodic_[axis]; }
   /// True if any boundary cell has a prescribed pressure.
   bool any_pressure() const { return any_pressure_; }
+  /// True if any boundary face copies its normal velocity from the interior (outflow).
   bool any_outflow() const { return any_outflow_; }
-
-  /// Ghost velocity factor for a tangential velocity component: ghost = factor * interior
-  /// (-1: zero on the boundary plane; +1: zero normal gradient).
-  static double tangential_factor(BoundaryType t) {
-    return (t == BoundaryType::wall_no_slip || t == BoundaryType::inflow) ? -1.0 : 1.0;
-  }
 
 private:
   /// Index of the ghost cell next to (i, j, k) across `side` in the side's tables: its two

@@ -113,17 +113,18 @@ void GasSolver::init_roles() {
           } else if (bc_.periodic(d)) {
             r = c[d] == 0 ? periodic_copy : solved;
           } else if (c[d] == 0 || c[d] == nd) {
-            switch (bc_.at(2 * d + (c[d] == 0 ? 0 : 1), i, j, k).type) {
-            case BoundaryType::pressure:
+            switch (bc_.at(2 * d + (c[d] == 0 ? 0 : 1), i, j, k).normal) {
+            case NormalRule::pressure:
               r = pressure_face;
               break;
-            case BoundaryType::outflow:
+            case NormalRule::outflow:
               r = outflow;
               break;
-            case BoundaryType::inflow:
+            case NormalRule::inflow:
               r = inflow;
               break;
-            default:
+            case NormalRule::wall:
+            case NormalRule::periodic: // not on a periodic axis (above)
               r = fixed;
               break;
             }
@@ -134,11 +135,12 @@ void GasSolver::init_roles() {
 }
 
 // The boundary work lists: the same grid sweeps as the original per-call loops, recorded once.
-// Ghost porosity and pressure [Hoomans96 §3.5]: inflow cells take the distributor porosity,
-// other cells copy the adjacent interior porosity; prescribed-pressure cells hold
-// 2 p_b - p_interior (p_b on the boundary face), the others copy the interior pressure.
-// Normal velocity: outflow faces copy the adjacent interior face, walls 0, inflow faces
-// U(t)/eps_ghost into the domain; tangential ghost velocities: factor * interior.
+// The rules each boundary type declares (core/gas_boundary/<type>.hpp), one implementation per
+// kind of rule [Hoomans96 Table 1, §3.5]. Ghost porosity and pressure (GhostRule): a prescribed
+// porosity is the patch's (the distributor's), a prescribed pressure holds 2 p_b - p_interior
+// (p_b on the boundary face), the others copy the interior value. Normal velocity (NormalRule):
+// outflow faces copy the adjacent interior face, walls 0, inflow faces U(t)/eps_ghost into the
+// domain, pressure faces are solved; tangential ghost velocities: factor * interior.
 void GasSolver::build_boundary_lists() {
   for (int d = 0; d < 3; ++d) {
     if (bc_.periodic(d)) continue;
@@ -182,8 +184,7 @@ void GasSolver::build_boundary_lists() {
             const bool low = c[e] == 0;
             const long q = g_.idx(i, j, k);
             const BoundaryPatch& b = bc_.at(2 * e + (low ? 0 : 1), i, j, k);
-            tangential_ghosts_[d].push_back(
-                {q, low ? q + se : q - se, BoundaryMap::tangential_factor(b.type)});
+            tangential_ghosts_[d].push_back({q, low ? q + se : q - se, b.tangential});
           }
     }
   }
@@ -198,7 +199,7 @@ void GasSolver::build_boundary_lists() {
           const bool low = c[d] == 0;
           const long q = g_.idx(i, j, k), in = low ? q + sd : q - sd;
           const bool dirichlet =
-              bc_.at(2 * d + (low ? 0 : 1), i, j, k).type == BoundaryType::pressure;
+              bc_.at(2 * d + (low ? 0 : 1), i, j, k).pressure_rule == GhostRule::prescribed;
           pc_ghosts_.push_back({q, in, dirichlet ? -1.0 : 1.0});
         }
   }
@@ -250,14 +251,14 @@ void fill_periodic_ghosts(const GasGrid& g, const std::array<bool, 3>& periodic,
   }
 }
 
-// Ghost porosity and pressure [Hoomans96 §3.5]: inflow cells take the distributor porosity,
-// other cells copy the adjacent interior porosity; prescribed-pressure cells hold
-// 2 p_b - p_interior (p_b on the boundary face), the others copy the interior pressure.
+// Ghost porosity and pressure [Hoomans96 §3.5], by the patch's GhostRule: prescribed porosity
+// (inflow: the distributor's) or a copy of the interior; prescribed pressure 2 p_b - p_interior
+// (p_b on the boundary face) or a copy of the interior.
 void GasSolver::apply_scalar_bcs() {
   for (const ScalarGhost& g : scalar_ghosts_) {
     const BoundaryPatch& b = *g.patch;
-    eps_[g.q] = b.type == BoundaryType::inflow ? b.porosity : eps_[g.in];
-    p_[g.q] = b.type == BoundaryType::pressure ? 2.0 * b.pressure - p_[g.in] : p_[g.in];
+    eps_[g.q] = b.porosity_rule == GhostRule::prescribed ? b.porosity : eps_[g.in];
+    p_[g.q] = b.pressure_rule == GhostRule::prescribed ? 2.0 * b.pressure - p_[g.in] : p_[g.in];
   }
   fill_periodic(eps_);
   fill_periodic(p_);
@@ -391,7 +392,8 @@ void GasSolver::set_inflow_ghost_pressures() {
   for (const std::size_t k : inflow_layer_ghosts_) {
     const ScalarGhost& sg = scalar_ghosts_[k];
     const auto q = static_cast<std::size_t>(sg.q), in = static_cast<std::size_t>(sg.in);
-    p_[q] = sg.patch->type == BoundaryType::pressure ? 2.0 * sg.patch->pressure - p_[in] : p_[in];
+    p_[q] = sg.patch->pressure_rule == GhostRule::prescribed ? 2.0 * sg.patch->pressure - p_[in]
+                                                             : p_[in];
   }
   fill_periodic(p_);
 }

@@ -34,8 +34,11 @@ gas::GasSettings GasCoupling::complete_settings(const CaseSpec& spec) {
 GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
     : probes_(spec.output.probes), settings_(spec.coupling) {
   const gas::GasSettings gs = complete_settings(spec);
+  // The closure the case names, checked against the registry at the key's location.
+  const coupling::drag::DragModel drag =
+      coupling::drag::drag_model_of_case(settings_.drag, spec.where("coupling.drag"));
   // Polydisperse closures without a given mean diameter: the Sauter mean of the particles.
-  if (coupling::drag::needs_mean_diameter(settings_.drag) && settings_.d_mean == 0.0) {
+  if (coupling::drag::needs_mean_diameter(drag) && settings_.d_mean == 0.0) {
     double s3 = 0.0, s2 = 0.0;
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double d = 2.0 * p.radius[i];
@@ -135,7 +138,7 @@ double GasCoupling::superficial_velocity(double t) const {
         c[static_cast<std::size_t>(a1)] = a;
         c[static_cast<std::size_t>(a2)] = b;
         const gas::BoundaryPatch& patch = bc.at(side, c[0], c[1], c[2]);
-        if (patch.type == gas::BoundaryType::inflow)
+        if (patch.normal == gas::NormalRule::inflow)
           flow += gas::inflow_velocity(patch.inflow, t) * area;
       }
   }

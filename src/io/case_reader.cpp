@@ -360,28 +360,64 @@ const NumRule kTime{Bound::Positive, "s"};
 // ---------------------------------------------------------------------------------------------
 // Gas boundaries: which type and mode each key of a face or region belongs to.
 
+/// The group of a boundary key (gas::BoundaryKeys; the types declare which groups they take,
+/// core/gas_boundary/); no_keys for keys of every type.
+unsigned boundary_key_group(const std::string& key) {
+  if (key == "porosity") return gas::porosity_key;
+  if (key == "pressure") return gas::pressure_key;
+  if (key == "mode" || key == "velocity" || key == "background" || key == "start" ||
+      key == "duration" || key == "amplitude" || key == "frequency" || key == "times" ||
+      key == "velocities")
+    return gas::inflow_keys;
+  return gas::no_keys;
+}
+
+/// `type = "a"` (or `type = "a" or "b"`): the types a case may choose that take `group`.
+std::string types_taking(unsigned group) {
+  std::string s;
+  for (std::size_t t = 0; t < gas::boundary_type_count; ++t) {
+    const gas::BoundaryKind& k = gas::boundary_kind(static_cast<gas::BoundaryType>(t));
+    if (k.chosen_in_case && (k.keys & group) != 0)
+      s += (s.empty() ? "type = " : " or ") + in_quotes(k.name);
+  }
+  return s;
+}
+
+/// The boundary types a case may name in `.type` (periodic follows domain.periodic), in
+/// declaration order.
+const std::vector<gas::BoundaryType>& settable_boundary_types() {
+  static const std::vector<gas::BoundaryType> types = [] {
+    std::vector<gas::BoundaryType> v;
+    for (std::size_t k = 0; k < gas::boundary_type_count; ++k)
+      if (gas::boundary_kind(static_cast<gas::BoundaryType>(k)).chosen_in_case)
+        v.push_back(static_cast<gas::BoundaryType>(k));
+    return v;
+  }();
+  return types;
+}
+
 /// The type (and mode) a boundary key is used with; "" for keys of every type.
 std::string boundary_key_needs(const std::string& key) {
-  if (key == "velocity")
-    return "type = \"inflow\" and mode = \"constant\", \"pulse\" or \"pulsation\"";
-  if (key == "mode" || key == "porosity") return "type = \"inflow\"";
+  const unsigned group = boundary_key_group(key);
+  if (group == gas::no_keys) return "";
+  const std::string types = types_taking(group);
+  if (key == "velocity") return types + " and mode = \"constant\", \"pulse\" or \"pulsation\"";
   if (key == "background" || key == "start" || key == "duration")
-    return "type = \"inflow\" and mode = \"pulse\"";
-  if (key == "amplitude" || key == "frequency") return "type = \"inflow\" and mode = \"pulsation\"";
-  if (key == "times" || key == "velocities") return "type = \"inflow\" and mode = \"table\"";
-  if (key == "pressure") return "type = \"pressure\"";
-  return "";
+    return types + " and mode = \"pulse\"";
+  if (key == "amplitude" || key == "frequency") return types + " and mode = \"pulsation\"";
+  if (key == "times" || key == "velocities") return types + " and mode = \"table\"";
+  return types;
 }
 
 bool boundary_key_applies(const std::string& key, gas::BoundaryType t, gas::InflowMode m) {
-  const bool inflow = t == gas::BoundaryType::inflow;
-  if (key == "velocity") return inflow && m != gas::InflowMode::table;
-  if (key == "mode" || key == "porosity") return inflow;
+  const unsigned group = boundary_key_group(key);
+  if (group == gas::no_keys) return true;
+  if ((gas::boundary_kind(t).keys & group) == 0) return false;
+  if (key == "velocity") return m != gas::InflowMode::table;
   if (key == "background" || key == "start" || key == "duration")
-    return inflow && m == gas::InflowMode::pulse;
-  if (key == "amplitude" || key == "frequency") return inflow && m == gas::InflowMode::pulsation;
-  if (key == "times" || key == "velocities") return inflow && m == gas::InflowMode::table;
-  if (key == "pressure") return t == gas::BoundaryType::pressure;
+    return m == gas::InflowMode::pulse;
+  if (key == "amplitude" || key == "frequency") return m == gas::InflowMode::pulsation;
+  if (key == "times" || key == "velocities") return m == gas::InflowMode::table;
   return true;
 }
 
@@ -1572,9 +1608,7 @@ private:
                           bool region, gas::BoundaryType& type, gas::InflowProfile& in,
                           double& porosity, double& pressure) {
     using gas::BoundaryType;
-    static const std::array<BoundaryType, 5> settable = {
-        BoundaryType::wall_free_slip, BoundaryType::wall_no_slip, BoundaryType::inflow,
-        BoundaryType::pressure, BoundaryType::outflow};
+    const std::vector<BoundaryType>& settable = settable_boundary_types();
     Keys names;
     for (const BoundaryType b : settable) names.push_back(gas::to_string(b));
     const std::string periodic_because = periodic_axis >= 0
@@ -1604,7 +1638,7 @@ private:
         type = settable[static_cast<std::size_t>(it - names.begin())];
       }
     }
-    const bool inflow = type == BoundaryType::inflow;
+    const bool inflow = (gas::boundary_kind(type).keys & gas::inflow_keys) != 0;
     if (inflow) {
       std::vector<std::pair<std::string, gas::InflowMode>> modes;
       for (const gas::InflowMode m : {gas::InflowMode::constant, gas::InflowMode::pulse,
@@ -1667,17 +1701,10 @@ private:
                        "a [gas] table)");
     coupling::CouplingSettings& c = spec_.coupling;
     const std::string p = "coupling";
-    if (const auto e = find(*t, "drag", p + ".drag")) {
-      const std::string name =
-          str_value(*e, p + ".drag", "one of " + coupling::drag::drag_model_names());
-      try {
-        c.drag = coupling::drag::drag_model_from_string(name);
-      } catch (const InputError& ex) {
-        throw InputError(e->where, p + ".drag", ex.what());
-      }
-      if (const auto why = coupling::drag::drag_model_refusal(c.drag); !why.empty())
-        throw InputError(e->where, p + ".drag", std::string(why));
-    }
+    // The closure's name: the coupling module checks it against its registry at set-up, at this
+    // key's location (coupling::drag::drag_model_of_case), so that io knows no drag law.
+    if (const auto e = find(*t, "drag", p + ".drag"))
+      c.drag = str_value(*e, p + ".drag", "the name of a drag closure (docs/drag.md)");
     std::vector<std::pair<std::string, coupling::PorosityMethod>> methods;
     for (const auto m : {coupling::PorosityMethod::cell, coupling::PorosityMethod::porous_cube})
       methods.emplace_back(coupling::to_string(m), m);

@@ -111,7 +111,8 @@ std::string vec3(const Vec3& v) {
 /// which therefore hold their defaults.
 void write_boundary_keys(std::ostream& os, gas::BoundaryType type, const gas::InflowProfile& in,
                          double porosity, double pressure) {
-  if (type == gas::BoundaryType::inflow) {
+  const unsigned keys = gas::boundary_kind(type).keys;
+  if ((keys & gas::inflow_keys) != 0) {
     os << "mode = " << toml_string(gas::to_string(in.mode)) << "\n";
     if (in.mode != gas::InflowMode::table)
       os << "velocity = " << format_double(in.velocity) << "  # m/s, superficial\n";
@@ -131,10 +132,9 @@ void write_boundary_keys(std::ostream& os, gas::BoundaryType type, const gas::In
     if (in.mode == gas::InflowMode::pulsation)
       os << "amplitude = " << format_double(in.amplitude) << "  # m/s\n"
          << "frequency = " << format_double(in.frequency) << "  # Hz\n";
-    os << "porosity = " << format_double(porosity) << "\n";
   }
-  if (type == gas::BoundaryType::pressure)
-    os << "pressure = " << format_double(pressure) << "  # Pa\n";
+  if ((keys & gas::porosity_key) != 0) os << "porosity = " << format_double(porosity) << "\n";
+  if ((keys & gas::pressure_key) != 0) os << "pressure = " << format_double(pressure) << "  # Pa\n";
 }
 
 /// [gas], [gas.solver], [gas.boundary.*] with their regions. The dimension, box, depth, gravity
@@ -175,7 +175,7 @@ void write_gas(std::ostream& os, const gas::GasSettings& g, Engine engine) {
     const std::string name = std::string("gas.boundary.") + gas::side_names[f];
     os << "\n[" << name << "]\n"
        << "type = " << toml_string(gas::to_string(b.type))
-       << (b.type == gas::BoundaryType::periodic ? "  # from domain.periodic" : "") << "\n";
+       << (gas::boundary_kind(b.type).chosen_in_case ? "" : "  # from domain.periodic") << "\n";
     write_boundary_keys(os, b.type, b.inflow, b.porosity, b.pressure);
     for (const gas::BoundaryRegion& r : b.regions) {
       os << "\n[[" << name << ".region]]\n"
@@ -189,7 +189,7 @@ void write_gas(std::ostream& os, const gas::GasSettings& g, Engine engine) {
 
 void write_coupling(std::ostream& os, const coupling::CouplingSettings& c) {
   os << "\n[coupling]\n"
-     << "drag = " << toml_string(std::string(coupling::drag::to_string(c.drag))) << "\n"
+     << "drag = " << toml_string(c.drag) << "\n"
      << "porosity = " << toml_string(std::string(coupling::to_string(c.porosity.method))) << "\n";
   if (c.porosity.method == coupling::PorosityMethod::porous_cube)
     os << "cube_factor = " << format_double(c.porosity.cube_factor) << "\n";

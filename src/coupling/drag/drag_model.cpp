@@ -3,6 +3,43 @@
 
 namespace fluidem::coupling::drag {
 
+std::string_view to_string(DragModel m) {
+  return with_drag_closure(m, [](auto c) { return std::string_view(decltype(c)::name); });
+}
+
+std::string_view drag_model_refusal(DragModel m) {
+  return with_drag_closure(m, [](auto c) { return detail::refusal_of<decltype(c)>(); });
+}
+
+std::string drag_model_names() {
+  std::string s;
+  for (DragModel m : all_drag_models) {
+    if (!drag_model_refusal(m).empty()) continue;
+    if (!s.empty()) s += ", ";
+    s += to_string(m);
+  }
+  return s;
+}
+
+DragModel drag_model_from_string(std::string_view name) {
+  for (DragModel m : all_drag_models)
+    if (to_string(m) == name) return m;
+  throw InputError("unknown drag model '" + std::string(name) + "' (valid: " + drag_model_names() +
+                   ")");
+}
+
+DragModel drag_model_of_case(std::string_view name, const SourceLocation& where) {
+  DragModel m;
+  try {
+    m = drag_model_from_string(name);
+  } catch (const InputError& e) {
+    throw InputError(where, "coupling.drag", e.what());
+  }
+  if (const auto why = drag_model_refusal(m); !why.empty())
+    throw InputError(where, "coupling.drag", std::string(why));
+  return m;
+}
+
 void validate(DragModel m, const DragInput& in) {
   with_drag_closure(m, [&](auto c) { decltype(c)::validate(in); });
 }

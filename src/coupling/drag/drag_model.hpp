@@ -1,5 +1,7 @@
-// Drag closure registry: the name in the case file -> DragModel -> one closure type, chosen once
-// per run so the per-particle loop is a template instantiation that inlines (no virtual call).
+// Drag closure registry: the one list of closures (`Closures` below), and what is found through
+// it: the name in the case file -> DragModel (the closure's place in the list) -> its type, chosen
+// once per run so that the per-particle loop is a template instantiation that inlines (no virtual
+// call).
 //
 //   DragModel m = drag_model_from_string("beetstra");     // set-up; unknown name -> InputError
 //   validate(m, typical_input);                           // set-up; bad eps/d/mu -> InputError
@@ -8,14 +10,22 @@
 //     for (...) k[i] = C::k(in_i);                        // hot loop, inlined
 //   });
 //
-// Every closure type C has: C::name, C::needs_mean_diameter, C::validate(in), C::k(in) =
-// beta/(1 - eps) and C::beta(in), in the convention of drag_common.hpp.
+// Every closure type C (one file in this folder) has: C::name (its case-file name),
+// C::needs_mean_diameter, C::validate(in), C::k(in) = beta/(1 - eps) and C::beta(in), in the
+// convention of drag_common.hpp; and, if a case may not choose it, C::refusal (why, and what to
+// use instead). The case (core/coupling_settings.hpp) holds only the name, as a string.
+//
+// Adding a closure: its file here, its #include and its entry in `Closures` below (two lines),
+// tests/models/drag/<name>.toml (tools/drag_reference.py) and its row in docs/drag.md.
 #pragma once
 #include <array>
+#include <cstddef>
 #include <string>
 #include <string_view>
+#include <tuple>
+#include <utility>
 
-#include "core/coupling_settings.hpp"
+#include "core/error.hpp"
 #include "coupling/drag/beetstra.hpp"
 #include "coupling/drag/chang_joint.hpp"
 #include "coupling/drag/di_felice.hpp"
@@ -30,36 +40,75 @@
 
 namespace fluidem::coupling::drag {
 
-/// Calls f(Closure{}) with the closure type of m; returns what f returns. The switch runs once;
+/// The closures, in the order names are listed in messages.
+using Closures = std::tuple<Ergun, WenYu, WenYuSingle, ErgunWenYuSwitch, ErgunWenYuMin,
+                            HillKochLadd, Beetstra, BeetstraPoly, DiFelice, KochHill, ChangJoint>;
+
+inline constexpr std::size_t drag_model_count = std::tuple_size_v<Closures>;
+
+/// A closure of the registry: its place in `Closures` (opaque outside this file).
+class DragModel {
+public:
+  constexpr DragModel() = default;
+  constexpr std::size_t index() const { return index_; }
+  friend constexpr bool operator==(DragModel, DragModel) = default;
+
+private:
+  constexpr explicit DragModel(std::size_t i) : index_(i) {}
+  template <std::size_t... I>
+  friend constexpr std::array<DragModel, sizeof...(I)> make_drag_models(std::index_sequence<I...>);
+  std::size_t index_ = 0;
+};
+
+template <std::size_t... I>
+constexpr std::array<DragModel, sizeof...(I)> make_drag_models(std::index_sequence<I...>) {
+  return {DragModel(I)...};
+}
+
+/// Every closure, in the order of `Closures`.
+inline constexpr std::array<DragModel, drag_model_count> all_drag_models =
+    make_drag_models(std::make_index_sequence<drag_model_count>{});
+
+namespace detail {
+template <class C>
+constexpr std::string_view refusal_of() {
+  if constexpr (requires { C::refusal; })
+    return C::refusal;
+  else
+    return {};
+}
+
+template <std::size_t I, class F>
+decltype(auto) dispatch(std::size_t i, F& f) {
+  using C = std::tuple_element_t<I, Closures>;
+  if constexpr (I + 1 == drag_model_count) {
+    return f(C{}); // the last: every index below it was tried
+  } else {
+    if (i == I) return f(C{});
+    return dispatch<I + 1>(i, f);
+  }
+}
+} // namespace detail
+
+/// Calls f(Closure{}) with the closure type of m; returns what f returns. The choice runs once;
 /// inside f the closure's functions are known at compile time.
 template <class F>
 decltype(auto) with_drag_closure(DragModel m, F&& f) {
-  switch (m) {
-  case DragModel::ergun:
-    return f(Ergun{});
-  case DragModel::wen_yu:
-    return f(WenYu{});
-  case DragModel::wen_yu_single:
-    return f(WenYuSingle{});
-  case DragModel::ergun_wen_yu:
-    return f(ErgunWenYuSwitch{});
-  case DragModel::ergun_wen_yu_min:
-    return f(ErgunWenYuMin{});
-  case DragModel::hill_koch_ladd:
-    return f(HillKochLadd{});
-  case DragModel::beetstra:
-    return f(Beetstra{});
-  case DragModel::beetstra_poly:
-    return f(BeetstraPoly{});
-  case DragModel::di_felice:
-    return f(DiFelice{});
-  case DragModel::koch_hill:
-    return f(KochHill{});
-  case DragModel::chang_joint:
-    return f(ChangJoint{});
-  }
-  return f(Ergun{}); // unreachable: every enumerator is handled above
+  return detail::dispatch<0>(m.index(), f);
 }
+
+/// The case-file name of m ("ergun", "wen_yu", ...): the closure's own `name`.
+std::string_view to_string(DragModel m);
+/// Why a case may not choose m (the closure's `refusal`); empty if it may.
+std::string_view drag_model_refusal(DragModel m);
+/// Comma-separated list of the names a case may choose (those without a refusal), for error
+/// messages.
+std::string drag_model_names();
+/// The closure named `name`; InputError "unknown drag model 'x' (valid: ...)" if there is none.
+DragModel drag_model_from_string(std::string_view name);
+/// The closure a case names in `coupling.drag` (set-up): an unknown name or a refused closure is
+/// an InputError at `where` naming the key coupling.drag and what is allowed.
+DragModel drag_model_of_case(std::string_view name, const SourceLocation& where);
 
 /// Set-up check of one representative input for model m (InputError naming the quantity).
 void validate(DragModel m, const DragInput& in);

@@ -22,6 +22,7 @@
 // eps = 1 is the isolated sphere (Schiller-Naumann), F -> 1 as Re_p -> 0.
 #pragma once
 #include <cmath>
+#include <string_view>
 
 #include "coupling/drag/drag_common.hpp"
 
@@ -30,6 +31,19 @@ namespace fluidem::coupling::drag {
 struct WenYuSingle {
   static constexpr const char* name = "wen_yu_single";
   static constexpr bool needs_mean_diameter = false;
+  /// A case may not choose it: the exchange (coupling/exchange.hpp) always adds -V grad p
+  /// (Model A) or the buoyancy term with the drag divided by eps (Model B), so the pressure force
+  /// would be counted twice. The closure stays (tests/models/drag/wen_yu_single.toml) for an
+  /// exchange form that omits the pressure force.
+  static constexpr std::string_view refusal =
+      "\"wen_yu_single\" is not allowed in a coupled case: it is the total gas force on a "
+      "particle, drag and pressure together [Hoomans96 eq. 34-37], meant to be used without "
+      "a pressure-gradient force, but the exchange always adds one (-V grad p in gas.model = "
+      "\"A\", the drag divided by the porosity plus the buoyancy term in \"B\"), so the "
+      "pressure force would be counted twice (about 1/eps times the right force). Use "
+      "\"wen_yu\" (the same Wen & Yu correlation as a drag coefficient [Deen07 eq. 4], which "
+      "the exchange completes with the pressure force) or \"ergun_wen_yu\" (the closure of "
+      "the gas phase of [Hoomans96 eq. 45-46])";
   static void validate(const DragInput& in) { validate_drag_input(in, name); }
 
   /// K = |F_d| / (V_p |u - v|), kg m^-3 s^-1.

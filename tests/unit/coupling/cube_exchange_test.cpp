@@ -163,7 +163,7 @@ std::array<double, 3> fine_grid_bed(PorosityMethod method, double U) {
         p.add({(i + 0.5) * d, (j + 0.5) * d, (k + 0.5) * sz}, {0, 0, 0}, 0.5 * d, 2500.0, 0,
               p.size());
   CouplingSettings c;
-  c.drag = drag::DragModel::ergun;
+  c.drag = "ergun";
   c.porosity.method = method;
   c.porosity.cube_factor = 3.0;
   validate(c, s);

@@ -131,7 +131,7 @@ TEST(ExchangeSchemes, UniformStateAllSchemesAgree) {
     for (double& e : gs.porosity()) e = 0.6;
     CouplingSettings c;
     c.scheme = schemes[sc];
-    c.drag = drag::DragModel::ergun_wen_yu;
+    c.drag = "ergun_wen_yu";
     validate(c, s);
     ParticleGasForces f;
     compute_particle_forces(gs, p, c, f);

@@ -26,7 +26,7 @@ using namespace fluidem;
 using namespace fluidem::coupling;
 
 namespace {
-void run(drag::DragModel model, gas::PressureModel gas_model = gas::PressureModel::A,
+void run(const std::string& model, gas::PressureModel gas_model = gas::PressureModel::A,
          ExchangeScheme scheme = ExchangeScheme::scheme3) {
   const bool model_b = gas_model == gas::PressureModel::B;
   gas::GasSettings s;
@@ -102,8 +102,8 @@ void run(drag::DragModel model, gas::PressureModel gas_model = gas::PressureMode
       const double rel = std::abs(sum_p + sum_g) / abs_p;
       std::printf("%s, Model %s, scheme %d, component %d: sum particle force %.6e N, sum gas "
                   "source %.6e N, rel. imbalance %.2e\n",
-                  std::string(drag::to_string(model)).c_str(), model_b ? "B" : "A",
-                  static_cast<int>(scheme) + 1, d, sum_p, sum_g, rel);
+                  model.c_str(), model_b ? "B" : "A", static_cast<int>(scheme) + 1, d, sum_p, sum_g,
+                  rel);
       EXPECT_LT(rel, 1e-10);
     }
   }
@@ -111,17 +111,17 @@ void run(drag::DragModel model, gas::PressureModel gas_model = gas::PressureMode
 } // namespace
 
 TEST(NewtonThirdLaw, Scheme3ErgunWenYu) {
-  run(drag::DragModel::ergun_wen_yu);
+  run("ergun_wen_yu");
 }
 TEST(NewtonThirdLaw, Scheme3Beetstra) {
-  run(drag::DragModel::beetstra);
+  run("beetstra");
 }
 
 TEST(NewtonThirdLaw, ModelBScheme3ErgunWenYu) {
-  run(drag::DragModel::ergun_wen_yu, gas::PressureModel::B, ExchangeScheme::scheme3);
+  run("ergun_wen_yu", gas::PressureModel::B, ExchangeScheme::scheme3);
 }
 TEST(NewtonThirdLaw, ModelBScheme2ErgunWenYu) {
-  run(drag::DragModel::ergun_wen_yu, gas::PressureModel::B, ExchangeScheme::scheme2);
+  run("ergun_wen_yu", gas::PressureModel::B, ExchangeScheme::scheme2);
 }
 
 TEST(NewtonThirdLaw, SchemesAndModelBAreAccepted) {

@@ -71,7 +71,7 @@ Result run(PorosityMethod method, double U, gas::PressureModel model = gas::Pres
         p.add({(i + 0.5) * d, (j + 0.5) * d, (k + 0.5) * sz}, {0, 0, 0}, 0.5 * d, 2500.0, 0,
               p.size());
   CouplingSettings c;
-  c.drag = drag::DragModel::ergun;
+  c.drag = "ergun";
   c.porosity.method = method;
   c.porosity.cube_factor = 3.0;
   validate(c, s);

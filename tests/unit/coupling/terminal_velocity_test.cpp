@@ -34,7 +34,7 @@ TEST(TerminalVelocity, SingleBeadInStillAir) {
   ParticleStore p;
   p.add({0.0213, 0.0187, 0.38}, {0, 0, 0}, 0.5 * d, rho_p, 0, 0);
   CouplingSettings c;
-  c.drag = drag::DragModel::wen_yu;
+  c.drag = "wen_yu";
   validate(c, s);
   update_porosity(gs, p, c);
   gs.sync_old_porosity();

@@ -1,0 +1,25 @@
+// No-slip wall [Hoomans96 Table 1]: impermeable, zero tangential velocity on the wall (the ghost
+// holds minus the interior value); the scalars have zero normal gradient.
+#pragma once
+#include "core/gas_boundary_kind.hpp"
+
+namespace fluidem::gas {
+
+template <>
+struct BoundaryKindOf<BoundaryType::wall_no_slip> {
+  static constexpr BoundaryKind kind{
+      .name = "wall_no_slip",
+      .source = "[Hoomans96 Table 1]",
+      .normal = NormalRule::wall,
+      .tangential = -1.0, // zero on the wall
+      .pressure = GhostRule::copy,
+      .porosity = GhostRule::copy,
+      .lets_gas_through = false,
+      .chosen_in_case = true,
+      .on_regions = true,
+      .keys = no_keys,
+      .check = nullptr,
+  };
+};
+
+} // namespace fluidem::gas

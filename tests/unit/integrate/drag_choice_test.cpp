@@ -1,0 +1,79 @@
+// coupling.drag names a closure of the registry (coupling/drag/drag_model.hpp). The case keeps
+// the name as a string (io and core know no drag law); the coupling module checks it when the
+// run is set up, at the key's source location: an unknown name is exit 2 at file:line:col with
+// the key and every name a case may choose; a closure that refuses a case (wen_yu_single) says
+// why; a --set override is named as such. Every name a case may choose sets up a run.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "coupling/drag/drag_model.hpp"
+#include "integrate/simulation.hpp"
+#include "io/case_reader.hpp"
+
+namespace fluidem {
+namespace {
+
+const std::string kCase =
+    "[simulation]\nengine = \"hard_sphere\"\nend_time = 0.01\ntime_step = 1e-3\n"
+    "[domain]\nlo = [0, 0, 0]\nhi = [0.04, 0.04, 0.04]\n"
+    "[[species]]\nname = \"s\"\ndiameter = 0.005\ndensity = 2700\n"
+    "[[insert]]\nspecies = \"s\"\ncount = 1\n"
+    "[gas]\ncells = [4, 4, 4]\n[coupling]\nd_mean = 0.005\n";
+
+/// The line of `drag = ...` appended to kCase.
+std::string drag_line() {
+  return std::to_string(std::count(kCase.begin(), kCase.end(), '\n') + 1);
+}
+
+/// The message of the InputError that setting up `text` (with `overrides`) throws; "" if none.
+std::string setup_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    Simulation sim(read_case_string(text, "case.toml", overrides));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DragChoice, UnknownNameIsNamedAtItsKeyWithTheAllowedNames) {
+  const std::string msg = setup_error(kCase + "drag = \"wen-yu\"\n");
+  EXPECT_EQ(msg.rfind("case.toml:" + drag_line() + ":", 0), 0u) << msg;
+  EXPECT_NE(msg.find(": coupling.drag: unknown drag model 'wen-yu' (valid: " +
+                     coupling::drag::drag_model_names() + ")"),
+            std::string::npos)
+      << msg;
+  for (const auto m : coupling::drag::all_drag_models) {
+    if (!coupling::drag::drag_model_refusal(m).empty()) continue;
+    EXPECT_NE(msg.find(std::string(coupling::drag::to_string(m))), std::string::npos) << msg;
+  }
+}
+
+TEST(DragChoice, RefusedClosureSaysWhyAtItsKey) {
+  const std::string msg = setup_error(kCase + "drag = \"wen_yu_single\"\n");
+  EXPECT_EQ(msg.rfind("case.toml:" + drag_line() + ":", 0), 0u) << msg;
+  EXPECT_NE(msg.find(": coupling.drag: \"wen_yu_single\" is not allowed in a coupled case"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("Use \"wen_yu\""), std::string::npos) << msg;
+}
+
+TEST(DragChoice, OverrideIsNamedAsSuch) {
+  const std::string msg = setup_error(kCase, {"coupling.drag=gidaspow"});
+  EXPECT_EQ(msg.rfind("--set: coupling.drag: unknown drag model 'gidaspow' (valid: ", 0), 0u)
+      << msg;
+}
+
+TEST(DragChoice, EveryAllowedClosureSetsUpARun) {
+  for (const auto m : coupling::drag::all_drag_models) {
+    if (!coupling::drag::drag_model_refusal(m).empty()) continue;
+    const std::string name(coupling::drag::to_string(m));
+    EXPECT_EQ(setup_error(kCase + "drag = \"" + name + "\"\n"), "") << name;
+  }
+}
+
+} // namespace
+} // namespace fluidem
