@@ -125,7 +125,8 @@ double shortest_possible_contact(const CaseSpec& spec, const ParticleStore& p,
 
 /// Overlap under the bed's own weight: a bottom particle carries the column above it,
 /// F = m g h / d with h the height the particles fill at packing fraction 0.6 (3-D) or area
-/// fraction 0.82 (2-D); delta = F/k_n (linear) or (F/K)^{2/3} (Hertz, against the floor).
+/// fraction 0.82 (2-D); delta from the normal model's overlap_under (its declaration), against the
+/// floor.
 double expected_overlap_ratio(const CaseSpec& spec, const ParticleStore& p, const ContactTable& t) {
   const auto& g = spec.simulation.gravity;
   const double gabs = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
