@@ -60,8 +60,8 @@ constexpr int kHistoryWidth =
 
 /// `flag` as 0 or 1 in an integer register that the compiler cannot see through: in a loop
 /// that adds it to a counter (the contact walk's batch fill) GCC may otherwise branch on the
-/// compare it comes from, which is taken about every other time (the walk over a slab's
-/// entries ran 15% slower so).
+/// compare it comes from, which is taken about every other time (a mispredicted branch per
+/// entry; bench/RESULTS.md).
 [[gnu::always_inline]] inline int opaque_flag(bool flag) {
   int t = flag ? 1 : 0;
   __asm__("" : "+r"(t));
@@ -100,7 +100,7 @@ enum class Uniformity {
   PerContact, ///< nothing: each contact's parameters through b.params
   Params,     ///< the parameters params[0] (one species; walls of one material)
   Particles,  ///< those, and every particle has the same radius and mass (a monodisperse bed):
-              ///< the batch's radius and inverse mass columns are not filled (bed10k: +5.8%)
+              ///< the batch's radius and inverse mass columns are not filled
 };
 
 /// Pass 2 of the contact loop: evaluate the batch's contacts, several at once (see compute()).
@@ -718,8 +718,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // releases its history.
   // Prefetch: the partners' lines ahead of the walk, in beds of more than kPrefetchParticles
   // (their packed view, 96 bytes a particle, and the list outgrow the L2 and L3 caches). Below,
-  // the prefetch address alone cost 11 of the walk's ~76 instructions per entry: without it
-  // bed10k took 12% fewer instructions in the walk and ran ~2% faster (bench/RESULTS.md).
+  // computing the prefetch address costs more than it saves (bench/RESULTS.md).
   constexpr std::size_t kPrefetchParticles = 32768;
   auto gather_row = [&, view, partner, row_offset, species, pair_history, any_periodic,
                      last]<bool Prefetch>(std::size_t i, Batch& b, ContactStats& acc,
@@ -772,8 +771,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // particles have consecutive indices (the spatial sort orders them by slab) has its rows next
   // to each other in the list, and pass 1 walks the slab's entries in one loop, each entry's
   // particle from nc.entry_owner, instead of row by row: the same entries in the same order,
-  // without the end of a row, whose length varies, to predict (bed10k: +2.7% in 11 of 12
-  // alternated pairs, bench/RESULTS.md). 4 bytes per entry (bed10k: 14 bytes per particle).
+  // without the end of a row, whose length varies, to predict (bench/RESULTS.md). 4 bytes per
+  // entry.
   constexpr std::size_t kFlatWalkParticles = kPrefetchParticles;
   const bool flat_walk = n <= kFlatWalkParticles;
   find_entry_owners(nl, n, flat_walk, nc);
@@ -877,8 +876,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // particles after its pairs, in the same region (one fork and join per step fewer), so they
   // are threaded when the pairs are, by particle count, not by wall entries: in a bed one
   // particle deep every particle has two, and the worker thread's writes into the accumulators
-  // of a bed whose pairs ran on the main thread made two threads 25% slower than one in the
-  // contacts.
+  // of a bed whose pairs ran on the main thread would cost more than they share out.
   auto run_wall_chunk = [&](std::size_t k) {
     std::vector<ContactSample>* buf = recording ? &chunk_samples[k] : nullptr;
     const std::size_t end = chunk_start(k + 1);
@@ -896,9 +894,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // run in parallel; the order of the additions into a particle depends on the slabs alone,
   // not on the thread count. A slab's particles are read by its own rows and the previous
   // slab's, which in the first phase run one after the other: the data are still in the cache
-  // (with all even slabs, then all odd ones, every slab was read twice per step from memory in
-  // beds larger than the cache: bed100k ran ~5% slower, and 13% slower than in plain slab
-  // order, which is not thread-independent).
+  // (with all even slabs, then all odd ones, every slab would be read twice per step from memory
+  // in beds larger than the cache; bench/RESULTS.md).
   slab_group_starts(nl.slab_start, nslab, nc.slab_group_start); // kept: no allocation per step
   const int* const group_start = nc.slab_group_start.data();
   const int ngroup = std::max(0, static_cast<int>(nc.slab_group_start.size()) - 1);
@@ -942,13 +939,11 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     // Each thread runs a contiguous run of slab groups, and then, in the same region, the wall
     // chunks whose lowest group is one of its own (a chunk writes only to its own particles'
     // sums). The runs hold shares of the particles that LoadShares adjusts step by step toward
-    // equal busy times (on this shared machine one core ran bed10k 25% slower than the other
-    // for minutes at a time: two threads' shares settled at 0.45 / 0.55 of the particles, and
-    // at 0.57 / 0.43 with the threads' cores swapped, so the work follows the cores' speed, not
-    // the bed's halves); they move little from step to step, so that a thread's particles' view and
-    // accumulator lines stay in its core's cache instead of moving between the cores (with the
-    // slabs handed out dynamically, the packing's share of the time tripled with two threads and
-    // the spin-wait took 7-17%). The threads hand over through the groups' marks (PhaseProgress)
+    // equal busy times (the cores of a shared machine do not run at the same speed, so the work
+    // follows the cores' speed, not the bed's halves); they move little from step to step, so
+    // that a thread's particles' view and accumulator lines stay in its core's cache instead of
+    // moving between the cores (slabs handed out dynamically did not; bench/RESULTS.md). The
+    // threads hand over through the groups' marks (PhaseProgress)
     // instead of barriers: group g's phase 1 waits for group g + 1's phase 0 (the first slab it
     // writes into, and which it reads prepared); a wall chunk waits for phase 1 of its groups and
     // of the group before them (every pair addition into its particles: the walls add after the
@@ -956,8 +951,8 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     // into slab 0: group 0 follows the last group. Each thread runs its last group's phase 1, which
     // waits for the next thread, after its other groups', and its wall chunks from the last, whose
     // first one may wait for the previous thread's last group: a thread held up for a moment holds
-    // up the others only when their own work runs out (with a barrier after each phase the two
-    // threads of bed10k waited 2-10% of the loop). One thread (or a recording below the threshold):
+    // up the others only when their own work runs out (a barrier after each phase made them
+    // wait). One thread (or a recording below the threshold):
     // the same slabs in the same order, outside any OpenMP region (core/parallel.hpp).
     if (nc.chunk_groups_generation != nl.generation() || nc.chunk_group_lo.size() != nchunk) {
       wall_chunk_groups(nl, nc.slab_group_start, nc.chunk_group_lo, nc.chunk_group_hi);
