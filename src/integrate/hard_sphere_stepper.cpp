@@ -1,6 +1,6 @@
 #include "integrate/hard_sphere_stepper.hpp"
+#include "integrate/wall_clock.hpp"
 
-#include <chrono>
 #include <stdexcept>
 
 namespace fluidem {
@@ -17,10 +17,10 @@ void HardSphereStepper::step(double t, const StepNeeds&) {
                            "event-driven collision sequence");
   forces_.kick(p_, dt_); // the held forces over DT as one kick [Hoomans96 Fig. 7]
   body_force_kick(0.5 * dt_);
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = WallClock::now();
   engine_.advance(p_, t, dt_, forces_.gravity());
   body_force_kick(0.5 * dt_);
-  t_collisions_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t_collisions_ += seconds_since(t0);
 }
 
 void HardSphereStepper::body_force_kick(double h) {

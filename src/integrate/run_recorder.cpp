@@ -1,7 +1,7 @@
 #include "integrate/run_recorder.hpp"
+#include "integrate/wall_clock.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -15,11 +15,6 @@
 namespace fluidem {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 std::array<const double*, 3> pointers(const std::array<std::vector<double>, 3>& v) {
   return {v[0].data(), v[1].data(), v[2].data()};
@@ -77,7 +72,7 @@ void RunRecorder::write_due() {
   const bool series_due = t >= clock.next_series - eps_ || last;
   const bool frame_due = t >= clock.next_frame - eps_ || last;
   if (series_due || frame_due || continuum_due) sim_.stepper_->finish_kick();
-  const auto t0 = Clock::now();
+  const auto t0 = WallClock::now();
   if (series_due || frame_due || continuum_due) sim_.check_stability();
   if (series_due) write_series_rows();
   if (frame_due) write_frame();
@@ -199,7 +194,7 @@ bool RunRecorder::checkpoint_due() {
 
 void RunRecorder::checkpoint() {
   sim_.stepper_->finish_kick(); // (integration time, not output)
-  const auto t0 = Clock::now();
+  const auto t0 = WallClock::now();
   sim_.check_stability();
   outputs_.flush(); // (the CSV writers flush every row)
   const std::string path = dir_.file("checkpoint.h5");

@@ -1,7 +1,7 @@
 #include "integrate/simulation.hpp"
+#include "integrate/wall_clock.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -16,11 +16,6 @@
 namespace fluidem {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 /// The automatic skin (neighbour.skin = "auto") lets a neighbour list last at least this many
 /// steps at the largest particle speed of its build, within its bounds (NeighbourList::AutoSkin).
@@ -194,7 +189,7 @@ void Simulation::step(bool defer_second_kick) {
 
 void Simulation::flow_step() {
   stepper_->finish_kick(); // the gas step reads the particles' full-step velocities
-  const auto t0 = Clock::now();
+  const auto t0 = WallClock::now();
   gas_->step(p_, time_, dt_ * static_cast<double>(steps_per_flow_));
   forces_.refresh(p_.size());
   t_gas_ += seconds_since(t0);
@@ -275,7 +270,7 @@ RunSummary Simulation::run(const std::string& out_dir,
   const auto report_progress = [&] {
     if (progress) progress({step_, total, time_, spec_.simulation.end_time, p_.size()});
   };
-  const auto start = Clock::now();
+  const auto start = WallClock::now();
   const long step0 = step_, folded0 = folded_steps();
   int stopped_by = 0;
   // A continued run's checkpoint was taken after its step's outputs were written: they are in the

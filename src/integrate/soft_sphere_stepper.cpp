@@ -1,7 +1,7 @@
 #include "integrate/soft_sphere_stepper.hpp"
+#include "integrate/wall_clock.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -11,11 +11,6 @@
 namespace fluidem {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 /// Steps fold (SoftSphereStepper::step) only in beds with at least this many neighbour-list
 /// pairs per particle: there the contact loop streams every particle through the cache anyway
@@ -57,7 +52,7 @@ std::size_t SoftSphereStepper::bytes() const {
 }
 
 void SoftSphereStepper::compute_forces(ScratchState scratch) {
-  const auto t0 = Clock::now();
+  const auto t0 = WallClock::now();
   stats_ = compute_contact_forces(p_, *nl_, *table_, dt_, nc_, record_, scratch);
   t_contacts_ += seconds_since(t0);
   e_dsp_ += stats_.spring_losses;
@@ -273,7 +268,7 @@ void SoftSphereStepper::separate_step(const auto& kick_drift, bool tracked, bool
   const bool with_sources = forces_.total(0) != nullptr, with_field = forces_.field() != nullptr;
   const auto& box = nl_->box();
   const bool any_periodic = box.periodic[0] || box.periodic[1] || box.periodic[2];
-  auto t0 = Clock::now();
+  auto t0 = WallClock::now();
   bool moved_far;
   if (with_sources && !with_field && !any_periodic)
     moved_far = kick_drift.template operator()<true, false, false>();
@@ -290,7 +285,7 @@ void SoftSphereStepper::separate_step(const auto& kick_drift, bool tracked, bool
   ScratchState scratch = ScratchState::Packed;
   const bool rebuild = !tracked || moved_far;
   if (rebuild) sync_particles(); // the build reads the positions from p_
-  t0 = Clock::now();
+  t0 = WallClock::now();
   if (rebuild) {
     if (sort_interval_ > 0 && nl_->builds() % sort_interval_ == 0) {
       sort_and_rebuild();
@@ -309,7 +304,7 @@ void SoftSphereStepper::separate_step(const auto& kick_drift, bool tracked, bool
   // fold: this step leaves its second kick pending.
   if (fold_enabled_ && plain && needs.defer_second_kick && !needs.sample_continuum) {
     if (pairs_per_particle() >= fold_pairs_threshold) {
-      t0 = Clock::now();
+      t0 = WallClock::now();
       drift_bound_.measure(nc_.view.data(), ContactScratch::kView, n, *nl_);
       t_integration_ += seconds_since(t0);
     } else {
@@ -324,7 +319,7 @@ void SoftSphereStepper::evaluate_step_sources(double t) {
 }
 
 void SoftSphereStepper::compute_forces_folded(const SlabHook& slab_pass) {
-  const auto t0 = Clock::now();
+  const auto t0 = WallClock::now();
   stats_ = compute_contact_forces(p_, *nl_, *table_, dt_, nc_, record_, ScratchState::Packed,
                                   &slab_pass);
   t_contacts_ += seconds_since(t0);
@@ -341,7 +336,7 @@ void SoftSphereStepper::compute_forces_folded(const SlabHook& slab_pass) {
 
 void SoftSphereStepper::sync_particles() {
   if (particles_current_) return;
-  const auto t0 = Clock::now();
+  const auto t0 = WallClock::now();
   const std::size_t n = p_.size();
   const double* view = nc_.view.data();
   parallel_for(n, threaded_particles(n), [&](std::size_t i) {
@@ -358,7 +353,7 @@ void SoftSphereStepper::finish_kick() {
   sync_particles(); // the callers read p_ (and the kick below works on it)
   if (!kick_pending_) return;
   kick_pending_ = false;
-  const auto t0 = Clock::now();
+  const auto t0 = WallClock::now();
   // The second half kick, and in the same pass the work of the non-conservative contact forces
   // with the full-step velocities: with velocity Verlet the force computed at t+dt acts with
   // mean velocity v(t+dt) over [t+dt/2, t+3dt/2].
