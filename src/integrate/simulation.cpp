@@ -170,11 +170,11 @@ void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_f
 }
 
 void Simulation::add_force_source(std::unique_ptr<ForceSource> source) {
+  if (hard_ && dynamic_cast<const StepForceSource*>(source.get()) != nullptr)
+    throw std::logic_error("Simulation::add_force_source: hard spheres take held forces only");
   forces_.add(std::move(source));
   forces_.refresh(p_.size());
   if (soft_ && forces_.any_step_sources()) soft_->evaluate_step_sources(time_);
-  if (hard_ && forces_.any_step_sources())
-    throw std::logic_error("Simulation::add_force_source: hard spheres take held forces only");
 }
 
 void Simulation::step(bool defer_second_kick) {

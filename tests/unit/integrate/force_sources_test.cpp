@@ -162,5 +162,15 @@ TEST(ForceSources, HeldForceGivesTheParabolaInBothEngines) {
   }
 }
 
+// An event-driven collision sequence has no step at which to evaluate a force every step: such a
+// source is refused before it joins the list (the run goes on with the forces it had).
+TEST(ForceSources, HardSpheresRefuseAStepSource) {
+  Simulation sim(read_case_string(case_text(true, 1e-4, 0.01), "hard.toml"));
+  EXPECT_THROW(sim.add_force_source(std::make_unique<Dashpot>(1e-3)), std::logic_error);
+  sim.advance(10);
+  EXPECT_NEAR(sim.particles().vx[0], 0.01, 1e-15)
+      << "free flight: the refused dashpot is not there";
+}
+
 } // namespace
 } // namespace fluidem
