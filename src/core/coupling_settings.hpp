@@ -27,10 +27,10 @@ enum class ExchangeScheme { scheme1, scheme2, scheme3 };
 
 struct CouplingSettings {
   /// `coupling.drag`: the name of a closure of src/coupling/drag/drag_model.hpp (checked there
-  /// at set-up: coupling::drag::drag_model_of_case). The default is the case file's default, the
-  /// gas-phase closure of [Hoomans96 eq. 45-46], written out so that the resolved case names the
-  /// closure a run used.
-  std::string drag = "ergun_wen_yu";
+  /// at set-up: coupling::drag::drag_model_of_case). Empty: the key was not given, and the
+  /// closure the registry declares the default is used; the set-up writes its name here, so that
+  /// the resolved case names the closure a run used.
+  std::string drag;
   PorositySettings porosity;                       ///< `coupling.porosity`, `.cube_factor`
   ExchangeScheme scheme = ExchangeScheme::scheme3; ///< `coupling.scheme`: 1 | 2 | 3
   /// `coupling.hold_gas_at_rest`: each flow step a uniform force on the gas (a mean pressure

@@ -110,11 +110,12 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
 
 void validate(const CouplingSettings& c, const gas::GasSettings& /*gas: Models A and B both*/) {
   validate(c.porosity);
-  const drag::DragModel m = drag::drag_model_from_string(c.drag);
+  const drag::DragModel m = drag::drag_model_named(c.drag);
   if (const auto why = drag::drag_model_refusal(m); !why.empty())
     throw InputError("coupling.drag = " + std::string(why));
   if (drag::needs_mean_diameter(m) && !(c.d_mean > 0.0))
-    throw InputError(std::string("coupling.d_mean must be > 0 for drag closure '") + c.drag + "'");
+    throw InputError(std::string("coupling.d_mean must be > 0 for drag closure '") +
+                     std::string(drag::to_string(m)) + "'");
 }
 
 void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingSettings& c) {
@@ -148,7 +149,7 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   out.face_stencils.resize(stencils ? 3 * n : 0);
   if (stencils) face_pressure_differences(gs, out.face_dp);
   // The closure by name, once per call (a few string comparisons per flow step).
-  drag::with_drag_closure(drag::drag_model_from_string(c.drag), [&](auto closure) {
+  drag::with_drag_closure(drag::drag_model_named(c.drag), [&](auto closure) {
     using C = decltype(closure);
     // Independent per particle: parallel, and the same result for any thread count.
     parallel_for_with(

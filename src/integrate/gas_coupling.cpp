@@ -37,6 +37,7 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
   // The closure the case names, checked against the registry at the key's location.
   const coupling::drag::DragModel drag =
       coupling::drag::drag_model_of_case(settings_.drag, spec.where("coupling.drag"));
+  settings_.drag = coupling::drag::to_string(drag); // (not given: the default closure's name)
   // Polydisperse closures without a given mean diameter: the Sauter mean of the particles.
   if (coupling::drag::needs_mean_diameter(drag) && settings_.d_mean == 0.0) {
     double s3 = 0.0, s2 = 0.0;

@@ -73,6 +73,8 @@ public:
   /// See gas::GasSolver::reset_solver_history (called when a checkpoint is written).
   void reset_solver_history() { gas_->reset_solver_history(); }
   const coupling::ParticleGasForces& exchange() const { return f_; }
+  /// The drag closure's name (the case's, or the default closure's when the case gives none).
+  const std::string& drag_name() const { return settings_.drag; }
 
   /// Bottom-to-top pressure drop, Pa: mean pressure on the bottom face (along gravity) minus
   /// the mean on the top face, each face's pressure the mean of its ghost and first interior

@@ -100,6 +100,7 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial)
   set_up_stepper(std::move(table), !initial && spec_.neighbour.sort_interval > 0, skin, dmax);
   if (spec_.gas) {
     gas_ = std::make_unique<GasCoupling>(spec_, p_);
+    spec_.coupling.drag = gas_->drag_name(); // the resolved case names the closure used
     forces_.add(std::make_unique<GasForceSource>(*gas_));
   }
 }

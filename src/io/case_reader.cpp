@@ -1703,8 +1703,13 @@ private:
     const std::string p = "coupling";
     // The closure's name: the coupling module checks it against its registry at set-up, at this
     // key's location (coupling::drag::drag_model_of_case), so that io knows no drag law.
-    if (const auto e = find(*t, "drag", p + ".drag"))
+    if (const auto e = find(*t, "drag", p + ".drag")) {
       c.drag = str_value(*e, p + ".drag", "the name of a drag closure (docs/drag.md)");
+      if (c.drag.empty())
+        throw InputError(e->where, p + ".drag",
+                         "an empty name (allowed: the name of a drag closure, docs/drag.md; "
+                         "leave the key out for the default)");
+    }
     std::vector<std::pair<std::string, coupling::PorosityMethod>> methods;
     for (const auto m : {coupling::PorosityMethod::cell, coupling::PorosityMethod::porous_cube})
       methods.emplace_back(coupling::to_string(m), m);

@@ -188,9 +188,10 @@ void write_gas(std::ostream& os, const gas::GasSettings& g, Engine engine) {
 }
 
 void write_coupling(std::ostream& os, const coupling::CouplingSettings& c) {
-  os << "\n[coupling]\n"
-     << "drag = " << toml_string(c.drag) << "\n"
-     << "porosity = " << toml_string(std::string(coupling::to_string(c.porosity.method))) << "\n";
+  os << "\n[coupling]\n";
+  // Empty: not given, the registry's default closure (a run's set-up writes its name in).
+  if (!c.drag.empty()) os << "drag = " << toml_string(c.drag) << "\n";
+  os << "porosity = " << toml_string(std::string(coupling::to_string(c.porosity.method))) << "\n";
   if (c.porosity.method == coupling::PorosityMethod::porous_cube)
     os << "cube_factor = " << format_double(c.porosity.cube_factor) << "\n";
   os << "scheme = " << static_cast<int>(c.scheme) + 1 << "\n"

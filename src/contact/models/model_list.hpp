@@ -56,11 +56,11 @@ decltype(auto) with_model(ModelList<M...>, int index, F&& f) {
   using R = decltype(f(std::declval<typename std::tuple_element<0, std::tuple<M...>>::type>()));
   if constexpr (std::is_void_v<R>) {
     int k = 0;
-    ((k++ == index ? (f(M{}), true) : false) || ...);
+    static_cast<void>(((k++ == index ? (f(M{}), true) : false) || ...));
   } else {
     R result{};
     int k = 0;
-    ((k++ == index ? (result = f(M{}), true) : false) || ...);
+    static_cast<void>(((k++ == index ? (result = f(M{}), true) : false) || ...));
     return result;
   }
 }

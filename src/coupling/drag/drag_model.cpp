@@ -1,6 +1,8 @@
 // Drag closure registry: names, lookup with a helpful error, per-call dispatch helpers.
 #include "coupling/drag/drag_model.hpp"
 
+#include <stdexcept>
+
 namespace fluidem::coupling::drag {
 
 std::string_view to_string(DragModel m) {
@@ -28,10 +30,20 @@ DragModel drag_model_from_string(std::string_view name) {
                    ")");
 }
 
+DragModel default_drag_model() {
+  for (DragModel m : all_drag_models)
+    if (with_drag_closure(m, [](auto c) { return detail::is_default<decltype(c)>(); })) return m;
+  throw std::logic_error("no drag closure declares itself the default (drag_model.hpp)");
+}
+
+DragModel drag_model_named(std::string_view name) {
+  return name.empty() ? default_drag_model() : drag_model_from_string(name);
+}
+
 DragModel drag_model_of_case(std::string_view name, const SourceLocation& where) {
   DragModel m;
   try {
-    m = drag_model_from_string(name);
+    m = drag_model_named(name);
   } catch (const InputError& e) {
     throw InputError(where, "coupling.drag", e.what());
   }

@@ -71,6 +71,14 @@ inline constexpr std::array<DragModel, drag_model_count> all_drag_models =
 
 namespace detail {
 template <class C>
+constexpr bool is_default() {
+  if constexpr (requires { C::is_default; })
+    return C::is_default;
+  else
+    return false;
+}
+
+template <class C>
 constexpr std::string_view refusal_of() {
   if constexpr (requires { C::refusal; })
     return C::refusal;
@@ -106,6 +114,12 @@ std::string_view drag_model_refusal(DragModel m);
 std::string drag_model_names();
 /// The closure named `name`; InputError "unknown drag model 'x' (valid: ...)" if there is none.
 DragModel drag_model_from_string(std::string_view name);
+/// The closure that declares itself the default (`is_default`): the one a case gets without
+/// coupling.drag.
+DragModel default_drag_model();
+/// The closure of a case's coupling.drag value: empty (not given) is the default, else
+/// drag_model_from_string.
+DragModel drag_model_named(std::string_view name);
 /// The closure a case names in `coupling.drag` (set-up): an unknown name or a refused closure is
 /// an InputError at `where` naming the key coupling.drag and what is allowed.
 DragModel drag_model_of_case(std::string_view name, const SourceLocation& where);

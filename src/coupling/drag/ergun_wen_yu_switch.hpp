@@ -14,6 +14,8 @@ namespace fluidem::coupling::drag {
 
 struct ErgunWenYuSwitch {
   static constexpr const char* name = "ergun_wen_yu";
+  /// A case without coupling.drag gets this closure, the gas-phase closure of [Hoomans96].
+  static constexpr bool is_default = true;
   static constexpr bool needs_mean_diameter = false;
   static constexpr double eps_switch = 0.8; ///< [Hoomans96 §3.2.2]
   static void validate(const DragInput& in) { validate_drag_input(in, name); }

@@ -2,7 +2,9 @@
 // the name as a string (io and core know no drag law); the coupling module checks it when the
 // run is set up, at the key's source location: an unknown name is exit 2 at file:line:col with
 // the key and every name a case may choose; a closure that refuses a case (wen_yu_single) says
-// why; a --set override is named as such. Every name a case may choose sets up a run.
+// why; a --set override is named as such. Every name a case may choose sets up a run. Without
+// the key a case gets the closure the registry declares the default ([Hoomans96 eq. 45-46]'s
+// switch, docs/drag.md), and its resolved case names it; an empty name is refused when read.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -72,6 +74,25 @@ TEST(DragChoice, EveryAllowedClosureSetsUpARun) {
     if (!coupling::drag::drag_model_refusal(m).empty()) continue;
     const std::string name(coupling::drag::to_string(m));
     EXPECT_EQ(setup_error(kCase + "drag = \"" + name + "\"\n"), "") << name;
+  }
+}
+
+TEST(DragChoice, WithoutTheKeyTheDefaultClosureIsUsedAndNamed) {
+  const CaseSpec read = read_case_string(kCase, "case.toml");
+  EXPECT_EQ(read.coupling.drag, "") << "not given";
+  Simulation sim(read);
+  EXPECT_EQ(sim.spec().coupling.drag, "ergun_wen_yu") << "the resolved case names the closure";
+  EXPECT_EQ(coupling::drag::to_string(coupling::drag::default_drag_model()), "ergun_wen_yu");
+}
+
+TEST(DragChoice, EmptyNameIsRefusedWhereItIsWritten) {
+  try {
+    (void)read_case_string(kCase + "drag = \"\"\n", "case.toml");
+    FAIL() << "an empty drag name was read";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("case.toml:" + drag_line() + ":", 0), 0u) << msg;
+    EXPECT_NE(msg.find("coupling.drag: an empty name"), std::string::npos) << msg;
   }
 }
 
