@@ -114,15 +114,6 @@ void GasCoupling::hold_at_rest(double dt) {
   }
 }
 
-void GasCoupling::kick(ParticleStore& p, double dt) const {
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const double a = dt * p.inv_mass[i];
-    p.vx[i] += a * force_[0][i];
-    p.vy[i] += a * force_[1][i];
-    p.vz[i] += a * force_[2][i];
-  }
-}
-
 double GasCoupling::superficial_velocity(double t) const {
   const gas::GasGrid& g = gas_->grid();
   const gas::BoundaryMap& bc = gas_->boundary();

@@ -49,8 +49,6 @@ public:
 
   /// The gas force on each particle (drag + pressure), N, held over the current flow step.
   const std::vector<double>& force(int d) const { return force_[static_cast<std::size_t>(d)]; }
-  /// v_i += dt F_i / m_i (the hard-sphere engine's kick).
-  void kick(ParticleStore& p, double dt) const;
 
   const gas::GasSolver& solver() const { return *gas_; }
   /// Wall seconds spent in the gas solver's steps so far (the rest of step(): the coupling).
