@@ -13,6 +13,7 @@
 #include "core/coupling_settings.hpp"
 #include "core/error.hpp"
 #include "core/gas_settings.hpp"
+#include "core/noncontact_settings.hpp"
 
 namespace fluidem {
 
@@ -36,6 +37,7 @@ struct SpeciesSpec {
   std::string name;
   double diameter = 0.0; ///< m, > 0
   double density = 0.0;  ///< kg/m^3, > 0
+  double charge = 0.0;   ///< C per particle ([electrostatics])
   MaterialSpec material;
 };
 
@@ -68,6 +70,8 @@ struct InsertSpec {
   /// The particles are held in place (infinite mass and inertia, ParticleStore::fix)
   bool fixed = false;
   std::uint64_t seed = 1;
+  /// C per particle of this insert; empty: the species' charge.
+  std::optional<double> charge;
 };
 
 /// One contact sub-model as the case names it: its name (the case-file string; empty: the kind's
@@ -190,6 +194,8 @@ struct CaseSpec {
   coupling::CouplingSettings coupling;
   /// A spatially varying body force on the particles (`[body_force]`); empty = none.
   std::optional<BodyForceSpec> body_force;
+  /// Non-contact forces between particles ([van_der_waals], [electrostatics]).
+  NonContactSpec noncontact;
 
   /// Dotted key path -> location, e.g. "contact.stiffness", "species[1].restitution",
   /// "insert[0].count", "walls.z_lo.friction". Filled by the reader for every key it saw.

@@ -10,6 +10,7 @@ void StepForceSource::permute(const std::vector<std::uint32_t>& new_to_old) {
     const std::vector<double> old = f;
     for (std::size_t k = 0; k < new_to_old.size(); ++k) f[k] = old[new_to_old[k]];
   }
+  permuted(new_to_old);
 }
 
 void ForceSources::add(ForceSource* source) {

@@ -56,11 +56,15 @@ public:
     const auto& f = forces_[static_cast<std::size_t>(axis)];
     return f.empty() ? nullptr : f.data();
   }
+  /// Permutes the forces, then tells the source (permuted()).
   void permute(const std::vector<std::uint32_t>& new_to_old) final;
   std::array<std::vector<double>, 3>& forces() { return forces_; }
   const std::array<std::vector<double>, 3>& forces() const { return forces_; }
 
 protected:
+  /// The particles were reordered (after the forces were): a source with per-particle state
+  /// reorders it.
+  virtual void permuted(const std::vector<std::uint32_t>& /*new_to_old*/) {}
   std::array<std::vector<double>, 3> forces_; ///< N, per particle
 };
 

@@ -9,6 +9,7 @@
 #include "analysis/bed_height.hpp"
 #include "integrate/contact_time_limit.hpp"
 #include "integrate/memory_estimate.hpp"
+#include "integrate/noncontact_source.hpp"
 #include "integrate/run_recorder.hpp"
 #include "integrate/time_step_rule.hpp"
 #include "particles/insertion.hpp"
@@ -98,6 +99,7 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial)
   // A new run starts sorted in space (inserted at random or read from a file in any order); a
   // restarted one continues in the order of its checkpoint.
   set_up_stepper(std::move(table), !initial && spec_.neighbour.sort_interval > 0, skin, dmax);
+  if (spec_.noncontact.any()) set_up_noncontact(skin);
   if (spec_.gas) {
     gas_ = std::make_unique<GasCoupling>(spec_, p_);
     spec_.coupling.drag = gas_->drag_name(); // the resolved case names the closure used
@@ -168,6 +170,21 @@ void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_f
   soft_ = soft.get();
   stepper_ = std::move(soft);
   report_.skin = soft_->list().skin(); // the first build's
+}
+
+void Simulation::set_up_noncontact(double skin) {
+  const NonContactSpec& nc = spec_.noncontact;
+  const std::string key = nc.van_der_waals ? "van_der_waals" : "electrostatics";
+  if (hard_)
+    throw InputError(spec_.where(key), key,
+                     "the hard-sphere engine has no non-contact forces (its particles meet only "
+                     "in instantaneous collisions, so an attraction at a gap cannot act); use "
+                     "simulation.engine = \"soft_sphere\"");
+  try {
+    add_force_source(std::make_unique<NonContactForceSource>(limits_.box, nc, p_, skin));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(spec_.where(key), key, e.what());
+  }
 }
 
 void Simulation::add_force_source(std::unique_ptr<ForceSource> source) {

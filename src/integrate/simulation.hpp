@@ -212,6 +212,9 @@ private:
   /// The set-up of the particle engine, after the time steps are chosen.
   void set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_first, double skin,
                       double max_diameter);
+  /// The non-contact forces of the case as a force source (soft spheres; refused for hard
+  /// spheres with an InputError), after the stepper; skin: the contact list's.
+  void set_up_noncontact(double skin);
   /// One step. defer_second_kick: see StepNeeds.
   void step(bool defer_second_kick = false);
   /// The gas step and the new held forces, at the start of a flow step of DT.

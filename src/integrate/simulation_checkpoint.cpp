@@ -114,6 +114,9 @@ ParticleStore read_particles(const CheckpointReader& r, const std::string& check
   // Checkpoints written before layers existed hold none: every particle in layer 0.
   p.layer = r.has("particles/layer") ? r.int32s("particles/layer")
                                      : std::vector<std::int32_t>(p.id.size(), 0);
+  // Checkpoints written before charges existed hold none: every particle uncharged.
+  p.charge = r.has("particles/charge") ? r.doubles("particles/charge")
+                                       : std::vector<double>(p.id.size(), 0.0);
   for (std::size_t a = 0; a < 6; ++a) {
     contact_force[a] = r.doubles(std::string("particles/") + kContactForce[a]);
     if (contact_force[a].size() != p.id.size())
@@ -124,7 +127,7 @@ ParticleStore read_particles(const CheckpointReader& r, const std::string& check
   }
   for (const auto& [name, v] : double_arrays(p))
     if (v->size() != p.id.size() || p.species.size() != p.id.size() ||
-        p.layer.size() != p.id.size())
+        p.layer.size() != p.id.size() || p.charge.size() != p.id.size())
       throw CheckpointError(fmt::format("checkpoint '{}': particle array '{}' has {} entries for "
                                         "{} particles",
                                         checkpoint, name, v->size(), p.id.size()));
@@ -261,6 +264,7 @@ void Simulation::write_checkpoint(const std::string& path) {
   w.put_view("particles/species", p_.species);
   w.put_view("particles/id", p_.id);
   w.put_view("particles/layer", p_.layer);
+  w.put_view("particles/charge", p_.charge);
   if (soft_) // the list's own arrays, unchanged until commit
     put_list(w, "neighbour", soft_->list().state_view());
   HardSphereEngine::State h; // its list goes in as views: alive until w.commit()

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "noncontact/pair_forces.hpp"
 
 namespace fluidem {
 
@@ -48,7 +49,10 @@ TimeSteps choose_time_steps(CaseSpec& spec, const ParticleStore& p, const Contac
   // From the contact duration [Deen07 eq. 41-42] of the contacts that can happen. None (every
   // particle fixed): 1e-4 s, the flow step's default, unless given.
   TimeSteps s;
-  const double tc = shortest_possible_contact(spec, p, *table);
+  // The non-contact forces' stiffness counts as a contact of half-period pi sqrt(m*/k)
+  // (noncontact/pair_forces.hpp).
+  const double tc = std::min(shortest_possible_contact(spec, p, *table),
+                             shortest_noncontact_period(spec.noncontact, p));
   s.stable_dt = tc / kMinStepsPerContact;
   const auto& sim = spec.simulation;
   s.dt = sim.time_step ? *sim.time_step : std::isfinite(tc) ? sim.time_step_fraction * tc : 1.0e-4;
@@ -56,7 +60,8 @@ TimeSteps choose_time_steps(CaseSpec& spec, const ParticleStore& p, const Contac
   if (s.dt > s.stable_dt && !sim.force_time_step) {
     throw InputError(spec.where("simulation.time_step"), "simulation.time_step",
                      fmt::format("{:.4g} s is above the stability limit {:.4g} s (the shortest "
-                                 "contact lasts {:.4g} s and needs at least {} steps); choose a "
+                                 "contact, or half-period of a non-contact force, lasts {:.4g} s and "
+                                 "needs at least {} steps); choose a "
                                  "smaller step, \"auto\", or set simulation.force_time_step = "
                                  "true",
                                  s.dt, s.stable_dt, tc, kMinStepsPerContact));

@@ -34,7 +34,8 @@ constexpr const char* kSetFile = "--set";
 const Keys& root_keys() {
   static const Keys k = {"simulation", "output", "domain",   "walls",
                          "species",    "insert", "contact",  "neighbour",
-                         "hardsphere", "gas",    "coupling", "body_force"};
+                         "hardsphere", "gas",    "coupling", "body_force",
+                         "van_der_waals", "electrostatics"};
   return k;
 }
 const Keys& simulation_keys() {
@@ -90,7 +91,7 @@ const Keys& walls_keys() {
 }
 const Keys& species_keys() {
   static const Keys k = [] {
-    Keys all = {"name", "diameter", "density"};
+    Keys all = {"name", "diameter", "density", "charge"};
     all.insert(all.end(), material_keys().begin(), material_keys().end());
     return all;
   }();
@@ -98,7 +99,8 @@ const Keys& species_keys() {
 }
 const Keys& insert_keys() {
   static const Keys k = {"species",  "count",           "placement",        "file",  "region",
-                         "velocity", "velocity_spread", "angular_velocity", "fixed", "seed"};
+                         "velocity", "velocity_spread", "angular_velocity", "fixed", "seed",
+                         "charge"};
   return k;
 }
 const Keys& region_keys() {
@@ -123,6 +125,14 @@ const Keys& neighbour_keys() {
 }
 const Keys& hardsphere_keys() {
   static const Keys k = {"tc_time", "elastic_below", "max_events_per_particle"};
+  return k;
+}
+const Keys& van_der_waals_keys() {
+  static const Keys k = {"hamaker", "min_separation", "range", "wall_hamaker"};
+  return k;
+}
+const Keys& electrostatics_keys() {
+  static const Keys k = {"cutoff", "relative_permittivity", "conducting_walls"};
   return k;
 }
 const Keys& body_force_keys() {
@@ -206,6 +216,8 @@ const Keys& section_keys(const std::string& section) {
   if (section == "contact") return contact_keys();
   if (section == "hardsphere") return hardsphere_keys();
   if (section == "body_force") return body_force_keys();
+  if (section == "van_der_waals") return van_der_waals_keys();
+  if (section == "electrostatics") return electrostatics_keys();
   return neighbour_keys();
 }
 
@@ -643,6 +655,8 @@ public:
     read_neighbour(section(root, "neighbour"));
     read_hardsphere(section(root, "hardsphere"));
     read_body_force(section(root, "body_force"));
+    read_van_der_waals(section(root, "van_der_waals"));
+    read_electrostatics(section(root, "electrostatics"));
     read_gas(root);
     read_coupling(section(root, "coupling"));
     read_probes(output);
@@ -1143,6 +1157,7 @@ private:
                              " (allowed: " + name_rule + ")");
       s.diameter = req_number(t, p, "[[species]] " + p, "diameter", kLength);
       s.density = req_number(t, p, "[[species]] " + p, "density", {Bound::Positive, "kg/m^3"});
+      opt_number(t, p, "charge", {Bound::Any, "C"}, s.charge);
       read_material(t, p, s.material);
       spec_.species.push_back(s);
     }
@@ -1248,6 +1263,11 @@ private:
                              "] rad/s: in a 2-D run the discs move in the x-z plane and turn "
                              "about y only (allowed: [0, w_y, 0])");
       opt_bool(t, p, "fixed", in.fixed);
+      if (t->contains("charge")) {
+        double q = 0.0;
+        opt_number(t, p, "charge", {Bound::Any, "C"}, q);
+        in.charge = q;
+      }
       if (in.fixed) { // a fixed particle never moves: no initial motion to give it
         const auto moving = [](const std::array<double, 3>& v) {
           return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0;
@@ -1407,6 +1427,70 @@ private:
                              "is continuous across the periodic faces)");
     }
     spec_.body_force = b;
+  }
+
+  // --- non-contact forces -------------------------------------------------------------------
+
+  /// `[van_der_waals]` [Zhu07 Table 2]: after [species].
+  void read_van_der_waals(const toml::table* t) {
+    if (t == nullptr) return;
+    const std::string p = "van_der_waals", shown = "[van_der_waals]";
+    VanDerWaalsSpec v;
+    v.hamaker = req_number(t, p, shown, "hamaker", {Bound::Positive, "J"});
+    v.min_separation = req_number(t, p, shown, "min_separation", kLength);
+    v.range = req_number(t, p, shown, "range", kLength);
+    if (v.range <= v.min_separation)
+      throw InputError(spec_.where(p + ".range"), p + ".range",
+                       format_double(v.range) + " m is not beyond min_separation = " +
+                           format_double(v.min_separation) +
+                           " m (allowed: a surface gap > min_separation, beyond which the "
+                           "attraction is zero)");
+    if (t->contains("wall_hamaker")) {
+      double a = 0.0;
+      opt_number(t, p, "wall_hamaker", {Bound::Positive, "J"}, a);
+      v.wall_hamaker = a;
+    }
+    spec_.noncontact.van_der_waals = v;
+  }
+
+  /// `[electrostatics]` [Zhu07 Table 2]: after [domain] (the cut-off must fit a periodic box).
+  void read_electrostatics(const toml::table* t) {
+    if (t == nullptr) return;
+    const std::string p = "electrostatics", shown = "[electrostatics]";
+    ElectrostaticsSpec e;
+    e.cutoff = req_number(t, p, shown, "cutoff", kLength);
+    opt_number(t, p, "relative_permittivity", {Bound::AtLeastOne, ""}, e.relative_permittivity);
+    for (int a = 0; a < 3; ++a) {
+      const auto k = static_cast<std::size_t>(a);
+      const double length = spec_.domain.hi[k] - spec_.domain.lo[k];
+      if (spec_.domain.periodic[k] && !(2.0 * e.cutoff < length))
+        throw InputError(spec_.where(p + ".cutoff"), p + ".cutoff",
+                         format_double(e.cutoff) + " m is not below half the periodic box " +
+                             "length " + format_double(length) + " m along " + "xyz"[a] +
+                             " (allowed: a cut-off < L/2, so that a particle meets one image of "
+                             "each other particle)");
+    }
+    if (const auto c = find(*t, "conducting_walls", p + ".conducting_walls")) {
+      const Keys faces(kFaceNames.begin(), kFaceNames.end());
+      const std::string rule = "an array of faces, each one of " + join_quoted(faces);
+      const toml::array* arr = c->node->as_array();
+      if (arr == nullptr)
+        throw InputError(c->where, p + ".conducting_walls",
+                         "expected " + rule + ", got " + describe(*c->node));
+      for (const toml::node& f : *arr) {
+        const auto name = f.value_exact<std::string>();
+        const auto it = name ? std::find(faces.begin(), faces.end(), *name) : faces.end();
+        if (it == faces.end())
+          throw InputError(c->where, p + ".conducting_walls",
+                           "unknown face " + describe(f) + " (allowed: " + rule + ")");
+        const auto face = static_cast<std::size_t>(it - faces.begin());
+        if (spec_.domain.periodic[face / 2])
+          throw InputError(c->where, p + ".conducting_walls",
+                           *name + " is on a periodic axis (allowed: faces of closed sides)");
+        e.conducting[face] = true;
+      }
+    }
+    spec_.noncontact.electrostatics = e;
   }
 
   // --- gas, coupling, probes ----------------------------------------------------------------

@@ -287,6 +287,7 @@ std::string write_case_toml(const CaseSpec& spec) {
        << "name = " << toml_string(sp.name) << "\n"
        << "diameter = " << format_double(sp.diameter) << "  # m\n"
        << "density = " << format_double(sp.density) << "  # kg/m^3\n";
+    if (sp.charge != 0.0) os << "charge = " << format_double(sp.charge) << "  # C\n";
     write_material(os, sp.material);
   }
 
@@ -304,6 +305,7 @@ std::string write_case_toml(const CaseSpec& spec) {
        << "angular_velocity = " << vec3(in.angular_velocity) << "  # rad/s\n"
        << "fixed = " << (in.fixed ? "true" : "false") << "\n"
        << "seed = " << in.seed << "\n";
+    if (in.charge) os << "charge = " << format_double(*in.charge) << "  # C\n";
   }
 
   // Each model's name, then its coefficients as it declares them ("auto" when left to it).
@@ -342,6 +344,24 @@ std::string write_case_toml(const CaseSpec& spec) {
        << "amplitude = " << format_double(b.amplitude) << "  # m/s^2\n"
        << "wavelength = " << format_double(b.wavelength) << "  # m\n"
        << "origin = " << vec3(b.origin) << "  # m\n";
+  }
+
+  if (const auto& v = spec.noncontact.van_der_waals) {
+    os << "\n[van_der_waals]\n"
+       << "hamaker = " << format_double(v->hamaker) << "  # J\n"
+       << "min_separation = " << format_double(v->min_separation) << "  # m\n"
+       << "range = " << format_double(v->range) << "  # m\n";
+    if (v->wall_hamaker) os << "wall_hamaker = " << format_double(*v->wall_hamaker) << "  # J\n";
+  }
+  if (const auto& e = spec.noncontact.electrostatics) {
+    os << "\n[electrostatics]\n"
+       << "cutoff = " << format_double(e->cutoff) << "  # m\n"
+       << "relative_permittivity = " << format_double(e->relative_permittivity) << "\n"
+       << "conducting_walls = [";
+    const char* sep = "";
+    for (std::size_t f = 0; f < 6; ++f)
+      if (e->conducting[f]) os << sep << toml_string(kFaceNames[f]), sep = ", ";
+    os << "]\n";
   }
 
   // A coupled run only; a granular case has neither (the reader would reject [coupling]).

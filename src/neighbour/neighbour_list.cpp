@@ -18,8 +18,8 @@ void release(std::vector<T>& v) {
 }
 } // namespace
 
-NeighbourList::NeighbourList(const BoxGeometry& box, double skin, int history_width)
-    : box_(box), skin_(skin), hw_(history_width) {}
+NeighbourList::NeighbourList(const BoxGeometry& box, double skin, int history_width, double reach)
+    : box_(box), skin_(skin), reach_(reach), hw_(history_width) {}
 
 bool NeighbourList::needs_rebuild(const ParticleStore& p) const {
   const std::size_t n = p.size();
@@ -49,7 +49,7 @@ double NeighbourList::skin_for(const ParticleStore& p) const {
 double NeighbourList::cell_size(const ParticleStore& p) const {
   double rmax = 0.0;
   for (const double r : p.radius) rmax = std::max(rmax, r);
-  return 2.0 * rmax + skin_for(p);
+  return 2.0 * rmax + reach_ + skin_for(p);
 }
 
 void NeighbourList::renumber_old(const std::vector<std::uint32_t>& new_to_old) {
@@ -167,7 +167,7 @@ void NeighbourList::build_with_skin(const ParticleStore& p,
   const std::size_t n = p.size();
   double rmax = 0.0;
   for (const double r : p.radius) rmax = std::max(rmax, r);
-  grid_.bin(box_, 2.0 * rmax + skin_, p.x.data(), p.y.data(), p.z.data(), n, threaded_particles(n));
+  grid_.bin(box_, 2.0 * rmax + reach_ + skin_, p.x.data(), p.y.data(), p.z.data(), n, threaded_particles(n));
   stored_cells_ = grid_.stored_cells();
   grid_bytes_ = grid_.bytes();
 
@@ -210,7 +210,7 @@ void NeighbourList::build_with_skin(const ParticleStore& p,
       const double dxp = min_image(p.x[j] - p.x[i], 0);
       const double dyp = min_image(p.y[j] - p.y[i], 1);
       const double dzp = min_image(p.z[j] - p.z[i], 2);
-      const double cut = p.radius[i] + p.radius[j] + skin_;
+      const double cut = p.radius[i] + p.radius[j] + reach_ + skin_;
       if (dxp * dxp + dyp * dyp + dzp * dzp < cut * cut) visit(j);
     });
   };
@@ -292,7 +292,7 @@ void NeighbourList::build_with_skin(const ParticleStore& p,
         if (!box_.wall[f]) continue;
         const int a = f / 2;
         const double gap = (f % 2 == 0) ? (*pos[a])[i] - box_.lo[a] : box_.hi[a] - (*pos[a])[i];
-        if (gap < p.radius[i] + skin_) visit(i, f);
+        if (gap < p.radius[i] + reach_ + skin_) visit(i, f);
       }
     }
   };

@@ -24,8 +24,11 @@ namespace fluidem {
 
 class NeighbourList {
 public:
-  /// history_width: doubles of history per contact (0, 3 or 6).
-  NeighbourList(const BoxGeometry& box, double skin, int history_width);
+  /// history_width: doubles of history per contact. reach: the range of an interaction beyond
+  /// contact, m (0 for contacts; the non-contact forces' range): the list holds every pair whose
+  /// surface gap is below reach + skin at its build, so every pair whose gap is below `reach`
+  /// until the next build (a rebuild is due once a particle moved skin/2); wall entries alike.
+  NeighbourList(const BoxGeometry& box, double skin, int history_width, double reach = 0.0);
 
   /// True if some particle moved more than skin/2 since the last build (or never built).
   bool needs_rebuild(const ParticleStore& p) const;
@@ -72,6 +75,8 @@ public:
   bool slabs_wrap() const { return box_.periodic[slab_axis_]; }
 
   int history_width() const { return hw_; }
+  /// The interaction range beyond contact the list covers, m (constructor).
+  double reach() const { return reach_; }
   /// The skin of the list as last built (restored), m.
   double skin() const { return skin_; }
   /// Change the skin for the next build (a fixed skin: ends an automatic one).
@@ -111,7 +116,7 @@ public:
   /// derives data from the pairs (the contact loop's entry owners) rebuilds them when it does.
   std::uint64_t generation() const { return generation_; }
   /// Side of the cells the next build() bins the particles p in: their largest diameter plus
-  /// the skin it uses (skin_for).
+  /// the reach and the skin it uses (skin_for).
   double cell_size(const ParticleStore& p) const;
   std::size_t bytes() const;
 
@@ -167,6 +172,7 @@ private:
 
   BoxGeometry box_;
   double skin_;
+  double reach_;
   std::optional<AutoSkin> auto_skin_;
   int hw_;
   long builds_ = 0;

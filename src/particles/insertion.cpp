@@ -331,6 +331,7 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
       store.add(x, v, radius, rho, s, static_cast<std::int64_t>(idx + 1));
       store.wx[idx] = w.x, store.wy[idx] = w.y, store.wz[idx] = w.z;
       if (ins.fixed) store.fix(idx);
+      store.charge[idx] = ins.charge.value_or(sp.charge);
       grid.add(idx, x);
     };
     auto place = [&](const Vec3& x, double radius, double rho) {

@@ -10,7 +10,8 @@ namespace {
 template <class F>
 void for_each_array(ParticleStore& p, F&& f) {
   f(p.x), f(p.y), f(p.z), f(p.vx), f(p.vy), f(p.vz), f(p.wx), f(p.wy), f(p.wz);
-  f(p.radius), f(p.mass), f(p.inv_mass), f(p.inv_inertia), f(p.species), f(p.id), f(p.layer);
+  f(p.radius), f(p.mass), f(p.inv_mass), f(p.inv_inertia), f(p.species), f(p.id), f(p.layer),
+      f(p.charge);
 }
 } // namespace
 
@@ -43,6 +44,7 @@ void ParticleStore::add(const Vec3& p, const Vec3& v, double r, double rho, std:
   species.push_back(s);
   id.push_back(pid);
   layer.push_back(0);
+  charge.push_back(0.0);
 }
 
 void ParticleStore::fix(std::size_t i) {

@@ -28,6 +28,8 @@ public:
   // Index (0 .. output.layers-1) of the horizontal band of the initial bed the particle started
   // in (assign_layers); 0 for every particle when output.layers is 0. Constant during a run.
   std::vector<std::int32_t> layer;
+  // Electric charge, C (electrostatics); 0 for an uncharged particle. Constant during a run.
+  std::vector<double> charge;
 
   std::size_t size() const { return x.size(); }
   void reserve(std::size_t n);

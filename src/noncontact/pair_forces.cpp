@@ -1,0 +1,221 @@
+#include "noncontact/pair_forces.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "core/parallel.hpp"
+#include "noncontact/kernels/coulomb.hpp"
+#include "noncontact/kernels/van_der_waals.hpp"
+
+namespace fluidem {
+
+namespace {
+
+/// The range beyond contact the list must cover: van der Waals to its range; Coulomb (centre
+/// distance r_c) to r_c - 2 r_min, which also covers a particle's own image (2 z < r_c).
+double reach_of(const NonContactSpec& spec, const ParticleStore& p) {
+  double r_min = std::numeric_limits<double>::infinity(), r_max = 0.0;
+  for (const double r : p.radius) r_min = std::min(r_min, r), r_max = std::max(r_max, r);
+  double reach = 0.0;
+  if (spec.van_der_waals) reach = std::max(reach, spec.van_der_waals->range);
+  if (spec.electrostatics && p.size() > 0) {
+    const double rc = spec.electrostatics->cutoff;
+    if (!(rc > 2.0 * r_max))
+      throw std::invalid_argument(
+          "electrostatics.cutoff = " + std::to_string(rc) +
+          " m does not reach past contact: it must exceed the largest particle diameter, " +
+          std::to_string(2.0 * r_max) + " m");
+    reach = std::max(reach, rc - 2.0 * r_min);
+  }
+  return reach;
+}
+
+} // namespace
+
+ConservativePairForces::ConservativePairForces(const BoxGeometry& box, const NonContactSpec& spec,
+                                               const ParticleStore& p, double skin)
+    : spec_(spec), box_(box), nl_(box, skin, 0, reach_of(spec, p)) {}
+
+void ConservativePairForces::permute(const std::vector<std::uint32_t>& new_to_old) {
+  if (renumber_) { // two reorders before an evaluation: compose them
+    std::vector<std::uint32_t> composed(new_to_old.size());
+    for (std::size_t k = 0; k < new_to_old.size(); ++k) composed[k] = new_to_old_[new_to_old[k]];
+    new_to_old_ = std::move(composed);
+  } else {
+    new_to_old_ = new_to_old;
+  }
+  renumber_ = true;
+}
+
+void ConservativePairForces::update(const ParticleStore& p) {
+  if (renumber_ && nl_.built_for(p.size())) {
+    nl_.build(p, &new_to_old_); // (no history to carry: a plain rebuild in the new order)
+  } else if (renumber_ || nl_.needs_rebuild(p)) {
+    nl_.build(p);
+  }
+  renumber_ = false;
+  if (rows_generation_ != nl_.generation()) build_rows(p.size());
+}
+
+void ConservativePairForces::build_rows(std::size_t n) {
+  const auto& off = nl_.offset;
+  const auto& partner = nl_.partner;
+  row_offset_.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) ++row_offset_[i + 1], ++row_offset_[partner[e] + 1];
+  for (std::size_t i = 0; i < n; ++i) row_offset_[i + 1] += row_offset_[i];
+  row_partner_.resize(row_offset_[n]);
+  std::vector<std::uint32_t> fill(row_offset_.begin(), row_offset_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const std::uint32_t j = partner[e];
+      row_partner_[fill[i]++] = j;
+      row_partner_[fill[j]++] = static_cast<std::uint32_t>(i);
+    }
+  // Ascending partner index: the order of a particle's sum does not depend on which particle
+  // owned a pair in the list.
+  parallel_for(n, threaded_particles(n), [&](std::size_t i) {
+    std::sort(row_partner_.begin() + row_offset_[i], row_partner_.begin() + row_offset_[i + 1]);
+  });
+  wall_offset_.assign(n + 1, 0);
+  for (const std::uint32_t i : nl_.wall_particle) ++wall_offset_[i + 1];
+  for (std::size_t i = 0; i < n; ++i) wall_offset_[i + 1] += wall_offset_[i];
+  rows_generation_ = nl_.generation();
+}
+
+ConservativePairForces::PairTerm ConservativePairForces::pair(const ParticleStore& p,
+                                                               std::size_t i, std::size_t j) const {
+  const Vec3 d{nl_.min_image(p.x[j] - p.x[i], 0), nl_.min_image(p.y[j] - p.y[i], 1),
+               nl_.min_image(p.z[j] - p.z[i], 2)};
+  const double r = std::sqrt(norm2(d));
+  const double ri = p.radius[i], rj = p.radius[j];
+  const double gap = r - ri - rj;
+  double f = 0.0; // > 0 repels
+  PairTerm t;
+  if (const auto& v = spec_.van_der_waals; v && gap < v->range) {
+    const auto pf = kernels::van_der_waals(v->hamaker, ri * rj / (ri + rj), v->min_separation,
+                                           v->range, gap);
+    f += pf.force, t.potential += pf.potential, t.in_range = true;
+  }
+  if (const auto& e = spec_.electrostatics) {
+    const double qi = p.charge[i], qj = p.charge[j];
+    if (qi != 0.0 && qj != 0.0 && r < e->cutoff) {
+      const auto pf = kernels::coulomb_shifted(
+          kernels::coulomb_constant(qi, qj, e->relative_permittivity), r, e->cutoff);
+      f += pf.force, t.potential += pf.potential, t.in_range = true;
+    }
+    // The images of j in the conducting walls act on i (and those of i on j, the same
+    // magnitude): the pair's share of the induced energy, counted once [coulomb.hpp].
+    if (qi != 0.0 && qj != 0.0)
+      for (int face = 0; face < 6; ++face) {
+        if (!e->conducting[face]) continue;
+        const int a = face / 2;
+        const double plane = face % 2 == 0 ? box_.lo[a] : box_.hi[a];
+        const std::array<double, 3> xj{p.x[j], p.y[j], p.z[j]}, xi{p.x[i], p.y[i], p.z[i]};
+        Vec3 di;
+        for (int b = 0; b < 3; ++b) {
+          const double image = b == a ? 2.0 * plane - xj[b] : xj[b];
+          di[b] = nl_.min_image(image - xi[b], b);
+        }
+        const double ri2 = std::sqrt(norm2(di));
+        if (!(ri2 < e->cutoff)) continue;
+        const auto pf = kernels::coulomb_shifted(
+            kernels::coulomb_constant(qi, -qj, e->relative_permittivity), ri2, e->cutoff);
+        t.force += di * (-pf.force / ri2);
+        t.potential += pf.potential;
+        t.in_range = true;
+      }
+  }
+  t.force += d * (-f / r);
+  return t;
+}
+
+ConservativePairForces::PairTerm ConservativePairForces::wall(const ParticleStore& p,
+                                                               std::size_t i, int face) const {
+  const int a = face / 2;
+  const double x = a == 0 ? p.x[i] : a == 1 ? p.y[i] : p.z[i];
+  const double z = face % 2 == 0 ? x - box_.lo[a] : box_.hi[a] - x; // centre to wall
+  const double sign = face % 2 == 0 ? -1.0 : 1.0; // towards the wall along axis a
+  PairTerm t;
+  double pull = 0.0; // towards the wall, N
+  if (const auto& v = spec_.van_der_waals; v && v->wall_hamaker) {
+    const double gap = z - p.radius[i];
+    if (gap < v->range) {
+      const auto pf =
+          kernels::van_der_waals(*v->wall_hamaker, p.radius[i], v->min_separation, v->range, gap);
+      pull -= pf.force, t.potential += pf.potential, t.in_range = true;
+    }
+  }
+  if (const auto& e = spec_.electrostatics; e && e->conducting[face] && p.charge[i] != 0.0) {
+    const double q = p.charge[i];
+    if (2.0 * z < e->cutoff) {
+      const auto pf = kernels::coulomb_shifted(
+          kernels::coulomb_constant(q, -q, e->relative_permittivity), 2.0 * z, e->cutoff);
+      pull -= pf.force;               // the image's force on the charge
+      t.potential += 0.5 * pf.potential; // half: the image moves with the charge
+      t.in_range = true;
+    }
+  }
+  t.force[a] = sign * pull;
+  return t;
+}
+
+ConservativePairForces::PairTerm ConservativePairForces::particle(const ParticleStore& p,
+                                                                   std::size_t i) const {
+  PairTerm sum;
+  for (std::uint32_t k = row_offset_[i]; k < row_offset_[i + 1]; ++k) {
+    const PairTerm t = pair(p, i, row_partner_[k]);
+    if (!t.in_range) continue;
+    sum.force += t.force;
+    sum.potential += 0.5 * t.potential;
+  }
+  for (std::uint32_t k = wall_offset_[i]; k < wall_offset_[i + 1]; ++k) {
+    const PairTerm t = wall(p, i, nl_.wall_face[k]);
+    if (!t.in_range) continue;
+    sum.force += t.force;
+    sum.potential += t.potential;
+  }
+  return sum;
+}
+
+void ConservativePairForces::compute(const ParticleStore& p, std::array<std::vector<double>, 3>& f,
+                                     std::vector<double>& u) {
+  update(p);
+  const std::size_t n = p.size();
+  for (auto& a : f) a.resize(n);
+  u.resize(n);
+  parallel_for(n, threaded_particles(n), [&](std::size_t i) {
+    const PairTerm t = particle(p, i);
+    f[0][i] = t.force.x, f[1][i] = t.force.y, f[2][i] = t.force.z;
+    u[i] = t.potential;
+  });
+}
+
+double shortest_noncontact_period(const NonContactSpec& spec, const ParticleStore& p) {
+  double t = std::numeric_limits<double>::infinity();
+  if (p.size() == 0) return t;
+  double r_min = std::numeric_limits<double>::infinity(), r_max = 0.0, m_min = r_min, q_max = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    r_min = std::min(r_min, p.radius[i]), r_max = std::max(r_max, p.radius[i]);
+    if (!p.fixed(i)) m_min = std::min(m_min, p.mass[i]);
+    q_max = std::max(q_max, std::abs(p.charge[i]));
+  }
+  if (!std::isfinite(m_min)) return t; // nothing moves
+  const double m_eff = 0.5 * m_min;    // two of the lightest (a wall: m, longer)
+  auto period = [&](double k) { return k > 0.0 ? std::numbers::pi * std::sqrt(m_eff / k) : t; };
+  if (const auto& v = spec.van_der_waals) {
+    const double a = std::max(v->hamaker, v->wall_hamaker.value_or(0.0));
+    t = std::min(t, period(kernels::van_der_waals_stiffness(a, r_max, v->min_separation)));
+  }
+  if (const auto& e = spec.electrostatics) {
+    const double k = kernels::coulomb_constant(q_max, q_max, e->relative_permittivity);
+    t = std::min(t, period(kernels::coulomb_shifted(k, 2.0 * r_min, e->cutoff).stiffness));
+  }
+  return t;
+}
+
+} // namespace fluidem

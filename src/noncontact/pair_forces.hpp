@@ -1,0 +1,73 @@
+// The conservative non-contact forces between particles, and between particles and walls: van der
+// Waals (noncontact/kernels/van_der_waals.hpp) and Coulomb with image charges at conducting walls
+// (noncontact/kernels/coulomb.hpp) [Zhu07 §2.2, Table 2]. Evaluated at every particle step over a
+// neighbour list of its own, whose reach is the longest range of these forces (so the contact
+// loop's list stays as short as contacts need).
+// Each particle's force is summed over all its partners in ascending partner index, then its
+// walls in face order, skipping the pairs out of range: a function of the positions and the
+// particle order alone, so the same with any number of threads, any neighbour-list history (a
+// restarted run rebuilds its list at other moments) and any ownership of the pairs. The two
+// particles of a pair compute the same magnitude along opposite directions: Newton's third law
+// holds exactly.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/noncontact_settings.hpp"
+#include "neighbour/neighbour_list.hpp"
+#include "particles/particle_store.hpp"
+
+namespace fluidem {
+
+class ConservativePairForces {
+public:
+  /// The forces `spec` turns on, for the particles p (their radii and charges) in `box`; `skin`:
+  /// the list's skin, m. std::invalid_argument when the cut-off cannot reach past contact.
+  ConservativePairForces(const BoxGeometry& box, const NonContactSpec& spec,
+                         const ParticleStore& p, double skin);
+
+  /// The forces on the particles of p, N, into f, and each particle's share of the potential
+  /// energy, J, into u (half of each of its pairs', its walls' whole): sum_i u_i, in index order,
+  /// is the potential energy of the configuration (each pair once). Resized; overwritten.
+  void compute(const ParticleStore& p, std::array<std::vector<double>, 3>& f,
+               std::vector<double>& u);
+  /// The particles were reordered (ParticleStore::permute): the list is renumbered at the next
+  /// evaluation.
+  void permute(const std::vector<std::uint32_t>& new_to_old);
+  /// The range beyond contact the list covers, m.
+  double reach() const { return nl_.reach(); }
+  const NeighbourList& list() const { return nl_; }
+
+private:
+  /// What particle i feels from partner j: the force on i, N, and the pair's potential, J.
+  struct PairTerm {
+    Vec3 force;
+    double potential = 0.0;
+    bool in_range = false;
+  };
+  PairTerm pair(const ParticleStore& p, std::size_t i, std::size_t j) const;
+  /// Particle i and wall face f: the force on i and the potential.
+  PairTerm wall(const ParticleStore& p, std::size_t i, int f) const;
+  /// Rebuild the list when a particle moved far or the particles were reordered, then the rows.
+  void update(const ParticleStore& p);
+  void build_rows(std::size_t n);
+  /// Force on particle i and its share of the potential (pairs halved).
+  PairTerm particle(const ParticleStore& p, std::size_t i) const;
+
+  NonContactSpec spec_;
+  BoxGeometry box_;
+  NeighbourList nl_;
+  std::vector<std::uint32_t> row_offset_, row_partner_; ///< all partners of each particle
+  std::vector<std::uint32_t> wall_offset_;              ///< each particle's wall entries
+  std::uint64_t rows_generation_ = ~std::uint64_t{0};
+  bool renumber_ = false;
+  std::vector<std::uint32_t> new_to_old_;
+};
+
+/// The shortest half-period pi sqrt(m*/k) of the non-contact forces of `spec` among p, s, with k
+/// their largest stiffness |dF/d(gap)| (van der Waals at h0, Coulomb at contact): the time-step
+/// rule treats it as a contact duration. Infinity when no such force acts.
+double shortest_noncontact_period(const NonContactSpec& spec, const ParticleStore& p);
+
+} // namespace fluidem
