@@ -221,7 +221,8 @@ def pull_off_work(ri, rj, v, theta, gamma):
     return mpf(sol.y[0][-1])
 
 
-# (R_i, R_j, V*-on-R_i, theta, gamma, gap / S_c): equal spheres, unequal, wall
+# (R_i, R_j, V* = V/R^3 on the Derjaguin radius R, theta, gamma, gap / S_c): equal spheres,
+# unequal, wall; V* within the fit's range 1e-5..0.1
 R1 = 5e-4
 BRIDGE_CASES = []
 for (ri, rj) in ((R1, R1), (R1, 2 * R1), (R1, math.inf)):
@@ -255,7 +256,7 @@ def write_bridge():
     lines = header("liquid_bridge",
                    "Willett et al. 2000 capillary force, Lian et al. 1993 rupture distance, "
                    "lubrication force, Yang et al. 2003 liquid distribution",
-                   ["r_i, r_j : m (r_j = inf: a plane wall)", "volume : m^3 (= vstar r_i^3)",
+                   ["r_i, r_j : m (r_j = inf: a plane wall)", "volume : m^3 (= vstar R^3, R = 2 r_i r_j/(r_i + r_j), wall 2 r_i)",
                     "theta : rad, gamma : N/m, gap : m", "rupture_distance : m",
                     "force : N (< 0 attracts), potential : J = -int_gap^S_c |F|, "
                     "stiffness : |dF/dgap| N/m", "energy : J = int_0^S_c |F| (the bridge energy)",
@@ -263,7 +264,7 @@ def write_bridge():
                     "[[volume]]: v_i, v_j m^3, n_i, n_j bridges -> volume m^3"])
     worst_pull = mpf(0)
     for i, (ri, rj, vstar, theta, gamma, frac) in enumerate(BRIDGE_CASES):
-        v = vstar * ri ** 3
+        v = vstar * float(r_willett(m(ri), m(rj))) ** 3
         RI, RJ, V, TH, G = map(m, (ri, rj, v, theta, gamma))
         sc = s_rupture(V, TH)
         gap = float(frac * sc)
