@@ -20,7 +20,9 @@
 //       m=2 ( 0.0018574, 0.004456, -0.006257)
 // (coefficients as implemented, with the same definitions of S+ and V*, in Yade's
 // ViscoelasticCapillarPM.cpp, Willett_numeric_f, which cites the appendix of Willett et al.; the
-// theta = 0 coefficients are the same in LIGGGHTS-PFM's Willett capillary cohesion model.)
+// same expression, definitions, Derjaguin radius and coefficients are in PDPS's pair_lbw.cpp,
+// style lb/willet, which states the range theta < 50 degrees, V* < 0.1; the theta = 0
+// coefficients are also those of LIGGGHTS-PFM's Willett cohesion model.)
 // At contact (S -> 0, f4 < 0) the exponential vanishes and F = 2 pi R gamma exp(f1), the value
 // used for S <= 0 (touching or overlapping pairs: the force stays that of contact).
 // Unequal spheres: the Derjaguin approximation as Willett et al. use it, the equal-sphere
@@ -28,10 +30,10 @@
 // a plane wall, R_j = infinity: R = 2 R_i, so that the small-bridge force at contact is the
 // sphere-plane 4 pi R_i gamma cos theta). Willett et al. find it relatively accurate for small
 // volumes, except at close contact and near rupture [Zhu07 §2.2].
-// Validity of the fit: 1e-5 <= V* <= 0.1 (its contact force then lies within 3% of the toroidal
-// value 2 pi R gamma / (1 + tan(beta/2)) for theta = 0; tools/noncontact_reference.py); below
-// V* ~ 1e-6 it grows unphysically, and for V* < ~1e-8 f4 turns positive and F(0) = 0. The
-// caller keeps V* in range.
+// Validity of the fit: theta < 50 degrees (0.87 rad), 1e-5 <= V* <= 0.1 (its contact force then
+// lies within 3% of the toroidal value 2 pi R gamma / (1 + tan(beta/2)) for theta = 0;
+// tools/noncontact_reference.py); below V* ~ 1e-6 it grows unphysically, and for V* < ~1e-8 f4
+// turns positive and F(0) = 0. The caller keeps V* in range.
 //
 // Rupture distance (Lian, Thornton & Adams 1993, J. Colloid Interface Sci. 161:138):
 //   S_c = (1 + theta/2) V^(1/3)        (theta in radians)
