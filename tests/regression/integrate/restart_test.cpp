@@ -16,7 +16,8 @@
 // contacts; once more without the continuum averages, so that most steps are folded: the
 // integrator's pass inside the contact loop, Simulation::step), hard spheres (the same with the
 // event-driven engine), and both coupled to the gas (the Tsuji column of tests/common, 200
-// particles), and the pouring runs of both engines with a row of fixed particles. The time step
+// particles), the pouring runs of both engines with a row of fixed particles, and the soft-sphere
+// pouring with the non-contact forces (van der Waals, charges, images). The time step
 // is fixed explicitly (an automatic step depends on end_time). T is
 // short (a few hundred steps): identity must hold from any state.
 // Also: a checkpoint truncated or with a flipped byte is rejected with a message naming the
@@ -269,6 +270,24 @@ TEST(Restart, CoupledHardSpheresContinueBitwise) {
   c.engine = Engine::HardSphere;
   c.count = 200;
   check_restart_identity(test::tsuji_column(c), 0.02, "coupled_hard");
+}
+
+// The soft-sphere pouring with the non-contact forces: van der Waals (particles and walls) and
+// charged discs (Coulomb, image charges in the conducting floor). They are evaluated every step
+// on a list of their own, which the restarted run rebuilds at other moments: their sums must not
+// depend on it.
+TEST(Restart, NonContactForcesContinueBitwise) {
+  CaseSpec spec = pouring(Engine::SoftSphere); // its contacts' step, kept (forced below)
+  const double d = spec.species[0].diameter;
+  spec.noncontact.van_der_waals = VanDerWaalsSpec{1e-19, 4e-10, 0.1 * d, 1e-19};
+  ElectrostaticsSpec e;
+  e.cutoff = 3.0 * d;
+  e.conducting[static_cast<std::size_t>(Face::ZLo)] = true;
+  spec.noncontact.electrostatics = e;
+  spec.inserts[0].charge = 2e-11;
+  spec.simulation.force_time_step = true; // van der Waals at h0 would ask for a shorter one
+  spec.neighbour.sort_interval = 1;
+  check_restart_identity(spec, 0.04, "noncontact");
 }
 
 TEST(Restart, DamagedCheckpointIsRejectedAndThePreviousOneLoads) {

@@ -203,5 +203,28 @@ TEST(ThreadIndependence, FixedLayerGivesBitwiseIdenticalParticles) {
   }
 }
 
+// kCase with the non-contact forces (noncontact/pair_forces.hpp): van der Waals between the
+// particles and with the walls, charged particles (half the bed each sign) with Coulomb forces
+// across the periodic sides and image charges in the conducting floor. Their per-particle sums
+// run over each particle's partners in index order, in parallel over the particles.
+TEST(ThreadIndependence, NonContactForcesGiveBitwiseIdenticalParticles) {
+  std::string text = kCase;
+  text.insert(text.find("[simulation]\n") + 13, "force_time_step = true\n");
+  const std::string second = "[[insert]]\nspecies = \"glass\"\ncount = 3000\n"
+                             "placement = \"random\"\nvelocity_spread = 0.8\nseed = 9\n"
+                             "charge = -1e-10\n";
+  text.insert(text.find("[contact]"), second);
+  text.replace(text.find("count = 6000"), 12, "count = 3000\ncharge = 1e-10");
+  text += "[van_der_waals]\nhamaker = 1e-19\nmin_separation = 4e-10\nrange = 3e-4\n"
+          "wall_hamaker = 1e-19\n"
+          "[electrostatics]\ncutoff = 0.009\nconducting_walls = [\"z_lo\"]\n";
+  const State one = run_with_threads(1, text.c_str(), 80);
+  const State two = run_with_threads(2, text.c_str(), 80);
+  const State three = run_with_threads(3, text.c_str(), 80);
+  ASSERT_EQ(one.x.size(), 18000u);
+  expect_bitwise_equal(one, two, three);
+  EXPECT_GT(one.contacts, 100);
+}
+
 } // namespace
 } // namespace fluidem
