@@ -40,4 +40,10 @@ const char* to_string(Placement p) {
   return "?";
 }
 
+std::vector<double> liquid_fractions(const CaseSpec& spec) {
+  std::vector<double> f;
+  for (const SpeciesSpec& s : spec.species) f.push_back(s.liquid_fraction);
+  return f;
+}
+
 } // namespace fluidem

@@ -38,6 +38,8 @@ struct SpeciesSpec {
   double diameter = 0.0; ///< m, > 0
   double density = 0.0;  ///< kg/m^3, > 0
   double charge = 0.0;   ///< C per particle ([electrostatics])
+  /// Liquid volume per particle / particle volume ([liquid_bridge]); 0: dry.
+  double liquid_fraction = 0.0;
   MaterialSpec material;
 };
 
@@ -206,6 +208,9 @@ struct CaseSpec {
   /// Index of the species with this name, or -1.
   int species_index(const std::string& name) const;
 };
+
+/// Each species' liquid_fraction, in species order.
+std::vector<double> liquid_fractions(const CaseSpec& spec);
 
 const char* to_string(Engine e);
 const char* to_string(Placement p);

@@ -1,6 +1,7 @@
-// The non-contact forces between particles a case asks for ([van_der_waals], [electrostatics]
-// [Zhu07 §2.2, Table 2]): plain data in SI units, read by io/case_reader, used by the noncontact
-// module. The charges are the particles' (SpeciesSpec::charge, InsertSpec::charge).
+// The non-contact forces between particles a case asks for ([van_der_waals], [electrostatics],
+// [liquid_bridge] [Zhu07 §2.2, Table 2]): plain data in SI units, read by io/case_reader, used by
+// the noncontact module. The charges and the liquid are the particles' (SpeciesSpec::charge,
+// InsertSpec::charge, SpeciesSpec::liquid_fraction).
 #pragma once
 #include <array>
 #include <optional>
@@ -25,11 +26,31 @@ struct ElectrostaticsSpec {
   std::array<bool, 6> conducting{};
 };
 
+/// `[liquid_bridge]`: pendular bridges between wet particles and with the walls
+/// (noncontact/kernels/liquid_bridge.hpp); each particle's liquid is its species'
+/// liquid_fraction of its volume (SpeciesSpec::liquid_fraction).
+struct LiquidBridgeSpec {
+  double surface_tension = 0.0; ///< gamma, N/m, > 0
+  /// theta as the case gives it, degrees, in [0, 50) (Willett's fit); kept in degrees so that
+  /// the resolved case reads back to the same bits.
+  double contact_angle_degrees = 0.0;
+  /// theta, rad.
+  double contact_angle() const { return contact_angle_degrees * (3.14159265358979323846 / 180.0); }
+  double viscosity = 0.0;       ///< mu_l of the liquid, Pa s, >= 0 (0: no viscous force)
+  double min_gap = 0.0;         ///< S_min of the viscous force, m, > 0
+  bool walls = true;            ///< bridges between particles and walls (the wall brings no liquid)
+};
+
 struct NonContactSpec {
   std::optional<VanDerWaalsSpec> van_der_waals;
   std::optional<ElectrostaticsSpec> electrostatics;
+  std::optional<LiquidBridgeSpec> liquid_bridge;
+  /// Whether a conservative non-contact force is on (van der Waals, electrostatics).
+  bool any_conservative() const {
+    return van_der_waals.has_value() || electrostatics.has_value();
+  }
   /// Whether any non-contact force is on.
-  bool any() const { return van_der_waals.has_value() || electrostatics.has_value(); }
+  bool any() const { return any_conservative() || liquid_bridge.has_value(); }
 };
 
 } // namespace fluidem

@@ -9,6 +9,7 @@
 #include "analysis/bed_height.hpp"
 #include "integrate/contact_time_limit.hpp"
 #include "integrate/memory_estimate.hpp"
+#include "integrate/liquid_bridge_source.hpp"
 #include "integrate/noncontact_source.hpp"
 #include "integrate/run_recorder.hpp"
 #include "integrate/time_step_rule.hpp"
@@ -174,16 +175,25 @@ void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_f
 
 void Simulation::set_up_noncontact(double skin) {
   const NonContactSpec& nc = spec_.noncontact;
-  const std::string key = nc.van_der_waals ? "van_der_waals" : "electrostatics";
+  const std::string key = nc.van_der_waals    ? "van_der_waals"
+                          : nc.electrostatics ? "electrostatics"
+                                              : "liquid_bridge";
   if (hard_)
     throw InputError(spec_.where(key), key,
                      "the hard-sphere engine has no non-contact forces (its particles meet only "
-                     "in instantaneous collisions, so an attraction at a gap cannot act); use "
+                     "in instantaneous collisions, so a force across a gap cannot act); use "
                      "simulation.engine = \"soft_sphere\"");
   try {
-    add_force_source(std::make_unique<NonContactForceSource>(limits_.box, nc, p_, skin));
+    if (nc.any_conservative())
+      add_force_source(std::make_unique<NonContactForceSource>(limits_.box, nc, p_, skin));
   } catch (const std::invalid_argument& e) {
     throw InputError(spec_.where(key), key, e.what());
+  }
+  if (nc.liquid_bridge) {
+    auto source = std::make_unique<LiquidBridgeSource>(limits_.box, *nc.liquid_bridge,
+                                                       liquid_fractions(spec_), p_, skin);
+    bridges_ = &source->bridges();
+    add_force_source(std::move(source));
   }
 }
 

@@ -28,6 +28,8 @@
 
 namespace fluidem {
 
+class LiquidBridges;
+
 /// Quantities a user needs before a run (`fluidem check`).
 struct CaseReport {
   std::size_t particle_count = 0;
@@ -166,6 +168,8 @@ public:
   double dissipated_energy() const { return stepper_->dissipated_energy(); }
   /// The gas phase and coupling, or nullptr for a granular run.
   const GasCoupling* gas() const { return gas_.get(); }
+  /// The liquid bridges (nullptr without [liquid_bridge]).
+  const LiquidBridges* liquid_bridges() const { return bridges_; }
   /// The collision statistics (output.collisions = true), or nullptr. Fed after every step,
   /// also by advance(); run() takes a row of collisions.csv every series interval.
   const CollisionStatistics* collisions() const { return collisions_.get(); }
@@ -233,6 +237,7 @@ private:
   ParticleStore p_;
   ForceSources forces_;
   std::unique_ptr<GasCoupling> gas_; ///< set when the case has [gas]
+  LiquidBridges* bridges_ = nullptr;  ///< the liquid bridges' source's (in forces_), [liquid_bridge]
   std::unique_ptr<ParticleStepper> stepper_;
   SoftSphereStepper* soft_ = nullptr; ///< stepper_ when engine = "soft_sphere"
   HardSphereStepper* hard_ = nullptr; ///< stepper_ when engine = "hard_sphere"

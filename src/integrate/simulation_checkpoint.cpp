@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "fluidem_version.hpp"
 #include "integrate/simulation.hpp"
+#include "noncontact/liquid_bridges.hpp"
 #include "io/case_reader.hpp"
 #include "io/case_writer.hpp"
 #include "output/checkpoint_file.hpp"
@@ -267,6 +268,14 @@ void Simulation::write_checkpoint(const std::string& path) {
   w.put_view("particles/charge", p_.charge);
   if (soft_) // the list's own arrays, unchanged until commit
     put_list(w, "neighbour", soft_->list().state_view());
+  if (bridges_) // which pairs hold a bridge: the history of their list
+    put_list(w, "liquid_bridges", bridges_->list().state_view());
+  // The forces of the sources evaluated every step, as the next kick uses them (a source's
+  // forces may depend on the half-step velocities, which the checkpoint does not hold).
+  const auto& step_sources = forces_.step_sources();
+  for (std::size_t k = 0; k < step_sources.size(); ++k)
+    for (std::size_t a = 0; a < 3; ++a)
+      w.put_view(fmt::format("step_sources/{}/force_{}", k, "xyz"[a]), step_sources[k]->forces()[a]);
   HardSphereEngine::State h; // its list goes in as views: alive until w.commit()
   if (hard_) {
     h = hard_->engine().state();
@@ -368,6 +377,19 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
       }
     }
     if (s.soft_) s.soft_->list().restore(s.p_, get_list(r, "neighbour"));
+    if (s.bridges_) s.bridges_->list().restore(s.p_, get_list(r, "liquid_bridges"));
+    const auto& step_sources = s.forces_.step_sources();
+    for (std::size_t k = 0; k < step_sources.size(); ++k)
+      for (std::size_t a = 0; a < 3; ++a) {
+        const std::string name = fmt::format("step_sources/{}/force_{}", k, "xyz"[a]);
+        std::vector<double> f = r.doubles(name);
+        if (f.size() != s.p_.size())
+          throw CheckpointError(fmt::format("checkpoint '{}': '{}' has {} entries for {} "
+                                            "particles",
+                                            checkpoint, name, f.size(), s.p_.size()));
+        step_sources[k]->forces()[a] = std::move(f);
+      }
+    s.forces_.refresh(s.p_.size());
     if (s.hard_) s.hard_->engine().restore(s.p_, read_hard_sphere(r, checkpoint));
     // Collision statistics: continued when the checkpoint holds them; a run that switches
     // them on at the restart (--set output.collisions=true) starts them there.

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "noncontact/liquid_bridges.hpp"
 #include "noncontact/pair_forces.hpp"
 
 namespace fluidem {
@@ -51,8 +52,10 @@ TimeSteps choose_time_steps(CaseSpec& spec, const ParticleStore& p, const Contac
   TimeSteps s;
   // The non-contact forces' stiffness counts as a contact of half-period pi sqrt(m*/k)
   // (noncontact/pair_forces.hpp).
-  const double tc = std::min(shortest_possible_contact(spec, p, *table),
-                             shortest_noncontact_period(spec.noncontact, p));
+  double tc = std::min(shortest_possible_contact(spec, p, *table),
+                       shortest_noncontact_period(spec.noncontact, p));
+  if (const auto& b = spec.noncontact.liquid_bridge)
+    tc = std::min(tc, shortest_bridge_time(*b, liquid_fractions(spec), p));
   s.stable_dt = tc / kMinStepsPerContact;
   const auto& sim = spec.simulation;
   s.dt = sim.time_step ? *sim.time_step : std::isfinite(tc) ? sim.time_step_fraction * tc : 1.0e-4;

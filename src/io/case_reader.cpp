@@ -35,7 +35,7 @@ const Keys& root_keys() {
   static const Keys k = {"simulation", "output", "domain",   "walls",
                          "species",    "insert", "contact",  "neighbour",
                          "hardsphere", "gas",    "coupling", "body_force",
-                         "van_der_waals", "electrostatics"};
+                         "van_der_waals", "electrostatics", "liquid_bridge"};
   return k;
 }
 const Keys& simulation_keys() {
@@ -91,7 +91,7 @@ const Keys& walls_keys() {
 }
 const Keys& species_keys() {
   static const Keys k = [] {
-    Keys all = {"name", "diameter", "density", "charge"};
+    Keys all = {"name", "diameter", "density", "charge", "liquid_fraction"};
     all.insert(all.end(), material_keys().begin(), material_keys().end());
     return all;
   }();
@@ -133,6 +133,10 @@ const Keys& van_der_waals_keys() {
 }
 const Keys& electrostatics_keys() {
   static const Keys k = {"cutoff", "relative_permittivity", "conducting_walls"};
+  return k;
+}
+const Keys& liquid_bridge_keys() {
+  static const Keys k = {"surface_tension", "contact_angle", "viscosity", "min_gap", "walls"};
   return k;
 }
 const Keys& body_force_keys() {
@@ -218,6 +222,7 @@ const Keys& section_keys(const std::string& section) {
   if (section == "body_force") return body_force_keys();
   if (section == "van_der_waals") return van_der_waals_keys();
   if (section == "electrostatics") return electrostatics_keys();
+  if (section == "liquid_bridge") return liquid_bridge_keys();
   return neighbour_keys();
 }
 
@@ -657,6 +662,7 @@ public:
     read_body_force(section(root, "body_force"));
     read_van_der_waals(section(root, "van_der_waals"));
     read_electrostatics(section(root, "electrostatics"));
+    read_liquid_bridge(section(root, "liquid_bridge"));
     read_gas(root);
     read_coupling(section(root, "coupling"));
     read_probes(output);
@@ -1158,6 +1164,15 @@ private:
       s.diameter = req_number(t, p, "[[species]] " + p, "diameter", kLength);
       s.density = req_number(t, p, "[[species]] " + p, "density", {Bound::Positive, "kg/m^3"});
       opt_number(t, p, "charge", {Bound::Any, "C"}, s.charge);
+      opt_number(t, p, "liquid_fraction", {Bound::NonNegative, ""}, s.liquid_fraction);
+      // Willett's fit holds for bridge volumes 1e-5 <= V/R^3 <= 0.1: with the liquid shared
+      // among 1 to 12 bridges between equal spheres, V/R^3 lies in [0.7, 8.4] x the fraction.
+      if (s.liquid_fraction != 0.0 && (s.liquid_fraction < 2e-5 || s.liquid_fraction > 0.01))
+        throw InputError(spec_.where(p + ".liquid_fraction"), p + ".liquid_fraction",
+                         format_double(s.liquid_fraction) +
+                             " is out of range (allowed: 0 (dry), or 2e-5 to 0.01 of the particle "
+                             "volume, where the bridges stay in the range of Willett's capillary "
+                             "force, 1e-5 <= V/R^3 <= 0.1)");
       read_material(t, p, s.material);
       spec_.species.push_back(s);
     }
@@ -1491,6 +1506,34 @@ private:
       }
     }
     spec_.noncontact.electrostatics = e;
+  }
+
+  /// `[liquid_bridge]` [Zhu07 §2.2]: after [species] (their liquid_fraction).
+  void read_liquid_bridge(const toml::table* t) {
+    if (t == nullptr) return;
+    const std::string p = "liquid_bridge", shown = "[liquid_bridge]";
+    LiquidBridgeSpec b;
+    b.surface_tension = req_number(t, p, shown, "surface_tension", {Bound::Positive, "N/m"});
+    double& degrees = b.contact_angle_degrees;
+    opt_number(t, p, "contact_angle", {Bound::NonNegative, "degrees"}, degrees);
+    if (!(degrees < 50.0))
+      throw InputError(spec_.where(p + ".contact_angle"), p + ".contact_angle",
+                       format_double(degrees) +
+                           " degrees is out of range (allowed: 0 <= angle < 50 degrees, the "
+                           "range of Willett's capillary force)");
+    opt_number(t, p, "viscosity", {Bound::NonNegative, "Pa s"}, b.viscosity);
+    if (b.viscosity > 0.0)
+      b.min_gap = req_number(t, p, shown + " with a viscosity", "min_gap", kLength);
+    else
+      opt_number(t, p, "min_gap", kLength, b.min_gap);
+    opt_bool(t, p, "walls", b.walls);
+    bool wet = false;
+    for (const SpeciesSpec& s : spec_.species) wet = wet || s.liquid_fraction > 0.0;
+    if (!wet)
+      throw InputError(spec_.where(p), p,
+                       "no species has liquid (allowed: [liquid_bridge] with at least one "
+                       "species' liquid_fraction > 0)");
+    spec_.noncontact.liquid_bridge = b;
   }
 
   // --- gas, coupling, probes ----------------------------------------------------------------

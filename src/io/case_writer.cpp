@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <sstream>
 
 #include "contact/contact_models.hpp"
@@ -288,6 +289,8 @@ std::string write_case_toml(const CaseSpec& spec) {
        << "diameter = " << format_double(sp.diameter) << "  # m\n"
        << "density = " << format_double(sp.density) << "  # kg/m^3\n";
     if (sp.charge != 0.0) os << "charge = " << format_double(sp.charge) << "  # C\n";
+    if (sp.liquid_fraction != 0.0)
+      os << "liquid_fraction = " << format_double(sp.liquid_fraction) << "  # of the volume\n";
     write_material(os, sp.material);
   }
 
@@ -362,6 +365,16 @@ std::string write_case_toml(const CaseSpec& spec) {
     for (std::size_t f = 0; f < 6; ++f)
       if (e->conducting[f]) os << sep << toml_string(kFaceNames[f]), sep = ", ";
     os << "]\n";
+  }
+
+  if (const auto& b = spec.noncontact.liquid_bridge) {
+    os << "\n[liquid_bridge]\n"
+       << "surface_tension = " << format_double(b->surface_tension) << "  # N/m\n"
+       << "contact_angle = " << format_double(b->contact_angle_degrees)
+       << "  # degrees\n"
+       << "viscosity = " << format_double(b->viscosity) << "  # Pa s\n";
+    if (b->min_gap > 0.0) os << "min_gap = " << format_double(b->min_gap) << "  # m\n";
+    os << "walls = " << (b->walls ? "true" : "false") << "\n";
   }
 
   // A coupled run only; a granular case has neither (the reader would reject [coupling]).

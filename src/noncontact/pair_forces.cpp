@@ -41,50 +41,12 @@ ConservativePairForces::ConservativePairForces(const BoxGeometry& box, const Non
     : spec_(spec), box_(box), nl_(box, skin, 0, reach_of(spec, p)) {}
 
 void ConservativePairForces::permute(const std::vector<std::uint32_t>& new_to_old) {
-  if (renumber_) { // two reorders before an evaluation: compose them
-    std::vector<std::uint32_t> composed(new_to_old.size());
-    for (std::size_t k = 0; k < new_to_old.size(); ++k) composed[k] = new_to_old_[new_to_old[k]];
-    new_to_old_ = std::move(composed);
-  } else {
-    new_to_old_ = new_to_old;
-  }
-  renumber_ = true;
+  order_.add(new_to_old);
 }
 
 void ConservativePairForces::update(const ParticleStore& p) {
-  if (renumber_ && nl_.built_for(p.size())) {
-    nl_.build(p, &new_to_old_); // (no history to carry: a plain rebuild in the new order)
-  } else if (renumber_ || nl_.needs_rebuild(p)) {
-    nl_.build(p);
-  }
-  renumber_ = false;
-  if (rows_generation_ != nl_.generation()) build_rows(p.size());
-}
-
-void ConservativePairForces::build_rows(std::size_t n) {
-  const auto& off = nl_.offset;
-  const auto& partner = nl_.partner;
-  row_offset_.assign(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) ++row_offset_[i + 1], ++row_offset_[partner[e] + 1];
-  for (std::size_t i = 0; i < n; ++i) row_offset_[i + 1] += row_offset_[i];
-  row_partner_.resize(row_offset_[n]);
-  std::vector<std::uint32_t> fill(row_offset_.begin(), row_offset_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-      const std::uint32_t j = partner[e];
-      row_partner_[fill[i]++] = j;
-      row_partner_[fill[j]++] = static_cast<std::uint32_t>(i);
-    }
-  // Ascending partner index: the order of a particle's sum does not depend on which particle
-  // owned a pair in the list.
-  parallel_for(n, threaded_particles(n), [&](std::size_t i) {
-    std::sort(row_partner_.begin() + row_offset_[i], row_partner_.begin() + row_offset_[i + 1]);
-  });
-  wall_offset_.assign(n + 1, 0);
-  for (const std::uint32_t i : nl_.wall_particle) ++wall_offset_[i + 1];
-  for (std::size_t i = 0; i < n; ++i) wall_offset_[i + 1] += wall_offset_[i];
-  rows_generation_ = nl_.generation();
+  order_.update(nl_, p);
+  if (!rows_.current(nl_)) rows_.build(nl_, p.size());
 }
 
 ConservativePairForces::PairTerm ConservativePairForces::pair(const ParticleStore& p,
@@ -167,13 +129,13 @@ ConservativePairForces::PairTerm ConservativePairForces::wall(const ParticleStor
 ConservativePairForces::PairTerm ConservativePairForces::particle(const ParticleStore& p,
                                                                    std::size_t i) const {
   PairTerm sum;
-  for (std::uint32_t k = row_offset_[i]; k < row_offset_[i + 1]; ++k) {
-    const PairTerm t = pair(p, i, row_partner_[k]);
+  for (std::uint32_t k = rows_.begin(i); k < rows_.end(i); ++k) {
+    const PairTerm t = pair(p, i, rows_.partner(k));
     if (!t.in_range) continue;
     sum.force += t.force;
     sum.potential += 0.5 * t.potential;
   }
-  for (std::uint32_t k = wall_offset_[i]; k < wall_offset_[i + 1]; ++k) {
+  for (std::uint32_t k = rows_.wall_begin(i); k < rows_.wall_end(i); ++k) {
     const PairTerm t = wall(p, i, nl_.wall_face[k]);
     if (!t.in_range) continue;
     sum.force += t.force;

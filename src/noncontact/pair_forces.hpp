@@ -16,6 +16,7 @@
 
 #include "core/noncontact_settings.hpp"
 #include "neighbour/neighbour_list.hpp"
+#include "noncontact/pair_rows.hpp"
 #include "particles/particle_store.hpp"
 
 namespace fluidem {
@@ -51,18 +52,14 @@ private:
   PairTerm wall(const ParticleStore& p, std::size_t i, int f) const;
   /// Rebuild the list when a particle moved far or the particles were reordered, then the rows.
   void update(const ParticleStore& p);
-  void build_rows(std::size_t n);
   /// Force on particle i and its share of the potential (pairs halved).
   PairTerm particle(const ParticleStore& p, std::size_t i) const;
 
   NonContactSpec spec_;
   BoxGeometry box_;
   NeighbourList nl_;
-  std::vector<std::uint32_t> row_offset_, row_partner_; ///< all partners of each particle
-  std::vector<std::uint32_t> wall_offset_;              ///< each particle's wall entries
-  std::uint64_t rows_generation_ = ~std::uint64_t{0};
-  bool renumber_ = false;
-  std::vector<std::uint32_t> new_to_old_;
+  PairRows rows_;
+  PendingOrder order_;
 };
 
 /// The shortest half-period pi sqrt(m*/k) of the non-contact forces of `spec` among p, s, with k

@@ -17,7 +17,7 @@
 // integrator's pass inside the contact loop, Simulation::step), hard spheres (the same with the
 // event-driven engine), and both coupled to the gas (the Tsuji column of tests/common, 200
 // particles), the pouring runs of both engines with a row of fixed particles, and the soft-sphere
-// pouring with the non-contact forces (van der Waals, charges, images). The time step
+// pouring with the non-contact forces (van der Waals, charges, images, liquid bridges). The time step
 // is fixed explicitly (an automatic step depends on end_time). T is
 // short (a few hundred steps): identity must hold from any state.
 // Also: a checkpoint truncated or with a flipped byte is rejected with a message naming the
@@ -272,10 +272,11 @@ TEST(Restart, CoupledHardSpheresContinueBitwise) {
   check_restart_identity(test::tsuji_column(c), 0.02, "coupled_hard");
 }
 
-// The soft-sphere pouring with the non-contact forces: van der Waals (particles and walls) and
-// charged discs (Coulomb, image charges in the conducting floor). They are evaluated every step
-// on a list of their own, which the restarted run rebuilds at other moments: their sums must not
-// depend on it.
+// The soft-sphere pouring with the non-contact forces: van der Waals (particles and walls),
+// charged discs (Coulomb, image charges in the conducting floor) and wet discs (liquid bridges,
+// whose list with its bridges is in the checkpoint). The conservative forces are evaluated every
+// step on a list of their own, which the restarted run rebuilds at other moments: their sums
+// must not depend on it.
 TEST(Restart, NonContactForcesContinueBitwise) {
   CaseSpec spec = pouring(Engine::SoftSphere); // its contacts' step, kept (forced below)
   const double d = spec.species[0].diameter;
@@ -285,6 +286,12 @@ TEST(Restart, NonContactForcesContinueBitwise) {
   e.conducting[static_cast<std::size_t>(Face::ZLo)] = true;
   spec.noncontact.electrostatics = e;
   spec.inserts[0].charge = 2e-11;
+  spec.species[0].liquid_fraction = 1e-3;
+  LiquidBridgeSpec bridge;
+  bridge.surface_tension = 0.0728;
+  bridge.viscosity = 1e-3;
+  bridge.min_gap = 1e-6;
+  spec.noncontact.liquid_bridge = bridge;
   spec.simulation.force_time_step = true; // van der Waals at h0 would ask for a shorter one
   spec.neighbour.sort_interval = 1;
   check_restart_identity(spec, 0.04, "noncontact");

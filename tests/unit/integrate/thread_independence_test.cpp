@@ -203,10 +203,11 @@ TEST(ThreadIndependence, FixedLayerGivesBitwiseIdenticalParticles) {
   }
 }
 
-// kCase with the non-contact forces (noncontact/pair_forces.hpp): van der Waals between the
-// particles and with the walls, charged particles (half the bed each sign) with Coulomb forces
-// across the periodic sides and image charges in the conducting floor. Their per-particle sums
-// run over each particle's partners in index order, in parallel over the particles.
+// kCase with the non-contact forces (noncontact/): van der Waals between the particles and with
+// the walls, charged particles (half the bed each sign) with Coulomb forces across the periodic
+// sides and image charges in the conducting floor, and wet particles with liquid bridges
+// (forming, rupturing, shared liquid). Their per-particle sums run over each particle's partners
+// in index order, in parallel over the particles.
 TEST(ThreadIndependence, NonContactForcesGiveBitwiseIdenticalParticles) {
   std::string text = kCase;
   text.insert(text.find("[simulation]\n") + 13, "force_time_step = true\n");
@@ -217,7 +218,10 @@ TEST(ThreadIndependence, NonContactForcesGiveBitwiseIdenticalParticles) {
   text.replace(text.find("count = 6000"), 12, "count = 3000\ncharge = 1e-10");
   text += "[van_der_waals]\nhamaker = 1e-19\nmin_separation = 4e-10\nrange = 3e-4\n"
           "wall_hamaker = 1e-19\n"
-          "[electrostatics]\ncutoff = 0.009\nconducting_walls = [\"z_lo\"]\n";
+          "[electrostatics]\ncutoff = 0.009\nconducting_walls = [\"z_lo\"]\n"
+          "[liquid_bridge]\nsurface_tension = 0.0728\ncontact_angle = 20\nviscosity = 1e-3\n"
+          "min_gap = 1e-6\n";
+  text.insert(text.find("rolling_friction = 0.05"), "liquid_fraction = 1e-3\n");
   const State one = run_with_threads(1, text.c_str(), 80);
   const State two = run_with_threads(2, text.c_str(), 80);
   const State three = run_with_threads(3, text.c_str(), 80);
