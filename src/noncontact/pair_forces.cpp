@@ -167,15 +167,23 @@ double shortest_noncontact_period(const NonContactSpec& spec, const ParticleStor
     q_max = std::max(q_max, std::abs(p.charge[i]));
   }
   if (!std::isfinite(m_min)) return t; // nothing moves
-  const double m_eff = 0.5 * m_min;    // two of the lightest (a wall: m, longer)
-  auto period = [&](double k) { return k > 0.0 ? std::numbers::pi * std::sqrt(m_eff / k) : t; };
-  if (const auto& v = spec.van_der_waals) {
-    const double a = std::max(v->hamaker, v->wall_hamaker.value_or(0.0));
-    t = std::min(t, period(kernels::van_der_waals_stiffness(a, r_max, v->min_separation)));
+  // Two of the lightest: m* = m/2; against a wall, m.
+  auto period = [&](double k, double m_eff) {
+    return k > 0.0 ? std::numbers::pi * std::sqrt(m_eff / k) : t;
+  };
+  const double m_eff = 0.5 * m_min;
+  if (const auto& v = spec.van_der_waals) { // R* = r_max / 2 between two of the largest
+    t = std::min(t, period(kernels::van_der_waals_stiffness(v->hamaker, 0.5 * r_max,
+                                                            v->min_separation),
+                           m_eff));
+    if (v->wall_hamaker)
+      t = std::min(t, period(kernels::van_der_waals_stiffness(*v->wall_hamaker, r_max,
+                                                              v->min_separation),
+                             m_min));
   }
   if (const auto& e = spec.electrostatics) {
     const double k = kernels::coulomb_constant(q_max, q_max, e->relative_permittivity);
-    t = std::min(t, period(kernels::coulomb_shifted(k, 2.0 * r_min, e->cutoff).stiffness));
+    t = std::min(t, period(kernels::coulomb_shifted(k, 2.0 * r_min, e->cutoff).stiffness, m_eff));
   }
   return t;
 }

@@ -198,5 +198,45 @@ TEST(NonContactForces, VanDerWaalsPairBouncesElasticallyAndKeepsItsEnergy) {
   EXPECT_NEAR(sim.particles().vx[0], -v0, 1e-3 * v0) << "it leaves as fast as it came";
 }
 
+// Set-up: the time-step rule counts the stiffest non-contact force as a contact of half-period
+// pi sqrt(m*/k) (k = A R*/(3 h0^3) for van der Waals at h0; m* = m/2 between two of the
+// lightest); the hard-sphere engine refuses non-contact forces, naming the table; a Coulomb
+// cut-off that cannot reach past contact is refused.
+TEST(NonContactForces, SetUpChecks) {
+  const double c = 0.5 * kBox;
+  const std::vector<Placed> two = {{c - kD, c, c, 0.0, 1e-12}, {c + kD, c, c, 0.0, 1e-12}};
+  const double a = 1e-19, h0 = 4e-10;
+  const std::string vdw =
+      fmt::format("[van_der_waals]\nhamaker = {}\nmin_separation = {}\nrange = 1e-6\n", a, h0);
+  Simulation dry(read_case_string(case_text(two, ""), "dry.toml"));
+  Simulation sticky(read_case_string(case_text(two, vdw), "sticky.toml"));
+  const double k = a * 0.25 * kD / (3.0 * h0 * h0 * h0);
+  const double period = std::numbers::pi * std::sqrt(0.5 * kMass / k);
+  EXPECT_LT(sticky.time_step(), dry.time_step());
+  EXPECT_NEAR(sticky.time_step(), 0.02 * period, 1e-6 * period) // time_step_fraction 0.02
+      << "the auto step is a fraction of the van der Waals half-period";
+  const std::string hard = "[simulation]\nengine = \"hard_sphere\"\ntime_step = 1e-4\n";
+  std::string text = case_text(two, vdw);
+  text.replace(text.find("[simulation]\n"), 13, hard);
+  try {
+    Simulation refused(read_case_string(text, "hard.toml"));
+    ADD_FAILURE() << "hard spheres took van der Waals";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("van_der_waals: the hard-sphere engine has no non-contact forces"),
+              std::string::npos)
+        << m;
+  }
+  try {
+    Simulation refused(read_case_string(case_text(two, "[electrostatics]\ncutoff = 0.0005\n"),
+                                        "short.toml"));
+    ADD_FAILURE() << "a cut-off inside contact was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("electrostatics: electrostatics.cutoff"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 } // namespace
 } // namespace fluidem
