@@ -7,8 +7,7 @@
 //   F_sf(r) = k (1/r^2 - 1/r_c^2),   U_sf(r) = k (1/r - 1/r_c + (r - r_c)/r_c^2),   k = q_i q_j /
 //   (4 pi eps0 eps_r),   r < r_c.
 // Why a cut-off, not an Ewald/PPPM sum: see docs/noncontact.md (the error of the cut-off is
-// measured there for a net-charged bed; the shifted force is exact for a pair and a lattice
-// within r_c).
+// measured there for bipolar and for net-charged beds).
 // A charge q at distance z from a grounded conducting plane is attracted by its image -q at
 // distance 2 z (Jackson, Classical Electrodynamics §2.1); the image of another charge q_j acts on
 // q_i as the charge -q_j at the mirror point. The energy of the system is half the interaction
