@@ -453,6 +453,24 @@ void H5mdWriter::write_frame(long step, double time, const ParticleStore& p,
   m.append_value(kSpecies, in_order(p.species, ints), m.mem_scalar.get());
   m.append_value(kId, in_order(p.id, ids), m.mem_scalar.get());
   if (m.layer) m.append_value(kLayer, in_order(p.layer, ints), m.mem_scalar.get());
+  // The charges (constant during a run), once, as a time-independent element in frame order.
+  const bool charged =
+      std::any_of(p.charge.begin(), p.charge.end(), [](double q) { return q != 0.0; });
+  if (charged && p.charge.size() == n &&
+      H5Lexists(m.file.get(), "/particles/all/charge", H5P_DEFAULT) == 0) {
+    const Builder b{m.path};
+    const hsize_t dims[1] = {n};
+    Handle space = b.simple_space(1, dims);
+    Handle set{check_id(H5Dcreate2(m.file.get(), "/particles/all/charge", H5T_IEEE_F64LE,
+                                   space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                        m.path, "create dataset", "/particles/all/charge"),
+               H5Dclose};
+    std::vector<double> charge;
+    check(H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                   in_order(p.charge, charge)),
+          m.path, "write", "/particles/all/charge");
+    b.string_attr(set.get(), "unit", "C");
+  }
 
   ++m.frames;
   const std::int64_t frames64 = static_cast<std::int64_t>(m.frames);

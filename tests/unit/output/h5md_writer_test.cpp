@@ -326,6 +326,35 @@ TEST(H5mdWriter, ValuesRoundTripBitwise) {
   EXPECT_EQ(mismatches, 0);
 }
 
+// Charged particles: their charges (constant during a run) are written once, with the first
+// frame, in the frame's order, as the time-independent element /particles/all/charge (unit C);
+// an uncharged store writes none.
+TEST(H5mdWriter, ChargesAreWrittenOnceInFrameOrder) {
+  TempDir dir;
+  const std::string charged = dir.file("charged.h5"), neutral = dir.file("neutral.h5");
+  {
+    H5mdWriter w(charged, kN, 2, "test");
+    ParticleStore p = make_frame(kN, 0);
+    for (std::size_t i = 0; i < kN; ++i) p.charge[i] = 1e-12 * (static_cast<double>(i) - 2.5);
+    std::vector<std::uint32_t> order(kN);
+    for (std::size_t k = 0; k < kN; ++k) order[k] = static_cast<std::uint32_t>(kN - 1 - k);
+    w.write_frame(0, 0.0, p, &order);
+    w.write_frame(1, 0.1, p, &order);
+    H5mdWriter n(neutral, kN, 2, "test");
+    n.write_frame(0, 0.0, make_frame(kN, 0));
+  }
+  const hid_t f = H5Fopen(charged.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const auto q = read_all<double>(f, "/particles/all/charge", H5T_NATIVE_DOUBLE);
+  H5Fclose(f);
+  ASSERT_EQ(q.size(), kN);
+  for (std::size_t k = 0; k < kN; ++k)
+    EXPECT_EQ(q[k], 1e-12 * (static_cast<double>(kN - 1 - k) - 2.5)) << k;
+  const hid_t g = H5Fopen(neutral.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_EQ(H5Lexists(g, "/particles/all/charge", H5P_DEFAULT), 0);
+  H5Fclose(g);
+}
+
 TEST(H5mdWriter, FileIsReadableWhileTheRunGoesOn) {
   TempDir dir;
   const std::string path = dir.file("particles.h5");
