@@ -176,9 +176,12 @@ void print_run_summary(const Simulation& sim, const RunSummary& s, const std::st
                s.seconds_output, gas_time);
   else
     fmt::print("time in contacts {:.3f} s, integration {:.3f} s, neighbour lists {:.3f} s "
-               "({} builds{}), output {:.3f} s{}\n",
+               "({} builds{}),{} output {:.3f} s{}\n",
                s.seconds_contacts, s.seconds_integration, s.seconds_neighbour, s.neighbour_builds,
                s.spatial_sorts > 0 ? fmt::format(", {} spatial sorts", s.spatial_sorts) : "",
+               s.seconds_step_sources > 0.0
+                   ? fmt::format(" non-contact forces {:.3f} s,", s.seconds_step_sources)
+                   : "",
                s.seconds_output, gas_time);
   if (s.folded_steps > 0)
     fmt::print("integration folded into the contact loop on {} of {} steps (its time counted "

@@ -34,6 +34,7 @@ public:
   /// Seconds spent in the contacts (or collisions), the integration and the neighbour lists.
   struct Seconds {
     double contacts = 0.0, integration = 0.0, neighbour = 0.0;
+    double step_sources = 0.0; ///< the force sources evaluated every step (non-contact forces)
   };
   virtual Seconds seconds() const = 0;
   /// Bytes held per particle by the engine (beyond the particle store).

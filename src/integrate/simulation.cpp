@@ -343,6 +343,7 @@ RunSummary Simulation::summary(long steps, double seconds, double seconds_output
   s.seconds_contacts = t.contacts;
   s.seconds_integration = t.integration;
   s.seconds_neighbour = t.neighbour;
+  s.seconds_step_sources = t.step_sources;
   s.seconds_output = seconds_output;
   s.seconds_gas = t_gas_;
   s.seconds_gas_solver = gas_ ? gas_->solver_seconds() : 0.0;

@@ -65,6 +65,7 @@ struct RunSummary {
   double seconds_contacts = 0.0, seconds_integration = 0.0, seconds_neighbour = 0.0,
          seconds_output = 0.0, seconds_gas = 0.0;
   double seconds_gas_solver = 0.0; ///< the part of seconds_gas in the gas solver's steps
+  double seconds_step_sources = 0.0; ///< soft spheres: the forces evaluated every step (non-contact)
   std::size_t bytes_per_particle = 0;
   double energy_drift = 0.0;       ///< (E_total(end) - E_total(0)) / E_scale
   long collisions = 0;             ///< hard-sphere engine: collisions processed

@@ -314,8 +314,10 @@ void SoftSphereStepper::separate_step(const auto& kick_drift, bool tracked, bool
 }
 
 void SoftSphereStepper::evaluate_step_sources(double t) {
+  const auto t0 = WallClock::now();
   sync_particles(); // the sources read the store
   forces_.evaluate_step_sources(p_, t);
+  t_sources_ += seconds_since(t0);
 }
 
 void SoftSphereStepper::compute_forces_folded(const SlabHook& slab_pass) {

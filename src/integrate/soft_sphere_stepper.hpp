@@ -43,7 +43,9 @@ public:
   void finish_kick() override;
   double dissipated_energy() const override { return e_dsp_; }
   const ContactStats& contact_stats() const override { return stats_; }
-  Seconds seconds() const override { return {t_contacts_, t_integration_, t_neighbour_}; }
+  Seconds seconds() const override {
+    return {t_contacts_, t_integration_, t_neighbour_, t_sources_};
+  }
   std::size_t bytes() const override;
 
   /// Brings the particle store's positions and velocities up to date from the contact view,
@@ -118,7 +120,7 @@ private:
   double max_inv_mass_ = 0.0;
   std::vector<double> slab_sums_;
   long folded_steps_ = 0, sorts_ = 0;
-  double t_contacts_ = 0.0, t_integration_ = 0.0, t_neighbour_ = 0.0;
+  double t_contacts_ = 0.0, t_integration_ = 0.0, t_neighbour_ = 0.0, t_sources_ = 0.0;
 };
 
 } // namespace fluidem

@@ -158,9 +158,8 @@ void LiquidBridges::compute(const ParticleStore& p, std::array<std::vector<doubl
   const double inf = std::numeric_limits<double>::infinity();
   // The force of a bridge along n (from i towards the partner), > 0 repelling.
   auto bridge_force = [&](double r_i, double r_j, double volume, const Separation& s) {
-    double fn = kernels::liquid_bridge_capillary(r_i, r_j, volume, theta, spec_.surface_tension,
-                                                 s.gap)
-                    .force;
+    double fn = kernels::liquid_bridge_capillary_force(r_i, r_j, volume, theta,
+                                                       spec_.surface_tension, s.gap);
     if (spec_.viscosity > 0.0)
       fn += kernels::liquid_bridge_viscous(spec_.viscosity, r_i, r_j, s.rate, s.gap, spec_.min_gap);
     return fn;

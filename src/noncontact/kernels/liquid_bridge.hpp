@@ -195,6 +195,18 @@ inline PairForce liquid_bridge_capillary(double r_i, double r_j, double volume, 
   return {-m.force, u, m.slope};
 }
 
+/// liquid_bridge_capillary's force alone (N, < 0: attractive), without the quadrature of its
+/// potential: what a run evaluates every step.
+inline double liquid_bridge_capillary_force(double r_i, double r_j, double volume, double theta,
+                                            double gamma, double gap) {
+  if (gap >= liquid_bridge_rupture_distance(volume, theta)) return 0.0;
+  const double r = willett_radius(r_i, r_j);
+  const WillettCoefficients c = willett_coefficients(theta, std::log(volume / (r * r * r)));
+  return -detail::willett_magnitude(c, 2.0 * std::numbers::pi * r * gamma,
+                                    2.0 * std::sqrt(volume / r), gap)
+              .force;
+}
+
 /// The work to pull a bridge from contact (S = 0) to rupture (S_c), J: -potential at contact.
 inline double liquid_bridge_energy(double r_i, double r_j, double volume, double theta,
                                    double gamma) {

@@ -153,6 +153,7 @@ TEST_P(LiquidBridgeReference, ForcePotentialStiffnessEnergy) {
   const double gamma = number(c.in, "gamma", w), gap = number(c.in, "gap", w);
   const PairForce p = liquid_bridge_capillary(r_i, r_j, v, theta, gamma, gap);
   std::string err = check_expected(c, "force", p.force);
+  err += check_expected(c, "force", liquid_bridge_capillary_force(r_i, r_j, v, theta, gamma, gap));
   err += check_expected(c, "potential", p.potential);
   err += check_expected(c, "stiffness", p.stiffness);
   err += check_expected(c, "energy", liquid_bridge_energy(r_i, r_j, v, theta, gamma));
