@@ -36,9 +36,9 @@ struct LiquidBridgeSpec {
   double contact_angle_degrees = 0.0;
   /// theta, rad.
   double contact_angle() const { return contact_angle_degrees * (3.14159265358979323846 / 180.0); }
-  double viscosity = 0.0;       ///< mu_l of the liquid, Pa s, >= 0 (0: no viscous force)
-  double min_gap = 0.0;         ///< S_min of the viscous force, m, > 0
-  bool walls = true;            ///< bridges between particles and walls (the wall brings no liquid)
+  double viscosity = 0.0; ///< mu_l of the liquid, Pa s, >= 0 (0: no viscous force)
+  double min_gap = 0.0;   ///< S_min of the viscous force, m, > 0
+  bool walls = true;      ///< bridges between particles and walls (the wall brings no liquid)
 };
 
 struct NonContactSpec {
@@ -46,9 +46,7 @@ struct NonContactSpec {
   std::optional<ElectrostaticsSpec> electrostatics;
   std::optional<LiquidBridgeSpec> liquid_bridge;
   /// Whether a conservative non-contact force is on (van der Waals, electrostatics).
-  bool any_conservative() const {
-    return van_der_waals.has_value() || electrostatics.has_value();
-  }
+  bool any_conservative() const { return van_der_waals.has_value() || electrostatics.has_value(); }
   /// Whether any non-contact force is on.
   bool any() const { return any_conservative() || liquid_bridge.has_value(); }
 };

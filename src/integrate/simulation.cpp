@@ -8,8 +8,8 @@
 
 #include "analysis/bed_height.hpp"
 #include "integrate/contact_time_limit.hpp"
-#include "integrate/memory_estimate.hpp"
 #include "integrate/liquid_bridge_source.hpp"
+#include "integrate/memory_estimate.hpp"
 #include "integrate/noncontact_source.hpp"
 #include "integrate/run_recorder.hpp"
 #include "integrate/time_step_rule.hpp"

@@ -65,7 +65,8 @@ struct RunSummary {
   double seconds_contacts = 0.0, seconds_integration = 0.0, seconds_neighbour = 0.0,
          seconds_output = 0.0, seconds_gas = 0.0;
   double seconds_gas_solver = 0.0; ///< the part of seconds_gas in the gas solver's steps
-  double seconds_step_sources = 0.0; ///< soft spheres: the forces evaluated every step (non-contact)
+  double seconds_step_sources =
+      0.0; ///< soft spheres: the forces evaluated every step (non-contact)
   std::size_t bytes_per_particle = 0;
   double energy_drift = 0.0;       ///< (E_total(end) - E_total(0)) / E_scale
   long collisions = 0;             ///< hard-sphere engine: collisions processed
@@ -238,7 +239,7 @@ private:
   ParticleStore p_;
   ForceSources forces_;
   std::unique_ptr<GasCoupling> gas_; ///< set when the case has [gas]
-  LiquidBridges* bridges_ = nullptr;  ///< the liquid bridges' source's (in forces_), [liquid_bridge]
+  LiquidBridges* bridges_ = nullptr; ///< the liquid bridges' source's (in forces_), [liquid_bridge]
   std::unique_ptr<ParticleStepper> stepper_;
   SoftSphereStepper* soft_ = nullptr; ///< stepper_ when engine = "soft_sphere"
   HardSphereStepper* hard_ = nullptr; ///< stepper_ when engine = "hard_sphere"

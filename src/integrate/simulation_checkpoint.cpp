@@ -19,9 +19,9 @@
 #include "core/error.hpp"
 #include "fluidem_version.hpp"
 #include "integrate/simulation.hpp"
-#include "noncontact/liquid_bridges.hpp"
 #include "io/case_reader.hpp"
 #include "io/case_writer.hpp"
+#include "noncontact/liquid_bridges.hpp"
 #include "output/checkpoint_file.hpp"
 
 namespace fluidem {
@@ -275,7 +275,8 @@ void Simulation::write_checkpoint(const std::string& path) {
   const auto& step_sources = forces_.step_sources();
   for (std::size_t k = 0; k < step_sources.size(); ++k)
     for (std::size_t a = 0; a < 3; ++a)
-      w.put_view(fmt::format("step_sources/{}/force_{}", k, "xyz"[a]), step_sources[k]->forces()[a]);
+      w.put_view(fmt::format("step_sources/{}/force_{}", k, "xyz"[a]),
+                 step_sources[k]->forces()[a]);
   HardSphereEngine::State h; // its list goes in as views: alive until w.commit()
   if (hard_) {
     h = hard_->engine().state();

@@ -61,13 +61,14 @@ TimeSteps choose_time_steps(CaseSpec& spec, const ParticleStore& p, const Contac
   s.dt = sim.time_step ? *sim.time_step : std::isfinite(tc) ? sim.time_step_fraction * tc : 1.0e-4;
   if (!sim.time_step && sim.end_time > 0.0) s.dt = sim.end_time / std::ceil(sim.end_time / s.dt);
   if (s.dt > s.stable_dt && !sim.force_time_step) {
-    throw InputError(spec.where("simulation.time_step"), "simulation.time_step",
-                     fmt::format("{:.4g} s is above the stability limit {:.4g} s (the shortest "
-                                 "contact, or half-period of a non-contact force, lasts {:.4g} s and "
-                                 "needs at least {} steps); choose a "
-                                 "smaller step, \"auto\", or set simulation.force_time_step = "
-                                 "true",
-                                 s.dt, s.stable_dt, tc, kMinStepsPerContact));
+    throw InputError(
+        spec.where("simulation.time_step"), "simulation.time_step",
+        fmt::format("{:.4g} s is above the stability limit {:.4g} s (the shortest "
+                    "contact, or half-period of a non-contact force, lasts {:.4g} s and "
+                    "needs at least {} steps); choose a "
+                    "smaller step, \"auto\", or set simulation.force_time_step = "
+                    "true",
+                    s.dt, s.stable_dt, tc, kMinStepsPerContact));
   }
   if (spec.gas) {
     // Flow step DT ("auto" = 1e-4 s [Hoomans96 §5.3], shortened to end exactly at end_time);

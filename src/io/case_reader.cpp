@@ -32,10 +32,10 @@ constexpr const char* kSetFile = "--set";
 // The schema: valid keys of every table.
 
 const Keys& root_keys() {
-  static const Keys k = {"simulation", "output", "domain",   "walls",
-                         "species",    "insert", "contact",  "neighbour",
-                         "hardsphere", "gas",    "coupling", "body_force",
-                         "van_der_waals", "electrostatics", "liquid_bridge"};
+  static const Keys k = {
+      "simulation", "output",     "domain",        "walls",          "species",
+      "insert",     "contact",    "neighbour",     "hardsphere",     "gas",
+      "coupling",   "body_force", "van_der_waals", "electrostatics", "liquid_bridge"};
   return k;
 }
 const Keys& simulation_keys() {
@@ -98,9 +98,9 @@ const Keys& species_keys() {
   return k;
 }
 const Keys& insert_keys() {
-  static const Keys k = {"species",  "count",           "placement",        "file",  "region",
-                         "velocity", "velocity_spread", "angular_velocity", "fixed", "seed",
-                         "charge"};
+  static const Keys k = {"species", "count",    "placement",       "file",
+                         "region",  "velocity", "velocity_spread", "angular_velocity",
+                         "fixed",   "seed",     "charge"};
   return k;
 }
 const Keys& region_keys() {
@@ -1456,8 +1456,8 @@ private:
     v.range = req_number(t, p, shown, "range", kLength);
     if (v.range <= v.min_separation)
       throw InputError(spec_.where(p + ".range"), p + ".range",
-                       format_double(v.range) + " m is not beyond min_separation = " +
-                           format_double(v.min_separation) +
+                       format_double(v.range) +
+                           " m is not beyond min_separation = " + format_double(v.min_separation) +
                            " m (allowed: a surface gap > min_separation, beyond which the "
                            "attraction is zero)");
     if (t->contains("wall_hamaker")) {

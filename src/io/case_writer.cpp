@@ -370,8 +370,7 @@ std::string write_case_toml(const CaseSpec& spec) {
   if (const auto& b = spec.noncontact.liquid_bridge) {
     os << "\n[liquid_bridge]\n"
        << "surface_tension = " << format_double(b->surface_tension) << "  # N/m\n"
-       << "contact_angle = " << format_double(b->contact_angle_degrees)
-       << "  # degrees\n"
+       << "contact_angle = " << format_double(b->contact_angle_degrees) << "  # degrees\n"
        << "viscosity = " << format_double(b->viscosity) << "  # Pa s\n";
     if (b->min_gap > 0.0) os << "min_gap = " << format_double(b->min_gap) << "  # m\n";
     os << "walls = " << (b->walls ? "true" : "false") << "\n";

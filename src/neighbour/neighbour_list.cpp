@@ -167,7 +167,8 @@ void NeighbourList::build_with_skin(const ParticleStore& p,
   const std::size_t n = p.size();
   double rmax = 0.0;
   for (const double r : p.radius) rmax = std::max(rmax, r);
-  grid_.bin(box_, 2.0 * rmax + reach_ + skin_, p.x.data(), p.y.data(), p.z.data(), n, threaded_particles(n));
+  grid_.bin(box_, 2.0 * rmax + reach_ + skin_, p.x.data(), p.y.data(), p.z.data(), n,
+            threaded_particles(n));
   stored_cells_ = grid_.stored_cells();
   grid_bytes_ = grid_.bytes();
 

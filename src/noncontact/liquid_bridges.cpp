@@ -62,18 +62,18 @@ double shortest_bridge_time(const LiquidBridgeSpec& spec,
                             const std::vector<double>& liquid_fraction, const ParticleStore& p) {
   double t = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const double v = liquid_fraction[static_cast<std::size_t>(p.species[i])] *
-                     sphere_volume(p.radius[i]);
+    const double v =
+        liquid_fraction[static_cast<std::size_t>(p.species[i])] * sphere_volume(p.radius[i]);
     if (v <= 0.0 || p.fixed(i)) continue;
     const double r = p.radius[i], m_eff = 0.5 * p.mass[i];
     // Between two such particles, the bridge volumes of one to twelve bridges each: the stiffness
     // just off contact (the force is steepest there).
     for (const double volume : {2.0 * v, v / 6.0}) {
-      const double gap = 1e-6 * kernels::liquid_bridge_rupture_distance(volume, spec.contact_angle());
-      const double k =
-          kernels::liquid_bridge_capillary(r, r, volume, spec.contact_angle(), spec.surface_tension,
-                                           gap)
-              .stiffness;
+      const double gap =
+          1e-6 * kernels::liquid_bridge_rupture_distance(volume, spec.contact_angle());
+      const double k = kernels::liquid_bridge_capillary(r, r, volume, spec.contact_angle(),
+                                                        spec.surface_tension, gap)
+                           .stiffness;
       if (k > 0.0) t = std::min(t, std::numbers::pi * std::sqrt(m_eff / k));
     }
     if (spec.viscosity > 0.0) {

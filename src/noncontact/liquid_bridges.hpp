@@ -57,8 +57,7 @@ private:
 /// The longest rupture distance a bridge of these particles can reach, m (both partners' whole
 /// liquid in one bridge): the bridges' list reach.
 double longest_rupture_distance(const LiquidBridgeSpec& spec,
-                                const std::vector<double>& liquid_fraction,
-                                const ParticleStore& p);
+                                const std::vector<double>& liquid_fraction, const ParticleStore& p);
 
 /// The shortest time scale of the bridges among p, s: the half-period pi sqrt(m*/k) of the
 /// capillary force's stiffness at contact and the viscous relaxation m*/c

@@ -49,8 +49,8 @@ void ConservativePairForces::update(const ParticleStore& p) {
   if (!rows_.current(nl_)) rows_.build(nl_, p.size());
 }
 
-ConservativePairForces::PairTerm ConservativePairForces::pair(const ParticleStore& p,
-                                                               std::size_t i, std::size_t j) const {
+ConservativePairForces::PairTerm ConservativePairForces::pair(const ParticleStore& p, std::size_t i,
+                                                              std::size_t j) const {
   const Vec3 d{nl_.min_image(p.x[j] - p.x[i], 0), nl_.min_image(p.y[j] - p.y[i], 1),
                nl_.min_image(p.z[j] - p.z[i], 2)};
   const double r = std::sqrt(norm2(d));
@@ -59,8 +59,8 @@ ConservativePairForces::PairTerm ConservativePairForces::pair(const ParticleStor
   double f = 0.0; // > 0 repels
   PairTerm t;
   if (const auto& v = spec_.van_der_waals; v && gap < v->range) {
-    const auto pf = kernels::van_der_waals(v->hamaker, ri * rj / (ri + rj), v->min_separation,
-                                           v->range, gap);
+    const auto pf =
+        kernels::van_der_waals(v->hamaker, ri * rj / (ri + rj), v->min_separation, v->range, gap);
     f += pf.force, t.potential += pf.potential, t.in_range = true;
   }
   if (const auto& e = spec_.electrostatics) {
@@ -96,12 +96,12 @@ ConservativePairForces::PairTerm ConservativePairForces::pair(const ParticleStor
   return t;
 }
 
-ConservativePairForces::PairTerm ConservativePairForces::wall(const ParticleStore& p,
-                                                               std::size_t i, int face) const {
+ConservativePairForces::PairTerm ConservativePairForces::wall(const ParticleStore& p, std::size_t i,
+                                                              int face) const {
   const int a = face / 2;
   const double x = a == 0 ? p.x[i] : a == 1 ? p.y[i] : p.z[i];
   const double z = face % 2 == 0 ? x - box_.lo[a] : box_.hi[a] - x; // centre to wall
-  const double sign = face % 2 == 0 ? -1.0 : 1.0; // towards the wall along axis a
+  const double sign = face % 2 == 0 ? -1.0 : 1.0;                   // towards the wall along axis a
   PairTerm t;
   double pull = 0.0; // towards the wall, N
   if (const auto& v = spec_.van_der_waals; v && v->wall_hamaker) {
@@ -117,7 +117,7 @@ ConservativePairForces::PairTerm ConservativePairForces::wall(const ParticleStor
     if (2.0 * z < e->cutoff) {
       const auto pf = kernels::coulomb_shifted(
           kernels::coulomb_constant(q, -q, e->relative_permittivity), 2.0 * z, e->cutoff);
-      pull -= pf.force;               // the image's force on the charge
+      pull -= pf.force;                  // the image's force on the charge
       t.potential += 0.5 * pf.potential; // half: the image moves with the charge
       t.in_range = true;
     }
@@ -127,7 +127,7 @@ ConservativePairForces::PairTerm ConservativePairForces::wall(const ParticleStor
 }
 
 ConservativePairForces::PairTerm ConservativePairForces::particle(const ParticleStore& p,
-                                                                   std::size_t i) const {
+                                                                  std::size_t i) const {
   PairTerm sum;
   for (std::uint32_t k = rows_.begin(i); k < rows_.end(i); ++k) {
     const PairTerm t = pair(p, i, rows_.partner(k));
@@ -173,13 +173,13 @@ double shortest_noncontact_period(const NonContactSpec& spec, const ParticleStor
   };
   const double m_eff = 0.5 * m_min;
   if (const auto& v = spec.van_der_waals) { // R* = r_max / 2 between two of the largest
-    t = std::min(t, period(kernels::van_der_waals_stiffness(v->hamaker, 0.5 * r_max,
-                                                            v->min_separation),
-                           m_eff));
+    t = std::min(
+        t, period(kernels::van_der_waals_stiffness(v->hamaker, 0.5 * r_max, v->min_separation),
+                  m_eff));
     if (v->wall_hamaker)
-      t = std::min(t, period(kernels::van_der_waals_stiffness(*v->wall_hamaker, r_max,
-                                                              v->min_separation),
-                             m_min));
+      t = std::min(
+          t, period(kernels::van_der_waals_stiffness(*v->wall_hamaker, r_max, v->min_separation),
+                    m_min));
   }
   if (const auto& e = spec.electrostatics) {
     const double k = kernels::coulomb_constant(q_max, q_max, e->relative_permittivity);

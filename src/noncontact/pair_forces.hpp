@@ -25,8 +25,8 @@ class ConservativePairForces {
 public:
   /// The forces `spec` turns on, for the particles p (their radii and charges) in `box`; `skin`:
   /// the list's skin, m. std::invalid_argument when the cut-off cannot reach past contact.
-  ConservativePairForces(const BoxGeometry& box, const NonContactSpec& spec,
-                         const ParticleStore& p, double skin);
+  ConservativePairForces(const BoxGeometry& box, const NonContactSpec& spec, const ParticleStore& p,
+                         double skin);
 
   /// The forces on the particles of p, N, into f, and each particle's share of the potential
   /// energy, J, into u (half of each of its pairs', its walls' whole): sum_i u_i, in index order,

@@ -31,7 +31,8 @@ void PairRows::build(const NeighbourList& nl, std::size_t n) {
     std::sort(order.begin(), order.end(),
               [&](std::uint32_t x, std::uint32_t y) { return partner_[x] < partner_[y]; });
     std::vector<std::uint32_t> p(e - b), en(e - b);
-    for (std::size_t k = 0; k < order.size(); ++k) p[k] = partner_[order[k]], en[k] = entry_[order[k]];
+    for (std::size_t k = 0; k < order.size(); ++k)
+      p[k] = partner_[order[k]], en[k] = entry_[order[k]];
     std::copy(p.begin(), p.end(), partner_.begin() + b);
     std::copy(en.begin(), en.end(), entry_.begin() + b);
   });

@@ -17,11 +17,11 @@
 // integrator's pass inside the contact loop, Simulation::step), hard spheres (the same with the
 // event-driven engine), and both coupled to the gas (the Tsuji column of tests/common, 200
 // particles), the pouring runs of both engines with a row of fixed particles, and the soft-sphere
-// pouring with the non-contact forces (van der Waals, charges, images, liquid bridges). The time step
-// is fixed explicitly (an automatic step depends on end_time). T is
-// short (a few hundred steps): identity must hold from any state.
-// Also: a checkpoint truncated or with a flipped byte is rejected with a message naming the
-// file (CheckpointError), and the previous checkpoint (checkpoint.prev.h5) still loads.
+// pouring with the non-contact forces (van der Waals, charges, images, liquid bridges). The time
+// step is fixed explicitly (an automatic step depends on end_time). T is short (a few hundred
+// steps): identity must hold from any state. Also: a checkpoint truncated or with a flipped byte is
+// rejected with a message naming the file (CheckpointError), and the previous checkpoint
+// (checkpoint.prev.h5) still loads.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -39,15 +39,17 @@ std::string case_text(double viscosity) {
       "hi = [0.1, 0.1, 0.1]\n\n[[species]]\nname = \"wet\"\ndiameter = {d}\ndensity = {rho}\n"
       "friction = 0.0\nliquid_fraction = {phi}\n\n"
       "[[insert]]\nspecies = \"wet\"\ncount = 1\nplacement = \"lattice\"\nfixed = true\n"
-      "region = {{ lo = [{a0:.17g}, {c0:.17g}, {c0:.17g}], hi = [{a1:.17g}, {c1:.17g}, {c1:.17g}] }}\n\n"
+      "region = {{ lo = [{a0:.17g}, {c0:.17g}, {c0:.17g}], hi = [{a1:.17g}, {c1:.17g}, {c1:.17g}] "
+      "}}\n\n"
       "[[insert]]\nspecies = \"wet\"\ncount = 1\nplacement = \"lattice\"\n"
-      "region = {{ lo = [{b0:.17g}, {c0:.17g}, {c0:.17g}], hi = [{b1:.17g}, {c1:.17g}, {c1:.17g}] }}\n"
+      "region = {{ lo = [{b0:.17g}, {c0:.17g}, {c0:.17g}], hi = [{b1:.17g}, {c1:.17g}, {c1:.17g}] "
+      "}}\n"
       "velocity = [{v0}, 0.0, 0.0]\n\n[contact]\nnormal = \"hertz\"\n\n"
       "[liquid_bridge]\nsurface_tension = {g}\nviscosity = {mu}\nwalls = false\n",
-      fmt::arg("d", kD), fmt::arg("rho", kRho), fmt::arg("phi", kFraction),
-      fmt::arg("a0", kC - h), fmt::arg("a1", kC + h), fmt::arg("b0", xb - h),
-      fmt::arg("b1", xb + h), fmt::arg("c0", kC - h), fmt::arg("c1", kC + h), fmt::arg("v0", kV0),
-      fmt::arg("g", kGamma), fmt::arg("mu", viscosity));
+      fmt::arg("d", kD), fmt::arg("rho", kRho), fmt::arg("phi", kFraction), fmt::arg("a0", kC - h),
+      fmt::arg("a1", kC + h), fmt::arg("b0", xb - h), fmt::arg("b1", xb + h),
+      fmt::arg("c0", kC - h), fmt::arg("c1", kC + h), fmt::arg("v0", kV0), fmt::arg("g", kGamma),
+      fmt::arg("mu", viscosity));
   if (viscosity > 0.0) s += "min_gap = 1e-6\n";
   return s;
 }

@@ -77,10 +77,10 @@ double separation(const Simulation& sim) {
 
 TEST(NonContactForces, LikeChargesFollowTheCoulombTwoBodySolution) {
   const double q = 1e-9, r0 = 0.005, c = 0.5 * kBox;
-  Simulation sim(read_case_string(
-      case_text({{c - 0.5 * r0, c, c, 0.0, q}, {c + 0.5 * r0, c, c, 0.0, q}},
-                "[electrostatics]\ncutoff = 5.0\n"),
-      "coulomb.toml"));
+  Simulation sim(
+      read_case_string(case_text({{c - 0.5 * r0, c, c, 0.0, q}, {c + 0.5 * r0, c, c, 0.0, q}},
+                                 "[electrostatics]\ncutoff = 5.0\n"),
+                       "coulomb.toml"));
   const double k = kernels::coulomb_constant(q, q, 1.0), mu = 0.5 * kMass;
   const double x = 3.0;
   const double t = std::sqrt(mu * r0 * r0 * r0 / (2.0 * k)) *
@@ -106,10 +106,10 @@ TEST(NonContactForces, LikeChargesFollowTheCoulombTwoBodySolution) {
 
 TEST(NonContactForces, OppositeChargesFallTogetherAsTheClosedFormSays) {
   const double q = 1e-9, r0 = 0.01, c = 0.5 * kBox;
-  Simulation sim(read_case_string(
-      case_text({{c - 0.5 * r0, c, c, 0.0, q}, {c + 0.5 * r0, c, c, 0.0, -q}},
-                "[electrostatics]\ncutoff = 5.0\n"),
-      "attract.toml"));
+  Simulation sim(
+      read_case_string(case_text({{c - 0.5 * r0, c, c, 0.0, q}, {c + 0.5 * r0, c, c, 0.0, -q}},
+                                 "[electrostatics]\ncutoff = 5.0\n"),
+                       "attract.toml"));
   const double k = std::abs(kernels::coulomb_constant(q, -q, 1.0)), mu = 0.5 * kMass;
   const double x = 0.5;
   const double t = std::sqrt(mu * r0 * r0 * r0 / (2.0 * k)) *
@@ -177,7 +177,8 @@ TEST(NonContactForces, VanDerWaalsPairBouncesElasticallyAndKeepsItsEnergy) {
                             h0, range),
                 "normal = \"hertz\"") +
           fmt::format("\n[output]\nframe_interval = 1.0\n"),
-      "vdw.toml", {fmt::format("simulation.time_step={:.17g}", dt), "simulation.force_time_step=true"}));
+      "vdw.toml",
+      {fmt::format("simulation.time_step={:.17g}", dt), "simulation.force_time_step=true"}));
   const double e0 = total_energy(sim);
   const double well = a * 0.25 * kD / 6.0 * (1.0 / h0 - 1.0 / range);
   double deepest = 0.0, worst = 0.0;
@@ -228,8 +229,8 @@ TEST(NonContactForces, SetUpChecks) {
         << m;
   }
   try {
-    Simulation refused(read_case_string(case_text(two, "[electrostatics]\ncutoff = 0.0005\n"),
-                                        "short.toml"));
+    Simulation refused(
+        read_case_string(case_text(two, "[electrostatics]\ncutoff = 0.0005\n"), "short.toml"));
     ADD_FAILURE() << "a cut-off inside contact was taken";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("electrostatics: electrostatics.cutoff"),

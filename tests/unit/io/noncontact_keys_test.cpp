@@ -59,7 +59,8 @@ TEST(NonContactKeys, ReadAndWrittenBackToTheSameBits) {
   EXPECT_EQ(r.noncontact.electrostatics->cutoff, c.noncontact.electrostatics->cutoff);
   EXPECT_EQ(r.noncontact.electrostatics->relative_permittivity, 1.5);
   EXPECT_EQ(r.noncontact.electrostatics->conducting, c.noncontact.electrostatics->conducting);
-  EXPECT_EQ(r.noncontact.liquid_bridge->contact_angle(), c.noncontact.liquid_bridge->contact_angle());
+  EXPECT_EQ(r.noncontact.liquid_bridge->contact_angle(),
+            c.noncontact.liquid_bridge->contact_angle());
   EXPECT_EQ(r.noncontact.liquid_bridge->min_gap, 1e-6);
   EXPECT_EQ(r.noncontact.liquid_bridge->walls, false);
   EXPECT_FALSE(read_case_string(kBase, "case.toml").noncontact.any());
