@@ -180,10 +180,10 @@ std::vector<BadInput> bad_inputs() {
       {"too_many_random",
        replace(replace(kValid, "count = 10\n", "count = 150\n"), "placement = \"lattice\"\n", ""),
        "count", "insert[0].count", "fit"},
-      {"not_implemented",
+      {"walton_braun_without_stiffness",
        replace(replace(kValid, "normal = \"linear\"", "normal = \"walton_braun\""),
                "stiffness = 800.0\n", ""),
-       "normal", "contact.normal", "not implemented"},
+       "[contact]", "contact.stiffness", "missing required key"},
   };
 }
 
