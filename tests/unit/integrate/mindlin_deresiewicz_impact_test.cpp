@@ -16,8 +16,10 @@
 //
 // Tolerances: J_t/J_n = mu within 1e-9 in gross sliding (every step slides; measured ~1e-14),
 // the spin within 1% of J_t r / I (the impulse integrated with the steps' velocities), J_t/(mu J_n)
-// strictly increasing with the angle and below 0.99 at tan(theta) = 0.05, the energy balance
-// within 1e-3 of the initial energy at every step (dt = t_c/397).
+// increasing with the angle until it reaches 1 (gross sliding) and below 0.99 at
+// tan(theta) = 0.05, the energy balance within 2e-3 of the initial energy at every step
+// (dt = t_c/397; measured at most 7.6e-4, first order in dt; the "history" model on the same
+// Hertz impacts, printed for the record, measured 4e-4 to 1.5e-2).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -50,6 +52,7 @@ const double kInertia = 0.4 * kMass * kR * kR;
 struct Oblique {
   double mu, ratio, e;
   bool walton_braun = false; // the normal model: hertz, or walton_braun
+  const char* tangential = "mindlin_deresiewicz";
 };
 void PrintTo(const Oblique& o, std::ostream* os) {
   *os << (o.walton_braun ? "wb_" : "hertz_") << "mu" << o.mu << "_tan" << o.ratio << "_e" << o.e;
@@ -88,12 +91,12 @@ Result run(const Oblique& o) {
       "[[insert]]\nspecies = \"s\"\ncount = 1\nplacement = \"lattice\"\n"
       "region = {{ lo = [{xl:.17g}, {xl:.17g}, {zl:.17g}], hi = [{xh:.17g}, {xh:.17g}, "
       "{zh:.17g}] }}\nvelocity = [{vt:.17g}, 0.0, {vn:.17g}]\n\n"
-      "[contact]\n{normal}tangential = \"mindlin_deresiewicz\"\n",
+      "[contact]\n{normal}tangential = \"{tangential}\"\n",
       fmt::arg("dt", dt), fmt::arg("L", kBox), fmt::arg("e", o.e), fmt::arg("mu", o.mu),
       fmt::arg("d", kD), fmt::arg("rho", kRho), fmt::arg("xl", c - kR), fmt::arg("xh", c + kR),
       fmt::arg("zl", z0 - kR), fmt::arg("zh", z0 + kR), fmt::arg("vt", o.ratio * kVn),
       fmt::arg("vn", -kVn), fmt::arg("elastic", o.walton_braun ? "" : elastic),
-      fmt::arg("normal", normal));
+      fmt::arg("normal", normal), fmt::arg("tangential", o.tangential));
   Simulation sim(read_case_string(text, "oblique_md.toml"));
   const auto& p = sim.particles();
   EXPECT_EQ(p.size(), 1u);
@@ -132,14 +135,14 @@ TEST_P(MindlinDeresiewiczSliding, TangentialImpulseIsMuTimesNormalImpulse) {
   EXPECT_NEAR(ratio, o.mu, 1e-9 * o.mu);
   EXPECT_NEAR(r.wy, w_ref, 0.01 * std::abs(w_ref));
   EXPECT_NEAR(r.jn, (1.0 + o.e) * kMass * kVn, 0.01 * (1.0 + o.e) * kMass * kVn);
-  EXPECT_LT(r.worst_balance, 1e-3);
+  EXPECT_LT(r.worst_balance, 2e-3);
 }
 
 INSTANTIATE_TEST_SUITE_P(Angles, MindlinDeresiewiczSliding,
                          ::testing::Values(Oblique{0.1, 3.0, 1.0}, Oblique{0.1, 3.0, 0.7},
                                            Oblique{0.2, 6.0, 0.5}, Oblique{0.1, 3.0, 0.8, true}),
-                         [](const ::testing::TestParamInfo<Oblique>& info) {
-                           std::string s = ::testing::PrintToString(info.param);
+                         [](const ::testing::TestParamInfo<Oblique>& param_info) {
+                           std::string s = ::testing::PrintToString(param_info.param);
                            for (char& ch : s)
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return s;
@@ -150,15 +153,28 @@ TEST(MindlinDeresiewiczTransition, PartialSlipBelowGrossSlidingAndTheBalanceClos
   double previous = -1.0;
   for (double ratio : {0.05, 0.2, 0.5, 1.0, 3.0, 10.0}) {
     const Result r = run({mu, ratio, e});
+    // The same impact with the tangential spring of [Deen07] (beta0 = 0: its dashpot), for the
+    // record (no assertion).
+    const Result h = run({mu, ratio, e, false, "history"});
     const double share = -r.jt / (mu * r.jn);
     std::cout << fmt::format("mindlin_deresiewicz mu = {}, tan(theta) = {}: J_t/(mu J_n) = {:.6f}, "
-                             "energy balance worst {:.3e}\n",
-                             mu, ratio, share, r.worst_balance);
-    EXPECT_GT(share, previous) << "tan(theta) = " << ratio;
+                             "energy balance worst {:.3e} (history: J_t/(mu J_n) = {:.6f}, "
+                             "balance worst {:.3e})\n",
+                             mu, ratio, share, r.worst_balance, -h.jt / (mu * h.jn),
+                             h.worst_balance);
+    if (previous < 1.0 - 1e-9) {
+      EXPECT_GT(share, previous) << "tan(theta) = " << ratio;
+    } else {
+      EXPECT_NEAR(share, 1.0, 1e-9) << "tan(theta) = " << ratio; // gross sliding stays
+    }
     EXPECT_LE(share, 1.0 + 1e-9) << "tan(theta) = " << ratio;
-    EXPECT_LT(r.worst_balance, 1e-3) << "tan(theta) = " << ratio;
-    if (ratio == 0.05) EXPECT_LT(share, 0.99);
-    if (ratio == 10.0) EXPECT_NEAR(share, 1.0, 1e-9);
+    EXPECT_LT(r.worst_balance, 2e-3) << "tan(theta) = " << ratio;
+    if (ratio == 0.05) {
+      EXPECT_LT(share, 0.99);
+    }
+    if (ratio == 10.0) {
+      EXPECT_NEAR(share, 1.0, 1e-9);
+    }
     previous = share;
   }
 }

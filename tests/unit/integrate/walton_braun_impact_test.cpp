@@ -131,8 +131,8 @@ INSTANTIATE_TEST_SUITE_P(Speeds, WaltonBraunImpact,
                                            WbImpact{false, 1.0, 1.0}, WbImpact{true, 0.1, 0.6},
                                            WbImpact{true, 1.0, 0.6}, WbImpact{true, 5.0, 0.6},
                                            WbImpact{true, 1.0, 0.95}),
-                         [](const ::testing::TestParamInfo<WbImpact>& info) {
-                           std::string s = ::testing::PrintToString(info.param);
+                         [](const ::testing::TestParamInfo<WbImpact>& param_info) {
+                           std::string s = ::testing::PrintToString(param_info.param);
                            for (char& ch : s)
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return s;
