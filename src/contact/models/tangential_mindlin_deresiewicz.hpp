@@ -63,7 +63,10 @@ struct MindlinDeresiewiczTangential {
     Vec3 delta{hist[0], hist[1], hist[2]};
     if (norm2(delta) > 0.0) delta = c.turned(delta);
     const double delta_t_max = pp.mu * c.overlap * pp.slip_factor;
-    const auto tr = kernels::mindlin_deresiewicz(delta, v_t, pp.mu, out.fn_abs, delta_t_max, dt);
+    // Declared, then assigned: so GCC splits the result into scalars and the batch loop stays
+    // vectorised (see rolling_constant_torque.hpp).
+    kernels::TangentialResult tr;
+    tr = kernels::mindlin_deresiewicz(delta, v_t, pp.mu, out.fn_abs, delta_t_max, dt);
     hist[0] = delta.x, hist[1] = delta.y, hist[2] = delta.z;
     out.force += tr.force;
     out.torque_unit = cross(c.n, tr.force);
