@@ -26,8 +26,8 @@ using contact_models::ContactInput;
 using contact_models::ContactOutput;
 
 /// One contact of the models Normal x Tangential x Rolling (contact/models/): the normal model's
-/// response, floored, then the tangential and rolling models, each on its own part of the
-/// history (normal | tangential | rolling).
+/// response (with its own history when it has one), floored, then the tangential and rolling
+/// models, each on its own part of the history (normal | tangential | rolling).
 template <class Normal, class Tangential, class Rolling>
 [[gnu::always_inline]] inline ContactOutput evaluate(const ContactInput& c, const PairParams& pp,
                                                      double* hist, double dt) {
@@ -35,7 +35,14 @@ template <class Normal, class Tangential, class Rolling>
   // Declared, then assigned (not initialised from the call): so GCC splits it into scalars and
   // the batch loop stays vectorised (a struct initialised from a call may stay in memory).
   kernels::NormalResponse nr;
-  nr = Normal::respond(pp, c.r_eff, c.m_eff, c.overlap);
+  // A normal model with history (history_width > 0) reads and updates its own part of it and
+  // books the energy its hysteresis moves out of the spring; the others are called as before
+  // (the same code: no history loads for them).
+  [[maybe_unused]] double normal_loss = 0.0;
+  if constexpr (Normal::history_width > 0)
+    nr = Normal::respond(pp, c.r_eff, c.m_eff, c.overlap, hist, normal_loss);
+  else
+    nr = Normal::respond(pp, c.r_eff, c.m_eff, c.overlap);
   const double k_t = Normal::tangential_stiffness(pp, nr);
   const double k_rolling = Normal::rolling_stiffness(pp, nr);
   const double vn = dot(c.v_rel, c.n); // > 0 when approaching
@@ -48,6 +55,7 @@ template <class Normal, class Tangential, class Rolling>
   out.fn_abs = fn.magnitude;
   out.elastic = nr.energy;
   out.nc_force = c.n * (-fn.nonconservative);
+  if constexpr (Normal::history_width > 0) out.spring_loss = normal_loss;
   double* own = hist + Normal::history_width;
   Tangential::add(out, c, pp, nr, k_t, vn, own, dt);
   Rolling::add(out, c, pp, k_rolling, own + Tangential::history_width, dt);

@@ -53,7 +53,7 @@ std::string not_taken(std::string_view key, const Chosen& chosen);
 std::string only_auto(const ModelInfo& m, const Coefficient& c);
 /// Whether "auto" is a value some model declares for `key` (then any model takes it: absent).
 bool auto_allowed(std::string_view key);
-/// The refusal of a refused model: ""walton_braun" is not implemented yet (implemented: ...)".
+/// The refusal of a refused model: ""NAME" REFUSAL (implemented: ...)".
 std::string refusal(const ModelInfo& m);
 /// Why a normal model that takes no elastic constants refuses a shear modulus or a rigid wall.
 std::string elastic_constants_not_taken(const ModelInfo& normal);

@@ -60,6 +60,36 @@ inline NormalResponse hertz_normal(double k_n, double r_eff, double alpha, doubl
   return {elastic, alpha * scale, 1.5 * k_n * a, 0.4 * elastic * delta, scale, a};
 }
 
+/// Walton & Braun's hysteretic spring [Zhu07 Table 1; Walton & Braun 1986, J. Rheol. 30:949]
+/// for one step: loading k1 while the overlap is at its largest so far, unloading and reloading
+/// on k2 = k1/ratio along F = k2 (delta - delta0), delta0 = delta_max (1 - k1/k2), floored at 0.
+struct WaltonBraunResult {
+  double force;       ///< N, >= 0
+  double stiffness;   ///< dF/d(delta), N/m (0 while the force is floored)
+  double energy;      ///< the recoverable energy 1/2 k2 (delta - delta0)^2, J
+  double spring_loss; ///< the work of loading that the unloading line does not give back, J
+  double delta_max;   ///< the history after the step, m
+  double delta0;      ///< the unloading line's zero, m
+};
+
+/// `ratio` = k1/k2 in (0, 1] (= e^2), `delta_max` the history before the step. While loading
+/// from delta_max to delta the force k1 delta does the work 1/2 k1 (delta^2 - delta_max^2), of
+/// which the recoverable energy 1/2 (k1^2/k2) delta^2 takes the share k1/k2: the rest,
+/// 1/2 k1 (1 - k1/k2) (delta^2 - delta_max^2), is spring_loss (also for a step that reloads on
+/// k2 up to delta_max and loads on k1 beyond it: the recoverable energy at delta_max is the same).
+inline WaltonBraunResult walton_braun_normal(double k1, double ratio, double delta_max,
+                                             double delta) {
+  if (delta >= delta_max) {
+    const double loss = 0.5 * k1 * (1.0 - ratio) * (delta * delta - delta_max * delta_max);
+    return {k1 * delta, k1, 0.5 * ratio * k1 * delta * delta, loss, delta, delta * (1.0 - ratio)};
+  }
+  const double k2 = k1 / ratio;
+  const double delta0 = delta_max * (1.0 - ratio);
+  const double s = delta - delta0;
+  if (s > 0.0) return {k2 * s, k2, 0.5 * k2 * s * s, 0.0, delta_max, delta0};
+  return {0.0, 0.0, 0.0, 0.0, delta_max, delta0};
+}
+
 /// The normal force of a response at the approach speed v_n (> 0 approaching): its magnitude
 /// pushing the pair apart, never negative, and the part of it that is not the spring's.
 struct NormalForce {

@@ -32,8 +32,13 @@ inline RollingResult rolling_constant_torque(const Vec3& w_roll, double mu_r, do
 }
 
 /// `theta` is the rolling history (rotated into the current tangent plane); it is updated.
-inline RollingResult rolling_spring_dashpot(Vec3& theta, const Vec3& w_roll, double k_r, double c_r,
-                                            double mu_r, double r_eff, double fn_abs, double dt) {
+/// Always inlined: with more model combinations in the contact loop GCC's inliner, bounded by the
+/// growth of the whole unit, stopped inlining it into most batch kernels, which then lost their
+/// vectorisation (it was already called, not inlined, in some pair kernels before).
+[[gnu::always_inline]] inline RollingResult rolling_spring_dashpot(Vec3& theta, const Vec3& w_roll,
+                                                                   double k_r, double c_r,
+                                                                   double mu_r, double r_eff,
+                                                                   double fn_abs, double dt) {
   if (k_r <= 0.0) return {};
   const double e_old = 0.5 * k_r * norm2(theta);
   theta += w_roll * dt;

@@ -54,4 +54,27 @@ inline TangentialResult tangential_spring(Vec3& delta_t, const Vec3& v_t, double
   return {f, f, e_old - e_new, e_new, true};
 }
 
+/// The simplified Hertz-Mindlin-Deresiewicz tangential force of Langston et al. (1994)
+/// [Zhu07 Table 1], without its dashpot (C_t = 0):
+///   delta_t <- H delta_t + v_t dt, clipped to |delta_t| <= delta_t,max (full sliding there),
+///   F_t = -mu |F_n| (1 - (1 - |delta_t|/delta_t,max)^{3/2}) delta_t/|delta_t|,
+///   delta_t,max = mu delta_n (2 - nu)/(2 (1 - nu))            (`delta_t_max`, > 0)
+/// Its initial stiffness 3/2 mu |F_n|/delta_t,max is Mindlin's 8 G* sqrt(R* delta_n) for a
+/// Hertz normal force. The whole force is non-conservative (its work goes into the dissipation
+/// with the full-step velocities; nothing is stored, no spring_loss): see
+/// contact/models/tangential_mindlin_deresiewicz.hpp. `sliding`: |delta_t| reached delta_t,max.
+inline TangentialResult mindlin_deresiewicz(Vec3& delta_t, const Vec3& v_t, double mu,
+                                            double fn_abs, double delta_t_max, double dt) {
+  delta_t += v_t * dt;
+  const double d2 = norm2(delta_t);
+  const double d = std::sqrt(d2);
+  const bool sliding = d >= delta_t_max;
+  const Vec3 dir = delta_t * (d > 0.0 ? 1.0 / d : 0.0); // delta_t/|delta_t| (0 for 0)
+  if (sliding) delta_t = dir * delta_t_max;             // clipped along itself
+  const double s = sliding ? 0.0 : 1.0 - d / delta_t_max;
+  const double g = 1.0 - s * std::sqrt(s);
+  const Vec3 f = dir * (-mu * fn_abs * g);
+  return {f, f, 0.0, 0.0, sliding};
+}
+
 } // namespace fluidem::kernels

@@ -8,6 +8,8 @@
 //   normal:     duration(), overlap_under(), respond(), tangential_stiffness(),
 //               rolling_stiffness(),
 //               springs_hold_energy_at_separation; optional takes_elastic_constants,
+//               (a normal model with history_width > 0: respond(pp, r_eff, m_eff, overlap,
+//               hist, spring_loss), its own history first in the contact's)
 //               uses_impact_speed, foreign_key_note
 //   tangential: has_force, add(), stored_energy()
 //   rolling:    has_torque, add(), stored_energy()
@@ -26,6 +28,7 @@
 #include "contact/models/rolling_none.hpp"
 #include "contact/models/rolling_spring_dashpot.hpp"
 #include "contact/models/tangential_history.hpp"
+#include "contact/models/tangential_mindlin_deresiewicz.hpp"
 #include "contact/models/tangential_none.hpp"
 
 namespace fluidem::contact_models {
@@ -36,7 +39,7 @@ struct ModelList {
 };
 
 using NormalModels = ModelList<LinearNormal, HertzNormal, WaltonBraunNormal>;
-using TangentialModels = ModelList<HistoryTangential, NoTangential>;
+using TangentialModels = ModelList<HistoryTangential, NoTangential, MindlinDeresiewiczTangential>;
 using RollingModels = ModelList<NoRolling, ConstantTorqueRolling, SpringDashpotRolling>;
 
 /// Whether model M is refused at run time (declared with a `refusal`).

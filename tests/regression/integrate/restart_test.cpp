@@ -226,6 +226,20 @@ TEST(Restart, SoftSpheresWithFoldedStepsContinueBitwise) {
   check_restart_identity(spec, 0.1, "soft_folded", false);
 }
 
+// The contact models with history of their own (issue 34): Walton & Braun's normal spring
+// (delta_max per contact) and the Mindlin-Deresiewicz tangential force (its displacement); the
+// pouring case's stiffness is Walton & Braun's loading stiffness k1.
+TEST(Restart, SoftSpheresWithWaltonBraunAndMindlinDeresiewiczContinueBitwise) {
+  CaseSpec spec =
+      read_case_file(std::string(FLUIDEM_SOURCE_DIR) + "/cases/hoomans96/pouring_soft.toml");
+  spec.contact.normal.name = "walton_braun";
+  spec.contact.tangential.name = "mindlin_deresiewicz";
+  Simulation probe(spec);
+  spec.simulation.time_step = probe.time_step();
+  spec.neighbour.sort_interval = 1;
+  check_restart_identity(spec, 0.1, "soft_wb_md");
+}
+
 TEST(Restart, HardSpheresContinueBitwise) {
   check_restart_identity(pouring(Engine::HardSphere), 0.1, "hard");
 }

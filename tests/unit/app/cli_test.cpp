@@ -180,10 +180,10 @@ std::vector<BadInput> bad_inputs() {
       {"too_many_random",
        replace(replace(kValid, "count = 10\n", "count = 150\n"), "placement = \"lattice\"\n", ""),
        "count", "insert[0].count", "fit"},
-      {"not_implemented",
+      {"walton_braun_without_stiffness",
        replace(replace(kValid, "normal = \"linear\"", "normal = \"walton_braun\""),
                "stiffness = 800.0\n", ""),
-       "normal", "contact.normal", "not implemented"},
+       "[contact]", "contact.stiffness", "missing required key"},
   };
 }
 
@@ -425,7 +425,9 @@ TEST(Cli, EveryDocumentedContactModelIsAccepted) {
          it != std::sregex_iterator(); ++it) {
       const std::string value = (*it)[1].str();
       std::string text = kValid;
-      if (key == "normal" && value != "linear")
+      if (key == "normal" && value == "walton_braun") // takes the stiffness (its k1)
+        text = replace(text, "normal = \"linear\"", "normal = \"" + value + "\"");
+      else if (key == "normal" && value != "linear")
         text = replace(replace(text, "normal = \"linear\"", "normal = \"" + value + "\""),
                        "stiffness = 800.0\n", "");
       else if (key != "normal")

@@ -166,6 +166,20 @@ const std::map<std::string, Kernel>& kernel_table() {
                       m = in.num("m_eff"), delta = in.num("delta");
          return normal_outputs(kernels::hertz_normal(k, r, alpha, m, delta), in.num("v_n"));
        }},
+      {"walton_braun_normal",
+       [](Inputs& in) {
+         const double k1 = in.num("k1"), ratio = in.num("ratio"), h = in.num("delta_max"),
+                      delta = in.num("delta");
+         const auto r = kernels::walton_braun_normal(k1, ratio, h, delta);
+         Outputs o;
+         o.scalars["force"] = r.force;
+         o.scalars["stiffness"] = r.stiffness;
+         o.scalars["energy"] = r.energy;
+         o.scalars["spring_loss"] = r.spring_loss;
+         o.scalars["delta_max"] = r.delta_max;
+         o.scalars["delta0"] = r.delta0;
+         return o;
+       }},
       {"tangential_spring",
        [](Inputs& in) {
          Vec3 delta_t = in.vec("delta_t");
@@ -173,6 +187,21 @@ const std::map<std::string, Kernel>& kernel_table() {
          const double k_t = in.num("k_t"), eta_t = in.num("eta_t"), mu = in.num("mu"),
                       fn = in.num("fn_abs"), dt = in.num("dt");
          const auto r = kernels::tangential_spring(delta_t, v_t, k_t, eta_t, mu, fn, dt);
+         Outputs o;
+         o.vectors["force"] = r.force;
+         o.vectors["delta_t"] = delta_t;
+         o.scalars["energy"] = r.energy;
+         o.flags["sliding"] = r.sliding;
+         bookkeeping_outputs(r, o);
+         return o;
+       }},
+      {"mindlin_deresiewicz",
+       [](Inputs& in) {
+         Vec3 delta_t = in.vec("delta_t");
+         const Vec3 v_t = in.vec("v_t");
+         const double mu = in.num("mu"), fn = in.num("fn_abs"), dmax = in.num("delta_t_max"),
+                      dt = in.num("dt");
+         const auto r = kernels::mindlin_deresiewicz(delta_t, v_t, mu, fn, dmax, dt);
          Outputs o;
          o.vectors["force"] = r.force;
          o.vectors["delta_t"] = delta_t;
@@ -220,8 +249,9 @@ const std::map<std::string, Kernel>& kernel_table() {
 
 /// A kernel of the table, or "normal_model:NAME": the declared normal model NAME
 /// (contact/models/) as the contact loop calls it, from the PairParams fields its `mix` sets
-/// (kn, normal_damping, kt) and the contact (r_eff, m_eff, delta, v_n): so a new normal model's
-/// reference data needs no code here.
+/// (kn, normal_damping, kt) and the contact (r_eff, m_eff, delta, v_n; a model with history also
+/// `history`, and gives `history` and `spring_loss`): so a new normal model's reference data
+/// needs no code here.
 std::optional<Kernel> find_kernel(const std::string& name) {
   if (const auto it = kernel_table().find(name); it != kernel_table().end()) return it->second;
   const std::string prefix = "normal_model:";
@@ -241,8 +271,21 @@ std::optional<Kernel> find_kernel(const std::string& name) {
     Outputs o;
     contact_models::with_model(contact_models::NormalModels{}, index, [&]<class M>(M) {
       if constexpr (!contact_models::is_refused<M>()) {
-        const kernels::NormalResponse r = M::respond(pp, r_eff, m_eff, delta);
-        o = normal_outputs(r, v_n);
+        kernels::NormalResponse r;
+        if constexpr (M::history_width > 0) {
+          // A model with history: its values before the step as `history` (one number per
+          // value; a single one for width 1), after the step as the output `history`.
+          static_assert(M::history_width == 1, "history inputs of width 1 only so far");
+          double hist[1] = {in.num("history")};
+          double loss = 0.0;
+          r = M::respond(pp, r_eff, m_eff, delta, hist, loss);
+          o = normal_outputs(r, v_n);
+          o.scalars["history"] = hist[0];
+          o.scalars["spring_loss"] = loss;
+        } else {
+          r = M::respond(pp, r_eff, m_eff, delta);
+          o = normal_outputs(r, v_n);
+        }
         o.scalars["tangential_stiffness"] = M::tangential_stiffness(pp, r);
         o.scalars["rolling_stiffness"] = M::rolling_stiffness(pp, r);
       }
@@ -447,7 +490,8 @@ TEST(ContactModelFiles, EveryKernelHasAFile) {
        {"linear_normal.toml", "hertz_normal.toml", "tangential_spring_sticking.toml",
         "tangential_spring_sliding.toml", "rolling_constant_torque.toml",
         "rolling_spring_dashpot.toml", "history_rotation.toml", "normal_damping.toml",
-        "hertz_impact.toml", "restitution_damping_factor.toml"})
+        "hertz_impact.toml", "restitution_damping_factor.toml", "walton_braun.toml",
+        "normal_model_walton_braun.toml", "mindlin_deresiewicz.toml"})
     EXPECT_TRUE(fs::exists(model_dir() / f)) << f;
 }
 

@@ -10,12 +10,14 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "../../common/contact_case.hpp"
 #include "contact/contact_table.hpp"
 #include "contact/kernels/normal_damping.hpp"
 #include "contact/kernels/tangential_force.hpp"
+#include "particles/particle_store.hpp"
 
 namespace fluidem {
 namespace {
@@ -29,7 +31,8 @@ CaseSpec two_species(const std::string& normal) {
   s.species.push_back(test::glass_species_spec("glass"));
   s.species.push_back(test::glass_species_spec("steel"));
   s.contact.normal.name = normal;
-  if (normal == "linear") s.contact.normal.coefficients["stiffness"] = 1000.0;
+  if (normal == "linear" || normal == "walton_braun")
+    s.contact.normal.coefficients["stiffness"] = 1000.0;
   return s;
 }
 
@@ -124,6 +127,64 @@ TEST(ContactTable, RefusesFullyPlasticContactsWithTheReason) {
     w.domain.periodic[0] = true;
     const ContactTable ok(w);
     EXPECT_EQ(std::memcmp(&ok.wall(0, 0), &ok.wall(0, 2), sizeof(PairParams)), 0);
+  }
+}
+
+// Walton & Braun [Zhu07 Table 1]: kn = k1 (the stiffness key), normal_damping = k1/k2 = e^2 of
+// the pair's mixed e (the arithmetic mean, as for the other models), k_t = stiffness_ratio k1
+// ("auto": the linear model's [Deen07 eq. 43]); the duration pi/2 sqrt(m*/k1) (1 + e).
+TEST(ContactTable, WaltonBraunUnloadsWithK1OverESquared) {
+  CaseSpec s = two_species("walton_braun");
+  s.species[0].material.restitution = 0.3;
+  s.species[1].material.restitution = 0.7;
+  s.domain.wall_material[4].restitution = 0.9;
+  const ContactTable t(s);
+  EXPECT_EQ(t.pair(0, 1).kn, 1000.0);
+  EXPECT_NEAR(t.pair(0, 1).normal_damping, 0.25, kTol);
+  EXPECT_NEAR(t.wall(0, 4).normal_damping, 0.81, kTol);
+  const double pi2 = std::numbers::pi * std::numbers::pi, le = std::log(0.5);
+  // beta0 = 0 (the default tangential restitution): ln beta0 taken as 0
+  EXPECT_NEAR(t.pair(0, 1).kt, 1000.0 * 2.0 / 7.0 * pi2 / (pi2 + le * le), kTol * 1000.0);
+  s.contact.normal.coefficients["stiffness_ratio"] = 0.5;
+  EXPECT_EQ(ContactTable(s).pair(0, 1).kt, 500.0);
+  // The pair of glass beads (m* = m/2): the loading and the unloading half-periods.
+  const double ma = sphere_mass(0.5 * s.species[0].diameter, s.species[0].density);
+  const double mb = sphere_mass(0.5 * s.species[1].diameter, s.species[1].density);
+  int rows = 0;
+  for (const auto& row : t.durations())
+    if (row.species_a == 0 && row.species_b == 1 && row.face < 0) {
+      const double m_eff = ma * mb / (ma + mb);
+      EXPECT_NEAR(row.duration, 0.5 * std::numbers::pi * std::sqrt(m_eff / 1000.0) * 1.5,
+                  1e-12 * row.duration);
+      ++rows;
+    }
+  EXPECT_EQ(rows, 1);
+}
+
+// Mindlin-Deresiewicz [Zhu07 Table 1]: slip_factor = E*/(4 G*) of the pair, which is
+// (2 - nu)/(2 (1 - nu)) for like materials and for a rigid wall; infinite friction refused.
+TEST(ContactTable, MindlinDeresiewiczSlipFactorMixesTheMaterials) {
+  CaseSpec s = two_species("hertz");
+  s.contact.tangential.name = "mindlin_deresiewicz";
+  MaterialSpec& a = s.species[0].material;
+  MaterialSpec& b = s.species[1].material;
+  a.youngs_modulus = 6e10, a.poisson_ratio = 0.2;
+  b.youngs_modulus = 2e11, b.poisson_ratio = 0.3;
+  for (auto& w : s.domain.wall_material) w.youngs_modulus = std::numeric_limits<double>::infinity();
+  const ContactTable t(s);
+  EXPECT_NEAR(t.pair(0, 0).slip_factor, 1.8 / 1.6, kTol);
+  EXPECT_NEAR(t.pair(1, 1).slip_factor, 1.7 / 1.4, kTol);
+  EXPECT_NEAR(t.wall(0, 4).slip_factor, 1.8 / 1.6, kTol); // rigid wall: the particle's own
+  const double inv_e = 0.96 / 6e10 + 0.91 / 2e11;
+  const double inv_g = 1.8 * 2.4 / 6e10 + 1.7 * 2.6 / 2e11;
+  EXPECT_NEAR(t.pair(0, 1).slip_factor, inv_g / (4.0 * inv_e), kTol);
+  s.species[1].material.friction = std::numeric_limits<double>::infinity();
+  s.species[0].material.friction = std::numeric_limits<double>::infinity();
+  try {
+    const ContactTable inf(s);
+    ADD_FAILURE() << "friction = inf accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("mindlin_deresiewicz"), std::string::npos) << e.what();
   }
 }
 

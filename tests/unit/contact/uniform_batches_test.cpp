@@ -9,7 +9,8 @@
 //   * one species, equal particles (Particles) and the same particles as two species of one
 //     material (PerContact);
 //   * one species, radii spread by +-1% (Params) and the same as two species (PerContact),
-// with Hertz and linear springs, tangential history and rolling springs, in a closed box (wall
+// with Hertz and linear springs, tangential history and rolling springs (and Walton & Braun's
+// spring with the Mindlin-Deresiewicz tangential force), in a closed box (wall
 // contacts) with more than 4096 particles (the threaded slab loop) and with fewer (one batch
 // through all slabs). A reference computed independently of the loop is not needed here: the
 // loop's forces are checked against recomputation in contact_record_test.cpp; this test pins
@@ -39,8 +40,9 @@ CaseSpec make_spec(int species, const std::string& normal) {
   for (int k = 0; k < species; ++k) // d = kD
     s.species.push_back(test::glass_species_spec(k == 0 ? "glass" : "glass_b"));
   s.contact.normal.name = normal;
-  if (normal == "linear") s.contact.normal.coefficients["stiffness"] = 2000.0;
-  s.contact.tangential.name = "history";
+  if (normal != "hertz") s.contact.normal.coefficients["stiffness"] = 2000.0;
+  // Walton & Braun's spring (history of its own) with the Mindlin-Deresiewicz tangential force.
+  s.contact.tangential.name = normal == "walton_braun" ? "mindlin_deresiewicz" : "history";
   s.contact.rolling.name = "spring_dashpot";
   return s;
 }
@@ -130,7 +132,9 @@ TEST_P(UniformBatches, SpreadRadiiGiveThePerContactBits) {
 INSTANTIATE_TEST_SUITE_P(Beds, UniformBatches,
                          ::testing::Values(Case{"hertz_small", 1, "hertz"},
                                            Case{"hertz_threaded", 13, "hertz"},
-                                           Case{"linear_small", 1, "linear"}),
+                                           Case{"linear_small", 1, "linear"},
+                                           Case{"walton_braun_small", 1, "walton_braun"},
+                                           Case{"walton_braun_threaded", 13, "walton_braun"}),
                          [](const auto& tp) { return std::string(tp.param.name); });
 
 } // namespace

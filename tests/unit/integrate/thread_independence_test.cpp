@@ -178,6 +178,31 @@ TEST(ThreadIndependence, ClosedBoxWithWallsInEverySlabGivesBitwiseIdenticalParti
   EXPECT_GT(one.contacts, 100);
 }
 
+// The contact models with history of their own (issue 34): Walton & Braun's normal spring
+// (delta_max per contact, k1 = 5000 N/m with a step of 6e-6 s: a pair contact lasts ~15 steps,
+// an overlap stays below 10% of a diameter up to ~3 m/s) and the
+// Mindlin-Deresiewicz tangential force, in the closed box (pairs and walls in every slab).
+TEST(ThreadIndependence, WaltonBraunAndMindlinDeresiewiczGiveBitwiseIdenticalParticles) {
+  std::string text = kClosedCase;
+  const std::string hertz = "normal = \"hertz\"\ntangential = \"history\"\n";
+  const std::string step = "time_step = 1.2e-5\n";
+  ASSERT_NE(text.find(hertz), std::string::npos);
+  ASSERT_NE(text.find(step), std::string::npos);
+  text.replace(text.find(step), step.size(), "time_step = 6e-6\n");
+  text.replace(text.find(hertz), hertz.size(),
+               "normal = \"walton_braun\"\nstiffness = 5000.0\n"
+               "tangential = \"mindlin_deresiewicz\"\n");
+  const State one = run_with_threads(1, text.c_str());
+  const State two = run_with_threads(2, text.c_str());
+  const State three = run_with_threads(3, text.c_str());
+  ASSERT_EQ(one.x.size(), 18000u);
+  expect_bitwise_equal(one, two, three);
+  EXPECT_GT(one.contacts, 100);
+  double wmax = 0.0;
+  for (double c : one.w) wmax = std::max(wmax, std::abs(c));
+  EXPECT_GT(wmax, 0.0); // the tangential force acts
+}
+
 // kCase on a floor of fixed particles (a lattice layer, inserted first so that the random bed
 // avoids it): pairs with a fixed partner (1/m = 0) in the soft-sphere contact loop, no pairs of
 // two fixed ones, no wall entries of them; and the same with the hard-sphere engine, whose

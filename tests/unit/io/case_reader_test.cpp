@@ -281,11 +281,13 @@ max_events_per_particle = 50
 
 TEST(CaseReader, WaltonBraunAndAutoParse) {
   const CaseSpec c = read_case_string(minimal() + "[contact]\nnormal = \"walton_braun\"\n"
+                                                  "stiffness = 1000.0\n"
                                                   "stiffness_ratio = \"auto\"\n"
                                                   "[neighbour]\nskin = \"auto\"\n",
                                       "case.toml");
   EXPECT_EQ(c.contact.normal.name, "walton_braun");
-  EXPECT_TRUE(c.contact.normal.coefficients.empty());
+  EXPECT_EQ(c.contact.normal.coefficients.size(), 1u); // stiffness ("auto": absent)
+  EXPECT_EQ(c.contact.normal.coefficients.at("stiffness"), 1000.0);
   EXPECT_FALSE(c.neighbour.skin.has_value());
 }
 
