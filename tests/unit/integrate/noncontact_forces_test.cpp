@@ -239,5 +239,52 @@ TEST(NonContactForces, SetUpChecks) {
   }
 }
 
+// Sticking: two equal spheres with van der Waals meet head-on in a Walton-Braun contact (the
+// hysteretic spring, restitution e = sqrt(k1/k2) [Zhu07 Table 1]), frictionless. Closed form
+// (derived in docs/noncontact.md, "Sticking"), for relative coordinate with m* = m/2 and the
+// attraction F0 = A R*/(6 h0^2) inside h0 and in contact (DMT), W = F0 h0 + A R*/6 (1/h0 - 1/h_c)
+// its work from h_c to contact:
+//   loading to delta_m:   1/2 m* v_c^2 + F0 delta_m = 1/2 k1 delta_m^2, v_c^2 = v0^2 + 2 W / m*
+//   back at contact:      E(0) = 1/2 k1 e^2 delta_m^2 - F0 delta_m    (unloading on k2 to
+//                         delta0 = delta_m (1 - e^2), then F0 alone)
+//   the pair separates iff E(0) > W, so the critical approach speed follows from
+//   delta_m* = (F0 + sqrt(F0^2 + 2 k1 e^2 W)) / (k1 e^2). Below it they stick, above they part:
+// at 0.95 and 1.05 of it. The step resolves h0 (1/20 of it per step at the critical speed), so
+// the integration error of the well is (1/20)^2 of its depth, far below the 5% margin.
+TEST(NonContactForces, WaltonBraunPairWithVanDerWaalsSticksBelowTheCriticalSpeed) {
+  const double a = 1e-19, h0 = 4e-9, h_c = 4e-8, k1 = 100.0, e = 0.5, c = 0.5 * kBox;
+  const double r_eff = 0.25 * kD, m_eff = 0.5 * kMass;
+  const double f0 = a * r_eff / (6.0 * h0 * h0);
+  const double w = f0 * h0 + a * r_eff / 6.0 * (1.0 / h0 - 1.0 / h_c);
+  const double dm = (f0 + std::sqrt(f0 * f0 + 2.0 * k1 * e * e * w)) / (k1 * e * e);
+  const double vc2 = (k1 * dm * dm - 2.0 * f0 * dm) / m_eff;
+  const double v_crit = std::sqrt(vc2 - 2.0 * w / m_eff); // relative approach speed
+  const double contact = std::numbers::pi * std::sqrt(m_eff / k1); // ~ the contact's duration
+  for (const double factor : {0.95, 1.05}) {
+    const double v = factor * v_crit, gap0 = 1.01 * h_c;
+    std::string text = case_text(
+        {{c - 0.5 * (kD + gap0), c, c, 0.5 * v, 0.0}, {c + 0.5 * (kD + gap0), c, c, -0.5 * v, 0.0}},
+        fmt::format("[van_der_waals]\nhamaker = {}\nmin_separation = {}\nrange = {}\n", a, h0, h_c),
+        fmt::format("normal = \"walton_braun\"\nstiffness = {}", k1));
+    for (const char* key : {"restitution = 1.0\n", "restitution = 1.0\n"})
+      text.replace(text.find(key), std::string(key).size(), fmt::format("restitution = {}\n", e));
+    const double dt = 0.05 * h0 / v_crit;
+    Simulation sim(read_case_string(text, "stick.toml",
+                                    {fmt::format("simulation.time_step={:.17g}", dt)}));
+    const ParticleStore& p = sim.particles();
+    bool touched = false, parted = false;
+    const long steps = std::lround((gap0 / v + 10.0 * contact) / dt);
+    for (long s = 0; s < steps && !parted; ++s) {
+      sim.advance(1);
+      const double gap = separation(sim) - kD;
+      touched = touched || gap < 0.0;
+      parted = touched && gap > h_c && p.vx[1] - p.vx[0] > 0.0;
+    }
+    EXPECT_TRUE(touched) << factor;
+    EXPECT_EQ(parted, factor > 1.0) << "at " << factor << " of the critical speed " << v_crit
+                                    << " m/s";
+  }
+}
+
 } // namespace
 } // namespace fluidem
