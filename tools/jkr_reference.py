@@ -63,7 +63,7 @@ class Jkr:
 CASES = [  # (name, E*, w, R*, delta as a multiple of delta_c)
     ("glass_mm_near_break", 3.2e10, 0.1, 5e-4, -0.999),
     ("glass_mm_tension", 3.2e10, 0.1, 5e-4, -0.5),
-    ("glass_mm_formation", 3.2e10, 0.1, 5e-4, 0.0),
+    ("glass_mm_near_formation", 3.2e10, 0.1, 5e-4, 1e-3),
     ("glass_mm_zero_load_side", 3.2e10, 0.1, 5e-4, 1.0),
     ("glass_mm_compressed", 3.2e10, 0.1, 5e-4, 100.0),
     ("glass_mm_deep", 3.2e10, 0.1, 5e-4, 1e4),

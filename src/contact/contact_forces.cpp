@@ -28,7 +28,9 @@ using contact_models::ContactOutput;
 /// Whether a normal model holds its contacts in tension (JKR): its entries touch while attached
 /// down to an overlap of -Normal::detach_distance, and its force is not floored.
 template <class Normal>
-constexpr bool adhesive = requires { Normal::detaches_in_tension; };
+constexpr bool adhesive = requires {
+  Normal::detaches_in_tension;
+};
 
 /// One contact of the models Normal x Tangential x Rolling (contact/models/): the normal model's
 /// response (with its own history when it has one), floored, then the tangential and rolling
@@ -719,8 +721,7 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // An adhesive model's pair (entry history `hist`, squared separation d2): touching when it
   // overlaps, or when it is attached and its overlap is above -delta_c.
   [[maybe_unused]] auto attached_pair = [](bool overlapping, const double* hist,
-                                           const PairParams& pp, double ri, double rj,
-                                           double d2) {
+                                           const PairParams& pp, double ri, double rj, double d2) {
     if constexpr (adhesive<Normal>) {
       if (overlapping || hist[0] == 0.0) return overlapping;
       const double reach = ri + rj + Normal::detach_distance(pp, ri * rj / (ri + rj));
@@ -797,8 +798,9 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       const double rsum = ri + rj;
       bool touching = dx * dx + dy * dy + dz * dz < rsum * rsum;
       if constexpr (adhesive<Normal>)
-        touching = attached_pair(touching, hist_base + static_cast<std::size_t>(e) * hw,
-                                 pair_params[si_row + spec[j]], ri, rj, dx * dx + dy * dy + dz * dz);
+        touching =
+            attached_pair(touching, hist_base + static_cast<std::size_t>(e) * hw,
+                          pair_params[si_row + spec[j]], ri, rj, dx * dx + dy * dy + dz * dz);
       // The pair, its entry and separation (the flush gathers the rest for the touching ones).
       b.i[k] = static_cast<std::uint32_t>(i), b.j[k] = j, b.e[k] = e;
       b.d[0][k] = dx, b.d[1][k] = dy, b.d[2][k] = dz;

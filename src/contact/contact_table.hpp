@@ -8,7 +8,6 @@
 // Table 1] (a rigid wall adds no compliance). What else each model takes, and how it mixes, is
 // its `mix` function (docs/contact.md, docs/case-file.md).
 #pragma once
-#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -83,14 +82,9 @@ public:
   std::vector<DurationInput> duration_inputs(const CaseSpec& spec, const DurationRow& row) const;
 
   /// The largest overlap below zero at which an attached contact still holds (an adhesive
-  /// normal model: JKR's delta_c = detach R*^{1/3}; 0 for the others) for particles of radius
-  /// r_max at most (R* <= r_max), m: the contact neighbour list's reach.
-  double attached_reach(double r_max) const {
-    double c = 0.0;
-    for (const PairParams& p : pp_) c = p.detach > c ? p.detach : c;
-    for (const PairParams& p : pw_) c = p.detach > c ? p.detach : c;
-    return c > 0.0 ? c * std::cbrt(r_max) : 0.0;
-  }
+  /// normal model: JKR's delta_c; 0 for the others) for particles of radius r_max at most
+  /// (R* <= r_max), m: the contact neighbour list's reach.
+  double attached_reach(double r_max) const;
 
   /// The memory of the table for the case's species, bytes: every species pair has its
   /// coefficients (the contact loop indexes them by species), so it grows with the square of

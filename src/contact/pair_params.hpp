@@ -6,10 +6,10 @@
 namespace fluidem {
 
 struct PairParams {
-  double kn = 0;                 ///< normal model: linear k_n, N/m; Hertz 4/3 E*, Pa;
+  double kn = 0;                 ///< normal model: linear k_n, N/m; Hertz and jkr 4/3 E*, Pa;
                                  ///< walton_braun k1, N/m
   double normal_damping = 0;     ///< normal model: linear eta_n / sqrt(m* k_n); Hertz alpha;
-                                 ///< walton_braun k1/k2 = e^2
+                                 ///< walton_braun k1/k2 = e^2; jkr sqrt(2 pi w / E*)
   double kt = 0;                 ///< normal model: linear k_t, N/m; Hertz c_t, Pa
   double tangential_damping = 0; ///< tangential model: factor of [Deen07 eq. 30] from beta0
   double tangential_root = 0;    ///< tangential model: sqrt(2 kt / (7 kn))
@@ -21,13 +21,6 @@ struct PairParams {
   /// tangential model mindlin_deresiewicz: (2 - nu)/(2 (1 - nu)) of the pair (E*/(4 G*)), so
   /// that delta_t,max = mu delta_n slip_factor [Zhu07 Table 1]
   double slip_factor = 0;
-  /// normal model jkr: the work of adhesion w, J/m^2 (pull-off force 3/2 pi w R*)
-  double adhesion = 0;
-  /// normal model jkr: sqrt(2 pi w / E*), m^{1/2} (delta = a^2/R* - adhesion_root sqrt(a))
-  double adhesion_root = 0;
-  /// normal model jkr: delta_c / R*^{1/3} = 3/4 (pi^2 w^2 / E*^2)^{1/3}, m^{2/3}: an attached
-  /// contact breaks when its overlap falls below -delta_c
-  double detach = 0;
 };
 
 } // namespace fluidem

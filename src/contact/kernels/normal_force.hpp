@@ -105,8 +105,8 @@ inline WaltonBraunResult walton_braun_normal(double k1, double ratio, double del
 /// a_f^3 = 2 pi w R*^2/E*): U(delta) = integral_0^delta F_n = G(a) - G(a_f) with
 ///   G(a) = 8 E* a^5/(15 R*^2) - 4/(3 R*) sqrt(2 pi w E*) a^{7/2} + pi w a^2,
 ///   G(a_f) = -3/5 pi w a_f^2,  a_f^2 = p^{4/3}.
-/// `k_n` = 4/3 E* (as for Hertz), `root` = c.
-inline NormalResponse jkr_normal(double k_n, double w, double root, double r_eff, double m_eff,
+/// `k_n` = 4/3 E* (as for Hertz), `root` = c (so that pi w = E* c^2/2).
+inline NormalResponse jkr_normal(double k_n, double root, double r_eff, double m_eff,
                                  double delta) {
   const double p = r_eff * root, q = r_eff * delta, r = 0.125 * p * p;
   const double disc = 0.25 * r * r + q * q * q / 27.0;
@@ -118,9 +118,9 @@ inline NormalResponse jkr_normal(double k_n, double w, double root, double r_eff
   const double x = 0.5 * (s + std::sqrt(t > 0.0 ? t : 0.0)); // sqrt(a)
   const double a = x * x;
   const double e_star = 0.75 * k_n;
-  const double hertz = k_n / r_eff * a * a * a;       // 4 E* a^3 / (3 R*)
+  const double hertz = k_n / r_eff * a * a * a;        // 4 E* a^3 / (3 R*)
   const double adhesive = 2.0 * e_star * root * a * x; // sqrt(8 pi w E* a^3)
-  const double pw = std::numbers::pi * w;
+  const double pw = 0.5 * e_star * root * root;        // pi w
   const double a2 = a * a;
   const double g = 8.0 * e_star / (15.0 * r_eff * r_eff) * a2 * a2 * a -
                    4.0 / (3.0 * r_eff) * e_star * root * a2 * a * x + pw * a2;
@@ -134,9 +134,10 @@ inline NormalResponse jkr_normal(double k_n, double w, double root, double r_eff
 /// The JKR potential at the break, U(-delta_c) = G(a_c) - G(a_f) = pi w a_f^2 (3/5 + 2/5
 /// 16^{-2/3}) (a_c^3 = a_f^3/16: the radius where d(delta)/da = 0), J: the energy an attached
 /// contact takes with it when it breaks (spring_loss). The contact radius there is a_c.
-inline double jkr_break_energy(double w, double root, double r_eff) {
+/// `k_n` = 4/3 E*, `root` = sqrt(2 pi w/E*) (pi w = 3/8 k_n root^2).
+inline double jkr_break_energy(double k_n, double root, double r_eff) {
   const double p = r_eff * root;
-  return std::numbers::pi * w * p * std::cbrt(p) * (0.6 + 0.4 / std::cbrt(256.0));
+  return 0.375 * k_n * root * root * p * std::cbrt(p) * (0.6 + 0.4 / std::cbrt(256.0));
 }
 
 /// The normal force of a response at the approach speed v_n (> 0 approaching): its magnitude

@@ -52,8 +52,7 @@ struct JkrNormal {
   static constexpr int history_width = 1; ///< "attached": 1 from the first touch to the break
   static constexpr bool takes_elastic_constants = true;
   static constexpr bool uses_impact_speed = true;
-  static constexpr std::string_view foreign_key_note =
-      "JKR's stiffness follows from the material";
+  static constexpr std::string_view foreign_key_note = "JKR's stiffness follows from the material";
   static constexpr std::string_view mixing =
       "1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b, 1/G* = (2 - nu_a)/G_a + (2 - nu_b)/G_b "
       "[Zhu07 Table 1]; a rigid wall adds no compliance; w the same for every pair and wall";
@@ -63,22 +62,21 @@ struct JkrNormal {
   /// attached entries with overlap > -detach_distance; the force is not floored).
   static constexpr bool detaches_in_tension = true;
 
-  /// kn: 4/3 E*; kt: c_t = 8 G*; adhesion: w; adhesion_root: sqrt(2 pi w/E*); detach:
-  /// delta_c/R*^{1/3}; normal_damping: 0 (no dashpot).
+  /// kn: 4/3 E*; kt: c_t = 8 G*; normal_damping: c = sqrt(2 pi w/E*) (no dashpot), from which
+  /// w = 3 kn c^2/(8 pi) and delta_c = 3/4 (pi^2 w^2 R*/E*^2)^{1/3} = 3/4 (c^4 R*/4)^{1/3}
+  /// follow (no field of its own: PairParams keeps its size, the other models' code its layout).
   static void mix(PairParams& p, const MaterialPair& m, const Coefficients& c) {
     const double w = c.at("adhesion_energy");
-    const double pi = std::numbers::pi;
     p.kn = 4.0 / 3.0 * p.e_star;
-    p.normal_damping = 0.0;
+    p.normal_damping = std::sqrt(2.0 * std::numbers::pi * w / p.e_star);
     p.kt = 8.0 / (inv_g_part(m.a) + inv_g_part(m.b));
-    p.adhesion = w;
-    p.adhesion_root = std::sqrt(2.0 * pi * w / p.e_star);
-    p.detach = 0.75 * std::cbrt(pi * pi * w * w / (p.e_star * p.e_star));
   }
 
-  /// The overlap below which an attached contact breaks, -delta_c, as a positive distance, m.
+  /// delta_c = 3/4 (pi^2 w^2 R*/E*^2)^{1/3} = 3/4 (c^4 R*/4)^{1/3}, m: an attached contact
+  /// breaks when its overlap falls below -delta_c.
   [[gnu::always_inline]] static double detach_distance(const PairParams& pp, double r_eff) {
-    return pp.detach * std::cbrt(r_eff);
+    const double c2 = pp.normal_damping * pp.normal_damping;
+    return 0.75 * std::cbrt(0.25 * c2 * c2 * r_eff);
   }
 
   /// The force pulse of a head-on impact at `impact_speed`, s: Hertz's (undamped) with E*: the
@@ -90,34 +88,34 @@ struct JkrNormal {
   /// The overlap under a static compressive force f, m: F_n(a) = f solved for a^{3/2}
   /// (a quadratic), then delta(a).
   static double overlap_under(double f, double r_eff, const PairParams& p) {
-    const double c1 = p.kn / r_eff, c2 = 1.5 * p.kn * p.adhesion_root; // 2 E* c
+    const double c1 = p.kn / r_eff, c2 = 1.5 * p.kn * p.normal_damping;     // 2 E* c
     const double t = (c2 + std::sqrt(c2 * c2 + 4.0 * c1 * f)) / (2.0 * c1); // a^{3/2}
     const double a = std::cbrt(t * t);
-    return a * a / r_eff - p.adhesion_root * std::sqrt(a);
+    return a * a / r_eff - p.normal_damping * std::sqrt(a);
   }
 
   /// `hist[0]`: attached (0 before the first touch: the walk hands over an unattached entry
   /// only when it overlaps). Forming costs nothing in the potential (U(0) = 0): no spring_loss.
   [[gnu::always_inline]] static kernels::NormalResponse respond(const PairParams& pp, double r_eff,
                                                                 double m_eff, double overlap,
-                                                                double* hist,
-                                                                double& spring_loss) {
+                                                                double* hist, double& spring_loss) {
     hist[0] = 1.0;
     spring_loss = 0.0;
-    return kernels::jkr_normal(pp.kn, pp.adhesion, pp.adhesion_root, r_eff, m_eff, overlap);
+    return kernels::jkr_normal(pp.kn, pp.normal_damping, r_eff, m_eff, overlap);
   }
   /// The response as the contact breaks (at -delta_c: the contact radius a_c, the potential
   /// U(-delta_c)), for the energy the springs take with them.
   static kernels::NormalResponse at_break(const PairParams& pp, double r_eff) {
-    const double p = r_eff * pp.adhesion_root;
+    const double p = r_eff * pp.normal_damping;
     const double a_c = std::cbrt(p * p) / std::cbrt(16.0); // a_f / 16^{1/3}
-    return {0.0, 0.0, 1.5 * pp.kn * a_c,
-            kernels::jkr_break_energy(pp.adhesion, pp.adhesion_root, r_eff), 0.0, a_c};
+    return {0.0, 0.0, 1.5 * pp.kn * a_c, kernels::jkr_break_energy(pp.kn, pp.normal_damping, r_eff),
+            0.0, a_c};
   }
-  /// The normal load of the Coulomb and rolling limits, N: F_n + 2 F_c [Thornton & Yin 1991].
+  /// The normal load of the Coulomb and rolling limits, N: F_n + 2 F_c [Thornton & Yin 1991],
+  /// 2 F_c = 3 pi w R* = 9/8 kn c^2 R*.
   [[gnu::always_inline]] static double friction_load(const PairParams& pp, double r_eff,
                                                      double f_n) {
-    return f_n + 3.0 * std::numbers::pi * pp.adhesion * r_eff;
+    return f_n + 1.125 * pp.kn * pp.normal_damping * pp.normal_damping * r_eff;
   }
   /// Mindlin's k_t = c_t a, N/m.
   [[gnu::always_inline]] static double tangential_stiffness(const PairParams& pp,

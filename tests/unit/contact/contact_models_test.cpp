@@ -186,12 +186,12 @@ const std::map<std::string, Kernel>& kernel_table() {
          const double e_star = in.num("e_star"), w = in.num("w"), r = in.num("r_eff"),
                       m = in.num("m_eff"), delta = in.num("delta");
          const double root = std::sqrt(2.0 * std::numbers::pi * w / e_star);
-         const auto nr = kernels::jkr_normal(4.0 / 3.0 * e_star, w, root, r, m, delta);
+         const auto nr = kernels::jkr_normal(4.0 / 3.0 * e_star, root, r, m, delta);
          Outputs o;
          o.scalars["contact_radius"] = nr.contact_radius;
          o.scalars["elastic"] = nr.elastic;
          o.scalars["energy"] = nr.energy;
-         o.scalars["break_energy"] = kernels::jkr_break_energy(w, root, r);
+         o.scalars["break_energy"] = kernels::jkr_break_energy(4.0 / 3.0 * e_star, root, r);
          return o;
        }},
       {"tangential_spring",
