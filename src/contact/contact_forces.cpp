@@ -25,6 +25,13 @@ namespace {
 using contact_models::ContactInput;
 using contact_models::ContactOutput;
 
+/// Whether a normal model holds its contacts in tension (JKR): its entries touch while attached
+/// down to an overlap of -Normal::detach_distance, and its force is not floored.
+template <class Normal>
+constexpr bool adhesive = requires {
+  Normal::detaches_in_tension;
+};
+
 /// One contact of the models Normal x Tangential x Rolling (contact/models/): the normal model's
 /// response (with its own history when it has one), floored, then the tangential and rolling
 /// models, each on its own part of the history (normal | tangential | rolling).
@@ -50,11 +57,20 @@ template <class Normal, class Tangential, class Rolling>
   // ([Deen07 eq. 28] |F_n|) scale with the same force whose impulse the normal direction gets,
   // so gross sliding gives J_t = mu J_n (with a tensile tail counted in J_n but not in the
   // limit, J_t/J_n was 1.034 mu at e = 0.5).
-  const kernels::NormalForce fn = kernels::floored_normal_force(nr, vn);
-  out.force = c.n * (-fn.magnitude);
-  out.fn_abs = fn.magnitude;
-  out.elastic = nr.energy;
-  out.nc_force = c.n * (-fn.nonconservative);
+  if constexpr (adhesive<Normal>) {
+    // An adhesive model's force is tensile by design: not floored, no dashpot; its Coulomb and
+    // rolling limits take the model's load (JKR: F_n + 2 F_c).
+    out.force = c.n * (-nr.elastic);
+    out.fn_abs = Normal::friction_load(pp, c.r_eff, nr.elastic);
+    out.elastic = nr.energy;
+    out.nc_force = Vec3{};
+  } else {
+    const kernels::NormalForce fn = kernels::floored_normal_force(nr, vn);
+    out.force = c.n * (-fn.magnitude);
+    out.fn_abs = fn.magnitude;
+    out.elastic = nr.energy;
+    out.nc_force = c.n * (-fn.nonconservative);
+  }
   if constexpr (Normal::history_width > 0) out.spring_loss = normal_loss;
   double* own = hist + Normal::history_width;
   Tangential::add(out, c, pp, nr, k_t, vn, own, dt);
@@ -544,7 +560,13 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   // have k_t -> 0 as the overlap closes, so only the linear springs hold energy at separation.)
   auto release = [&](ContactStats& acc, double* hist, const PairParams& pp, double r_eff) {
     if constexpr (Normal::springs_hold_energy_at_separation) {
-      const kernels::NormalResponse separated{}; // the stiffnesses as the overlap closes
+      kernels::NormalResponse separated{}; // the stiffnesses as the overlap closes
+      if constexpr (adhesive<Normal>) {
+        // An adhesive contact breaks at -delta_c: its potential there is dissipated, and the
+        // springs scale with its contact radius there.
+        separated = Normal::at_break(pp, r_eff);
+        acc.spring_losses += separated.energy;
+      }
       const double* own = hist + Normal::history_width;
       if constexpr (Tangential::history_width > 0)
         acc.spring_losses +=
@@ -696,6 +718,18 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     if (deepest < n) acc.max_overlap_ratio = max_ratio, acc.max_overlap_particle = p.id[deepest];
     b.n = 0;
   };
+  // An adhesive model's pair (entry history `hist`, squared separation d2): touching when it
+  // overlaps, or when it is attached and its overlap is above -delta_c.
+  [[maybe_unused]] auto attached_pair = [](bool overlapping, const double* hist,
+                                           const PairParams& pp, double ri, double rj, double d2) {
+    if constexpr (adhesive<Normal>) {
+      if (overlapping || hist[0] == 0.0) return overlapping;
+      const double reach = ri + rj + Normal::detach_distance(pp, ri * rj / (ri + rj));
+      return d2 < reach * reach;
+    } else {
+      return overlapping;
+    }
+  };
   // The end of pass 1 for an entry (pairs and walls alike). A contact that just ended: one
   // integer test, so one rarely taken branch instead of one on touching (unpredictable).
   auto just_ended = [&](const double* hist, bool touching) {
@@ -762,7 +796,11 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       }
       const double rj = pj[3];
       const double rsum = ri + rj;
-      const bool touching = dx * dx + dy * dy + dz * dz < rsum * rsum;
+      bool touching = dx * dx + dy * dy + dz * dz < rsum * rsum;
+      if constexpr (adhesive<Normal>)
+        touching =
+            attached_pair(touching, hist_base + static_cast<std::size_t>(e) * hw,
+                          pair_params[si_row + spec[j]], ri, rj, dx * dx + dy * dy + dz * dz);
       // The pair, its entry and separation (the flush gathers the rest for the touching ones).
       b.i[k] = static_cast<std::uint32_t>(i), b.j[k] = j, b.e[k] = e;
       b.d[0][k] = dx, b.d[1][k] = dy, b.d[2][k] = dz;
@@ -809,7 +847,11 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
           }
           const double ri = pi[3], rj = pj[3];
           const double rsum = ri + rj;
-          const bool touching = dx * dx + dy * dy + dz * dz < rsum * rsum;
+          bool touching = dx * dx + dy * dy + dz * dz < rsum * rsum;
+          if constexpr (adhesive<Normal>)
+            touching = attached_pair(touching, hist_base + static_cast<std::size_t>(e) * hw,
+                                     pair_params[spec[i] * n_species + spec[j]], ri, rj,
+                                     dx * dx + dy * dy + dz * dz);
           b.i[k] = i, b.j[k] = j, b.e[k] = e;
           b.d[0][k] = dx, b.d[1][k] = dy, b.d[2][k] = dz;
           if constexpr (hw > 0) {
@@ -863,7 +905,10 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
       const double* pi = v + ContactScratch::kView * i;
       const double ri = pi[3];
       const double gap = lo_face ? pi[a] - lo[a] : hi[a] - pi[a];
-      const bool touching = gap < ri;
+      bool touching = gap < ri;
+      if constexpr (adhesive<Normal>)
+        if (!touching && hist_base[e * hw] != 0.0)
+          touching = gap < ri + Normal::detach_distance(wall_params[spec[i] * 6 + f], ri);
       // The entry and its particle (the flush gathers the rest for the touching ones).
       b.i[k] = i, b.e[k] = static_cast<std::uint32_t>(e);
       if constexpr (hw > 0) {

@@ -164,4 +164,17 @@ double ContactTable::overlap_under(double f, double r_eff, const PairParams& p) 
   });
 }
 
+double ContactTable::attached_reach(double r_max) const {
+  return with_model(contact_models::NormalModels{}, models_.normal->index, [&]<class M>(M) {
+    double reach = 0.0;
+    if constexpr (requires { M::detaches_in_tension; }) {
+      for (const PairParams& p : pp_) reach = std::max(reach, M::detach_distance(p, r_max));
+      for (const PairParams& p : pw_) reach = std::max(reach, M::detach_distance(p, r_max));
+    }
+    // A margin of 1e-9 of it: the list's test (gap < reach + skin) and the walk's (overlap >
+    // -delta_c) round differently, and an attached pair the list dropped would end unbooked.
+    return reach * (1.0 + 1e-9);
+  });
+}
+
 } // namespace fluidem

@@ -81,6 +81,11 @@ public:
   };
   std::vector<DurationInput> duration_inputs(const CaseSpec& spec, const DurationRow& row) const;
 
+  /// The largest overlap below zero at which an attached contact still holds (an adhesive
+  /// normal model: JKR's delta_c; 0 for the others) for particles of radius r_max at most
+  /// (R* <= r_max), m: the contact neighbour list's reach.
+  double attached_reach(double r_max) const;
+
   /// The memory of the table for the case's species, bytes: every species pair has its
   /// coefficients (the contact loop indexes them by species), so it grows with the square of
   /// the species count.

@@ -6,10 +6,10 @@
 namespace fluidem {
 
 struct PairParams {
-  double kn = 0;                 ///< normal model: linear k_n, N/m; Hertz 4/3 E*, Pa;
+  double kn = 0;                 ///< normal model: linear k_n, N/m; Hertz and jkr 4/3 E*, Pa;
                                  ///< walton_braun k1, N/m
   double normal_damping = 0;     ///< normal model: linear eta_n / sqrt(m* k_n); Hertz alpha;
-                                 ///< walton_braun k1/k2 = e^2
+                                 ///< walton_braun k1/k2 = e^2; jkr sqrt(2 pi w / E*)
   double kt = 0;                 ///< normal model: linear k_t, N/m; Hertz c_t, Pa
   double tangential_damping = 0; ///< tangential model: factor of [Deen07 eq. 30] from beta0
   double tangential_root = 0;    ///< tangential model: sqrt(2 kt / (7 kn))

@@ -35,7 +35,12 @@ SoftSphereStepper::SoftSphereStepper(std::unique_ptr<ContactTable> table, const 
     : p_(p), forces_(forces), record_(record), table_(std::move(table)), dt_(settings.dt),
       sort_interval_(settings.sort_interval) {
   for (const double im : p_.inv_mass) max_inv_mass_ = std::max(max_inv_mass_, im);
-  nl_ = std::make_unique<NeighbourList>(box, settings.skin, contact_history_width(*table_));
+  // An adhesive contact (JKR) holds in tension down to an overlap of -delta_c: the list holds
+  // every pair out to that gap (its reach).
+  double r_max = 0.5 * settings.max_diameter;
+  for (const double r : p_.radius) r_max = std::max(r_max, r);
+  nl_ = std::make_unique<NeighbourList>(box, settings.skin, contact_history_width(*table_),
+                                        table_->attached_reach(r_max));
   // neighbour.skin = "auto": each build chooses its skin from the particles' speeds, for lists
   // that last auto_skin_steps steps, between the given skin and the largest diameter.
   if (settings.auto_skin)

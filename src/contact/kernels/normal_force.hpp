@@ -90,6 +90,56 @@ inline WaltonBraunResult walton_braun_normal(double k1, double ratio, double del
   return {0.0, 0.0, 0.0, 0.0, delta_max, delta0};
 }
 
+/// Johnson, Kendall & Roberts (1971) adhesive elastic contact [Zhu07 §2.2; Johnson, Contact
+/// Mechanics 1985, §5.5] on its attached branch: the contact radius a at the overlap delta from
+///   delta = a^2/R* - sqrt(2 pi w a / E*)   (c = sqrt(2 pi w / E*) = `root`)
+/// i.e. with x = sqrt(a) the quartic x^4 - p x - q = 0, p = R* c, q = R* delta, solved in closed
+/// form (Ferrari's resolvent cubic y^3 + q y - p^2/8 = 0, of which Cardano's root is written as
+/// y = r/(u^2 + q/3 + (q/(3u))^2), u = cbrt(r/2 + sqrt(r^2/4 + q^3/27)), r = p^2/8, free of
+/// cancellation for any sign of q; then x = (s + sqrt(2p/s - 2y))/2, s = sqrt(2y), the largest
+/// root: the stable branch, a >= a_c). No iteration. Relative error against mpmath <= 1e-13
+/// down to delta = -0.9999 delta_c (tools/jkr_reference.py); at -delta_c the two roots meet
+/// (r^2/4 + q^3/27 = 0) and a is ill-conditioned, as the physics.
+///   F_n = 4 E* a^3/(3 R*) - sqrt(8 pi w E* a^3)     (> 0 repulsive; down to -3/2 pi w R*)
+/// Energy, the potential of the attached branch referenced to its formation state (delta = 0,
+/// a_f^3 = 2 pi w R*^2/E*): U(delta) = integral_0^delta F_n = G(a) - G(a_f) with
+///   G(a) = 8 E* a^5/(15 R*^2) - 4/(3 R*) sqrt(2 pi w E*) a^{7/2} + pi w a^2,
+///   G(a_f) = -3/5 pi w a_f^2,  a_f^2 = p^{4/3}.
+/// `k_n` = 4/3 E* (as for Hertz), `root` = c (so that pi w = E* c^2/2).
+inline NormalResponse jkr_normal(double k_n, double root, double r_eff, double m_eff,
+                                 double delta) {
+  const double p = r_eff * root, q = r_eff * delta, r = 0.125 * p * p;
+  const double disc = 0.25 * r * r + q * q * q / 27.0;
+  const double u = std::cbrt(0.5 * r + std::sqrt(disc > 0.0 ? disc : 0.0));
+  const double v = q / (3.0 * u);
+  const double y = r / (u * u + q / 3.0 + v * v);
+  const double s = std::sqrt(2.0 * y);
+  const double t = 2.0 * p / s - 2.0 * y;
+  const double x = 0.5 * (s + std::sqrt(t > 0.0 ? t : 0.0)); // sqrt(a)
+  const double a = x * x;
+  const double e_star = 0.75 * k_n;
+  const double hertz = k_n / r_eff * a * a * a;        // 4 E* a^3 / (3 R*)
+  const double adhesive = 2.0 * e_star * root * a * x; // sqrt(8 pi w E* a^3)
+  const double pw = 0.5 * e_star * root * root;        // pi w
+  const double a2 = a * a;
+  const double g = 8.0 * e_star / (15.0 * r_eff * r_eff) * a2 * a2 * a -
+                   4.0 / (3.0 * r_eff) * e_star * root * a2 * a * x + pw * a2;
+  const double energy = g + 0.6 * pw * p * std::cbrt(p);
+  const double scale = std::sqrt(m_eff * k_n * a);
+  // The tangent stiffness the tangential and rolling springs scale with: Hertz's 2 E* a at the
+  // JKR contact radius (the exact dF/d(delta) diverges at -delta_c).
+  return {hertz - adhesive, 0.0, 1.5 * k_n * a, energy, scale, a};
+}
+
+/// The JKR potential at the break, U(-delta_c) = G(a_c) - G(a_f) = pi w a_f^2 (3/5 + 2/5
+/// 16^{-2/3}) (a_c^3 = a_f^3/16: the radius where d(delta)/da = 0), J: the energy an attached
+/// contact takes with it when it breaks (spring_loss). The contact radius there is a_c.
+/// `k_n` = 4/3 E*, `root` = sqrt(2 pi w/E*) (pi w = 3/8 k_n root^2).
+inline double jkr_break_energy(double k_n, double root, double r_eff) {
+  const double p = r_eff * root;
+  return 0.375 * k_n * root * root * p * std::cbrt(p) * (0.6 + 0.4 / std::cbrt(256.0));
+}
+
 /// The normal force of a response at the approach speed v_n (> 0 approaching): its magnitude
 /// pushing the pair apart, never negative, and the part of it that is not the spring's.
 struct NormalForce {

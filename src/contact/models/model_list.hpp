@@ -22,6 +22,7 @@
 #include <utility>
 
 #include "contact/models/normal_hertz.hpp"
+#include "contact/models/normal_jkr.hpp"
 #include "contact/models/normal_linear.hpp"
 #include "contact/models/normal_walton_braun.hpp"
 #include "contact/models/rolling_constant_torque.hpp"
@@ -38,7 +39,7 @@ struct ModelList {
   static constexpr int size = sizeof...(M);
 };
 
-using NormalModels = ModelList<LinearNormal, HertzNormal, WaltonBraunNormal>;
+using NormalModels = ModelList<LinearNormal, HertzNormal, WaltonBraunNormal, JkrNormal>;
 using TangentialModels = ModelList<HistoryTangential, NoTangential, MindlinDeresiewiczTangential>;
 using RollingModels = ModelList<NoRolling, ConstantTorqueRolling, SpringDashpotRolling>;
 

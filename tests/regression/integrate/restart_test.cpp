@@ -240,6 +240,19 @@ TEST(Restart, SoftSpheresWithWaltonBraunAndMindlinDeresiewiczContinueBitwise) {
   check_restart_identity(spec, 0.1, "soft_wb_md");
 }
 
+// The JKR adhesive normal model (issue 34): its history ("attached") and contacts held in
+// tension, through the list's reach.
+TEST(Restart, SoftSpheresWithJkrContinueBitwise) {
+  CaseSpec spec =
+      read_case_file(std::string(FLUIDEM_SOURCE_DIR) + "/cases/hoomans96/pouring_soft.toml");
+  spec.contact.normal.name = "jkr";
+  spec.contact.normal.coefficients = {{"adhesion_energy", 0.2}};
+  Simulation probe(spec);
+  spec.simulation.time_step = probe.time_step();
+  spec.neighbour.sort_interval = 1;
+  check_restart_identity(spec, 0.1, "soft_jkr");
+}
+
 TEST(Restart, HardSpheresContinueBitwise) {
   check_restart_identity(pouring(Engine::HardSphere), 0.1, "hard");
 }

@@ -427,6 +427,9 @@ TEST(Cli, EveryDocumentedContactModelIsAccepted) {
       std::string text = kValid;
       if (key == "normal" && value == "walton_braun") // takes the stiffness (its k1)
         text = replace(text, "normal = \"linear\"", "normal = \"" + value + "\"");
+      else if (key == "normal" && value == "jkr") // takes the adhesion energy
+        text = replace(replace(text, "normal = \"linear\"", "normal = \"jkr\""),
+                       "stiffness = 800.0\n", "adhesion_energy = 0.05\n");
       else if (key == "normal" && value != "linear")
         text = replace(replace(text, "normal = \"linear\"", "normal = \"" + value + "\""),
                        "stiffness = 800.0\n", "");

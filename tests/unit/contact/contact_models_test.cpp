@@ -12,6 +12,7 @@
 #include <functional>
 #include <gtest/gtest.h>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <ostream>
 #include <set>
@@ -178,6 +179,19 @@ const std::map<std::string, Kernel>& kernel_table() {
          o.scalars["spring_loss"] = r.spring_loss;
          o.scalars["delta_max"] = r.delta_max;
          o.scalars["delta0"] = r.delta0;
+         return o;
+       }},
+      {"jkr_normal",
+       [](Inputs& in) {
+         const double e_star = in.num("e_star"), w = in.num("w"), r = in.num("r_eff"),
+                      m = in.num("m_eff"), delta = in.num("delta");
+         const double root = std::sqrt(2.0 * std::numbers::pi * w / e_star);
+         const auto nr = kernels::jkr_normal(4.0 / 3.0 * e_star, root, r, m, delta);
+         Outputs o;
+         o.scalars["contact_radius"] = nr.contact_radius;
+         o.scalars["elastic"] = nr.elastic;
+         o.scalars["energy"] = nr.energy;
+         o.scalars["break_energy"] = kernels::jkr_break_energy(4.0 / 3.0 * e_star, root, r);
          return o;
        }},
       {"tangential_spring",
@@ -491,7 +505,7 @@ TEST(ContactModelFiles, EveryKernelHasAFile) {
         "tangential_spring_sliding.toml", "rolling_constant_torque.toml",
         "rolling_spring_dashpot.toml", "history_rotation.toml", "normal_damping.toml",
         "hertz_impact.toml", "restitution_damping_factor.toml", "walton_braun.toml",
-        "normal_model_walton_braun.toml", "mindlin_deresiewicz.toml"})
+        "normal_model_walton_braun.toml", "mindlin_deresiewicz.toml", "jkr_normal.toml"})
     EXPECT_TRUE(fs::exists(model_dir() / f)) << f;
 }
 

@@ -40,7 +40,10 @@ CaseSpec make_spec(int species, const std::string& normal) {
   for (int k = 0; k < species; ++k) // d = kD
     s.species.push_back(test::glass_species_spec(k == 0 ? "glass" : "glass_b"));
   s.contact.normal.name = normal;
-  if (normal != "hertz") s.contact.normal.coefficients["stiffness"] = 2000.0;
+  if (normal == "jkr")
+    s.contact.normal.coefficients["adhesion_energy"] = 0.2;
+  else if (normal != "hertz")
+    s.contact.normal.coefficients["stiffness"] = 2000.0;
   // Walton & Braun's spring (history of its own) with the Mindlin-Deresiewicz tangential force.
   s.contact.tangential.name = normal == "walton_braun" ? "mindlin_deresiewicz" : "history";
   s.contact.rolling.name = "spring_dashpot";
@@ -134,7 +137,9 @@ INSTANTIATE_TEST_SUITE_P(Beds, UniformBatches,
                                            Case{"hertz_threaded", 13, "hertz"},
                                            Case{"linear_small", 1, "linear"},
                                            Case{"walton_braun_small", 1, "walton_braun"},
-                                           Case{"walton_braun_threaded", 13, "walton_braun"}),
+                                           Case{"walton_braun_threaded", 13, "walton_braun"},
+                                           Case{"jkr_small", 1, "jkr"},
+                                           Case{"jkr_threaded", 13, "jkr"}),
                          [](const auto& tp) { return std::string(tp.param.name); });
 
 } // namespace

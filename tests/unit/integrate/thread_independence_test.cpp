@@ -203,6 +203,22 @@ TEST(ThreadIndependence, WaltonBraunAndMindlinDeresiewiczGiveBitwiseIdenticalPar
   EXPECT_GT(wmax, 0.0); // the tangential force acts
 }
 
+// The JKR adhesive normal model (issue 34): history "attached" per contact, entries that touch
+// in tension down to -delta_c (the walk's attached test), the list's reach, in the closed box
+// (pairs and walls in every slab).
+TEST(ThreadIndependence, JkrGivesBitwiseIdenticalParticles) {
+  std::string text = kClosedCase;
+  const std::string hertz = "normal = \"hertz\"\n";
+  ASSERT_NE(text.find(hertz), std::string::npos);
+  text.replace(text.find(hertz), hertz.size(), "normal = \"jkr\"\nadhesion_energy = 0.2\n");
+  const State one = run_with_threads(1, text.c_str());
+  const State two = run_with_threads(2, text.c_str());
+  const State three = run_with_threads(3, text.c_str());
+  ASSERT_EQ(one.x.size(), 18000u);
+  expect_bitwise_equal(one, two, three);
+  EXPECT_GT(one.contacts, 100);
+}
+
 // kCase on a floor of fixed particles (a lattice layer, inserted first so that the random bed
 // avoids it): pairs with a fixed partner (1/m = 0) in the soft-sphere contact loop, no pairs of
 // two fixed ones, no wall entries of them; and the same with the hard-sphere engine, whose

@@ -588,7 +588,8 @@ TEST(CaseReaderErrors, InsertUnknownSpeciesListsValid) {
 TEST(CaseReaderErrors, UnknownEnumerationListsValid) {
   std::string t = minimal() + "[contact]\nnormal = \"hertzz\"\n";
   expect_error_at(t, "hertzz", "contact.normal",
-                  "unknown value \"hertzz\" (allowed: \"linear\", \"hertz\", \"walton_braun\")");
+                  "unknown value \"hertzz\" (allowed: \"linear\", \"hertz\", \"walton_braun\", "
+                  "\"jkr\")");
   t = minimal() + "[contact]\nrolling = \"constant\"\n";
   expect_error_at(t, "constant", "contact.rolling", "\"constant_torque\", \"spring_dashpot\"");
   t = minimal() + "[contact]\ntangential = \"yes\"\n";
