@@ -56,6 +56,14 @@ ContactTable::ContactTable(const CaseSpec& spec, std::vector<bool> with_particle
       const std::string key = std::string("contact.") + contact_models::kind_key(kind);
       throw InputError(spec.where(key), key, contact_models::refusal(models_.of(kind)));
     }
+  // JKR's contact lives on in tension (delta < 0), where the slip distance of
+  // mindlin_deresiewicz, mu delta_n (2 - nu)/(2 (1 - nu)), would be negative.
+  if (models_.of(contact_models::Kind::Normal).name == "jkr" &&
+      models_.of(contact_models::Kind::Tangential).name == "mindlin_deresiewicz")
+    throw InputError(spec.where("contact.tangential"), "contact.tangential",
+                     "\"mindlin_deresiewicz\" cannot follow normal = \"jkr\", whose contacts "
+                     "pull with a negative overlap, where its slip distance mu delta_n (2 - nu)/"
+                     "(2 (1 - nu)) is negative (allowed with jkr: \"history\" or \"none\")");
   const auto& c = spec.contact;
   v_char_ =
       c.characteristic_velocity ? *c.characteristic_velocity : auto_characteristic_velocity(spec);

@@ -199,5 +199,24 @@ TEST(ContactTable, RefusesAStiffnessRatioWithHertz) {
   EXPECT_EQ(t.wall(0, 4).kt, 500.0);
 }
 
+// JKR contacts pull at negative overlaps, where mindlin_deresiewicz's slip distance (mu delta_n
+// ...) would be negative: the pair of models is refused, naming contact.tangential.
+TEST(ContactTable, RefusesMindlinDeresiewiczWithJkr) {
+  CaseSpec s = two_species("jkr");
+  s.contact.normal.coefficients["adhesion_energy"] = 0.1;
+  s.contact.tangential.name = "mindlin_deresiewicz";
+  try {
+    const ContactTable t(s);
+    ADD_FAILURE() << "jkr with mindlin_deresiewicz accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("contact.tangential: \"mindlin_deresiewicz\" cannot "
+                                         "follow normal = \"jkr\""),
+              std::string::npos)
+        << e.what();
+  }
+  s.contact.tangential.name = "history";
+  EXPECT_NO_THROW(ContactTable{s});
+}
+
 } // namespace
 } // namespace fluidem
