@@ -258,7 +258,7 @@ TEST(NonContactForces, WaltonBraunPairWithVanDerWaalsSticksBelowTheCriticalSpeed
   const double w = f0 * h0 + a * r_eff / 6.0 * (1.0 / h0 - 1.0 / h_c);
   const double dm = (f0 + std::sqrt(f0 * f0 + 2.0 * k1 * e * e * w)) / (k1 * e * e);
   const double vc2 = (k1 * dm * dm - 2.0 * f0 * dm) / m_eff;
-  const double v_crit = std::sqrt(vc2 - 2.0 * w / m_eff); // relative approach speed
+  const double v_crit = std::sqrt(vc2 - 2.0 * w / m_eff);          // relative approach speed
   const double contact = std::numbers::pi * std::sqrt(m_eff / k1); // ~ the contact's duration
   for (const double factor : {0.95, 1.05}) {
     const double v = factor * v_crit, gap0 = 1.01 * h_c;
@@ -269,8 +269,8 @@ TEST(NonContactForces, WaltonBraunPairWithVanDerWaalsSticksBelowTheCriticalSpeed
     for (const char* key : {"restitution = 1.0\n", "restitution = 1.0\n"})
       text.replace(text.find(key), std::string(key).size(), fmt::format("restitution = {}\n", e));
     const double dt = 0.05 * h0 / v_crit;
-    Simulation sim(read_case_string(text, "stick.toml",
-                                    {fmt::format("simulation.time_step={:.17g}", dt)}));
+    Simulation sim(
+        read_case_string(text, "stick.toml", {fmt::format("simulation.time_step={:.17g}", dt)}));
     const ParticleStore& p = sim.particles();
     bool touched = false, parted = false;
     const long steps = std::lround((gap0 / v + 10.0 * contact) / dt);
@@ -281,8 +281,8 @@ TEST(NonContactForces, WaltonBraunPairWithVanDerWaalsSticksBelowTheCriticalSpeed
       parted = touched && gap > h_c && p.vx[1] - p.vx[0] > 0.0;
     }
     EXPECT_TRUE(touched) << factor;
-    EXPECT_EQ(parted, factor > 1.0) << "at " << factor << " of the critical speed " << v_crit
-                                    << " m/s";
+    EXPECT_EQ(parted, factor > 1.0)
+        << "at " << factor << " of the critical speed " << v_crit << " m/s";
   }
 }
 
