@@ -26,8 +26,7 @@ struct Separation {
 
 Separation separation(const NeighbourList& nl, const ParticleStore& p, std::size_t i,
                       std::size_t j) {
-  const Vec3 d{nl.min_image(p.x[j] - p.x[i], 0), nl.min_image(p.y[j] - p.y[i], 1),
-               nl.min_image(p.z[j] - p.z[i], 2)};
+  const Vec3 d = centre_to_centre(nl, p, i, j);
   const double r = std::sqrt(norm2(d));
   const Vec3 n = d * (1.0 / r);
   return {r - p.radius[i] - p.radius[j], n, dot(p.velocity(j) - p.velocity(i), n)};
@@ -35,14 +34,9 @@ Separation separation(const NeighbourList& nl, const ParticleStore& p, std::size
 
 /// Particle i and wall face f: the gap, the unit normal towards the wall, the gap's rate.
 Separation wall_separation(const BoxGeometry& box, const ParticleStore& p, std::size_t i, int f) {
-  const int a = f / 2;
-  const double x = a == 0 ? p.x[i] : a == 1 ? p.y[i] : p.z[i];
-  const double v = a == 0 ? p.vx[i] : a == 1 ? p.vy[i] : p.vz[i];
-  const bool low = f % 2 == 0;
-  Vec3 n;
-  n[a] = low ? -1.0 : 1.0;
-  const double z = low ? x - box.lo[a] : box.hi[a] - x;
-  return {z - p.radius[i], n, low ? v : -v};
+  const WallDistance w = wall_distance(box, p, i, f);
+  // The gap's rate: minus the velocity towards the wall.
+  return {w.centre - p.radius[i], w.normal, -dot(p.velocity(i), w.normal)};
 }
 
 } // namespace

@@ -51,8 +51,7 @@ void ConservativePairForces::update(const ParticleStore& p) {
 
 ConservativePairForces::PairTerm ConservativePairForces::pair(const ParticleStore& p, std::size_t i,
                                                               std::size_t j) const {
-  const Vec3 d{nl_.min_image(p.x[j] - p.x[i], 0), nl_.min_image(p.y[j] - p.y[i], 1),
-               nl_.min_image(p.z[j] - p.z[i], 2)};
+  const Vec3 d = centre_to_centre(nl_, p, i, j);
   const double r = std::sqrt(norm2(d));
   const double ri = p.radius[i], rj = p.radius[j];
   const double gap = r - ri - rj;
@@ -98,10 +97,8 @@ ConservativePairForces::PairTerm ConservativePairForces::pair(const ParticleStor
 
 ConservativePairForces::PairTerm ConservativePairForces::wall(const ParticleStore& p, std::size_t i,
                                                               int face) const {
-  const int a = face / 2;
-  const double x = a == 0 ? p.x[i] : a == 1 ? p.y[i] : p.z[i];
-  const double z = face % 2 == 0 ? x - box_.lo[a] : box_.hi[a] - x; // centre to wall
-  const double sign = face % 2 == 0 ? -1.0 : 1.0;                   // towards the wall along axis a
+  const WallDistance w = wall_distance(box_, p, i, face);
+  const double z = w.centre;
   PairTerm t;
   double pull = 0.0; // towards the wall, N
   if (const auto& v = spec_.van_der_waals; v && v->wall_hamaker) {
@@ -122,7 +119,7 @@ ConservativePairForces::PairTerm ConservativePairForces::wall(const ParticleStor
       t.in_range = true;
     }
   }
-  t.force[a] = sign * pull;
+  t.force[w.axis] = w.normal[w.axis] * pull;
   return t;
 }
 

@@ -31,6 +31,30 @@ private:
   std::uint64_t generation_ = ~std::uint64_t{0};
 };
 
+/// The minimum-image vector from particle i's centre to particle j's, m.
+inline Vec3 centre_to_centre(const NeighbourList& nl, const ParticleStore& p, std::size_t i,
+                             std::size_t j) {
+  return {nl.min_image(p.x[j] - p.x[i], 0), nl.min_image(p.y[j] - p.y[i], 1),
+          nl.min_image(p.z[j] - p.z[i], 2)};
+}
+
+/// Particle i and the wall of face f (0..5: x_lo, x_hi, ...): the distance of its centre from
+/// the wall, m, and the unit normal from the particle towards the wall (along `axis`).
+struct WallDistance {
+  double centre;
+  Vec3 normal;
+  int axis;
+};
+inline WallDistance wall_distance(const BoxGeometry& box, const ParticleStore& p, std::size_t i,
+                                  int face) {
+  const int a = face / 2;
+  const bool low = face % 2 == 0;
+  const double x = a == 0 ? p.x[i] : a == 1 ? p.y[i] : p.z[i];
+  WallDistance w{low ? x - box.lo[a] : box.hi[a] - x, {}, a};
+  w.normal[a] = low ? -1.0 : 1.0;
+  return w;
+}
+
 /// A reorder of the particles (ParticleStore::permute) that the list has not seen yet: several
 /// compose into one, applied at the list's next build.
 class PendingOrder {
