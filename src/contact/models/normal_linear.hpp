@@ -47,17 +47,21 @@ struct LinearNormal {
   static constexpr bool springs_hold_energy_at_separation = true;
 
   static void mix(PairParams& p, const MaterialPair& m, const Coefficients& c) {
-    const double e = m.mixed.restitution, beta0 = m.mixed.tangential_restitution;
     p.kn = c.at("stiffness");
-    p.normal_damping = kernels::linear_damping_factor(e);
-    // [Deen07 eq. 43]: equal normal and tangential contact durations [Deen07 eq. 41-42] (for
-    // a force that may pull; kept as published).
+    p.normal_damping = kernels::linear_damping_factor(m.mixed.restitution);
+    p.kt = stiffness_ratio(m, c) * p.kn;
+  }
+
+  /// k_t/k_n: the case's `stiffness_ratio`, or "auto": [Deen07 eq. 43], equal normal and
+  /// tangential contact durations [Deen07 eq. 41-42] (for a force that may pull; kept as
+  /// published), from the pair's mixed e and beta0. (walton_braun takes the same rule.)
+  static double stiffness_ratio(const MaterialPair& m, const Coefficients& c) {
+    const double e = m.mixed.restitution, beta0 = m.mixed.tangential_restitution;
     const double lb = beta0 > 0.0 ? std::log(beta0) : 0.0;
     const double le = std::log(e);
     const double pi2 = std::numbers::pi * std::numbers::pi;
     const auto given = coefficient(c, "stiffness_ratio");
-    const double ratio = given ? *given : 2.0 / 7.0 * (pi2 + lb * lb) / (pi2 + le * le);
-    p.kt = ratio * p.kn;
+    return given ? *given : 2.0 / 7.0 * (pi2 + lb * lb) / (pi2 + le * le);
   }
 
   /// The force pulse of a head-on impact, s (normal_damping.hpp).

@@ -19,6 +19,7 @@
 #include "contact/models/contact_point.hpp"
 #include "contact/models/declaration.hpp"
 #include "contact/models/material_pair.hpp"
+#include "contact/models/normal_linear.hpp"
 #include "contact/pair_params.hpp"
 
 namespace fluidem::contact_models {
@@ -58,15 +59,10 @@ struct WaltonBraunNormal {
 
   /// kn: k1; normal_damping: k1/k2 = e^2 (the model's own use of the field); kt: k_t.
   static void mix(PairParams& p, const MaterialPair& m, const Coefficients& c) {
-    const double e = m.mixed.restitution, beta0 = m.mixed.tangential_restitution;
+    const double e = m.mixed.restitution;
     p.kn = c.at("stiffness");
-    p.normal_damping = e * e; // k1/k2 [Zhu07 Table 1]: e = sqrt(k1/k2)
-    const double lb = beta0 > 0.0 ? std::log(beta0) : 0.0;
-    const double le = std::log(e);
-    const double pi2 = std::numbers::pi * std::numbers::pi;
-    const auto given = coefficient(c, "stiffness_ratio");
-    const double ratio = given ? *given : 2.0 / 7.0 * (pi2 + lb * lb) / (pi2 + le * le);
-    p.kt = ratio * p.kn;
+    p.normal_damping = e * e;                          // k1/k2 [Zhu07 Table 1]: e = sqrt(k1/k2)
+    p.kt = LinearNormal::stiffness_ratio(m, c) * p.kn; // the linear model's rule, with k1
   }
 
   /// The force pulse of a head-on impact, s: half a period on k1 while loading and half a
