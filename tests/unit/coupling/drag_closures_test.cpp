@@ -374,15 +374,16 @@ TEST(DragRegistry, NamesRoundTripAndUnknownNameListsTheValidOnes) {
   } catch (const InputError& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("gidaspow"), std::string::npos) << msg;
-    // Every name a case may choose; wen_yu_single, which a case may not (drag_model_refusal),
-    // is not offered.
+    // Every name a case may choose (wen_yu_single too: in the "total" form).
     for (DragModel m : all_drag_models) {
       if (drag_model_refusal(m).empty()) {
         EXPECT_NE(msg.find(std::string(to_string(m))), std::string::npos) << msg;
       }
     }
-    EXPECT_EQ(msg.find("wen_yu_single"), std::string::npos) << msg;
   }
+  // The total-force closures [Hoomans96 eq. 34]: wen_yu_single, and no drag coefficient.
+  EXPECT_TRUE(is_total_force(drag_model_from_string("wen_yu_single")));
+  EXPECT_FALSE(is_total_force(drag_model_from_string("wen_yu")));
   EXPECT_TRUE(needs_mean_diameter(drag_model_from_string("beetstra_poly")));
   EXPECT_FALSE(needs_mean_diameter(drag_model_from_string("beetstra")));
 }
