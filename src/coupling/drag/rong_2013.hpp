@@ -1,7 +1,7 @@
 // Rong, Dong & Yu (2013) voidage function from lattice-Boltzmann simulations of packed beds
 // [Rong, Dong & Yu, Chem. Eng. Sci. 99 (2013) 44-58, their drag correlation (equation number not
 // checked: the paper's text was not available here); the form below is restated identically by
-// PhasicFlowPlus drag/Rong.hpp and by the Kratos DEM "DallavalleDragLaw" (docs/drag.md)]:
+// PhasicFlowPlus drag/Rong.hpp and by other codes listed in docs/drag.md]:
 //
 //   F_d  = C_d rho pi d^2 / 8 * eps^2 |u - v| (u - v) * eps^-beta_R
 //          (Di Felice's form: the single-sphere drag at the SUPERFICIAL slip eps (u - v) times
