@@ -38,6 +38,10 @@
 #include "coupling/drag/ergun_wen_yu_switch.hpp"
 #include "coupling/drag/hill_koch_ladd.hpp"
 #include "coupling/drag/koch_hill.hpp"
+#include "coupling/drag/rong_2013.hpp"
+#include "coupling/drag/syamlal_obrien.hpp"
+#include "coupling/drag/tang_2015.hpp"
+#include "coupling/drag/tenneti_garg_subramaniam.hpp"
 #include "coupling/drag/wen_yu.hpp"
 #include "coupling/drag/wen_yu_single.hpp"
 
@@ -45,7 +49,8 @@ namespace fluidem::coupling::drag {
 
 /// The closures, in the order names are listed in messages.
 using Closures = std::tuple<Ergun, WenYu, WenYuSingle, ErgunWenYuSwitch, ErgunWenYuMin,
-                            HillKochLadd, Beetstra, BeetstraPoly, DiFelice, KochHill, ChangJoint>;
+                            HillKochLadd, Beetstra, BeetstraPoly, DiFelice, KochHill, ChangJoint,
+                            SyamlalOBrien, TennetiGargSubramaniam, Rong2013, Tang2015>;
 
 inline constexpr std::size_t drag_model_count = std::tuple_size_v<Closures>;
 
