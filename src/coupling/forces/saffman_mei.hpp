@@ -13,7 +13,7 @@
 //   f = 0.0524 sqrt(beta Re_p)                                       (Re_p > 40)   [Mei 1992]
 // Validity: Saffman's theory needs Re_p << sqrt(Re_s) << 1 (f -> 1); Mei's fit is to Dandy &
 // Dwyer's (1990) computations, 0.1 <= Re_p <= 100, 0.005 <= beta <= 0.4. f jumps at Re_p = 40
-// (as published; e.g. beta = 0.1: 0.1176 below, 0.1048 above).
+// (as published; e.g. beta = 0.1: 0.1212 below, 0.1048 above).
 // Omega = 0 or w = 0: F = 0 (returned before any division); f(Re_p = 0) = 1 (its limit).
 #pragma once
 #include <cmath>
