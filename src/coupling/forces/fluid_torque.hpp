@@ -9,10 +9,11 @@
 // Stokes limit, exactly: rho_f/2 d^5/32 (64 pi mu/(rho_f d^2 |Omega_rel|)) |Omega_rel| Omega_rel
 // = pi mu d^3 Omega_rel, so the first branch is the Stokes torque (and is computed as such: no
 // 0/0 at Omega_rel = 0, where T = 0). C_R jumps by 0.15% at Re_r = 32 (6.2832 -> 6.2930), as
-// published. Validity: Dennis et al.'s computations reach Re_r = 1000 (steady axisymmetric
-// flow); a translating sphere's wake is not in it (Re_p << 1 assumed for the rotation).
-// Spin-down of a sphere (I = m d^2/10) in a fluid at rest: I d(omega)/dt = -pi mu d^3 omega,
-// time constant I/(pi mu d^3) = rho_p d^2/(60 mu) (Stokes; tested).
+// published (the constants as quoted by Crowe, Sommerfeld & Tsuji; the original paper was not
+// at hand to check them). Validity: Dennis et al.'s computations reach Re_r = 1000 (steady
+// axisymmetric flow); a translating sphere's wake is not in it (Re_p << 1 assumed for the
+// rotation). Spin-down of a sphere (I = m d^2/10) in a fluid at rest: I d(omega)/dt = -pi mu d^3
+// omega, time constant I/(pi mu d^3) = rho_p d^2/(60 mu) (Stokes; tested).
 #pragma once
 #include <cmath>
 #include <numbers>

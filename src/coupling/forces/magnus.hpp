@@ -11,7 +11,8 @@
 //     Re_p = rho_f |w| d/mu,  Re_r = rho_f d^2 |Omega_rel|/mu
 //   Low Re: C_L -> Re_r/Re_p = d |Omega_rel|/|w|, and F_M -> pi/8 d^3 rho_f (Omega_rel x w),
 //   Rubinow & Keller exactly (tested). Validity of C_L: Oesterle & Bui Dinh's experiments,
-//   10 < Re_p < 140 (with Re_r/Re_p up to ~ 6); at Re_p -> 0 it joins Rubinow & Keller.
+//   10 < Re_p < 140; at Re_p -> 0 it joins Rubinow & Keller. (C_L's constants as quoted by
+//   Crowe, Sommerfeld & Tsuji; the original paper was not at hand to check them.)
 // Implemented with C_L |w|/|Omega_rel| = 0.45 |w|/|Omega_rel| + (d - 0.45 |w|/|Omega_rel|) e
 // (e the exponential): no 0/0 at w = 0 or Omega_rel = 0, where F_M = 0 (returned first).
 #pragma once

@@ -1,6 +1,7 @@
 // Saffman's shear lift with Mei's finite-Re correction [Zhu07 Table 3; Saffman 1965, J. Fluid
 // Mech. 22:385, corrigendum 1968, 31:624; Mei 1992, Int. J. Multiphase Flow 18:145; Crowe,
-// Sommerfeld & Tsuji 1998 §4.6; the same as OpenFOAM's SaffmanMeiLiftForce]:
+// Sommerfeld & Tsuji 1998 §4.6; f and its branches are those of OpenFOAM's SaffmanMeiLiftForce,
+// checked]:
 //
 //   F_S = 1.615 d^2 sqrt(rho_f mu) |Omega|^{-1/2} (w x Omega) * f(Re_p, Re_s)
 //

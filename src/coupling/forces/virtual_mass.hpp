@@ -14,8 +14,9 @@
 // 1)^3, = 6 (Basset) at A_c = 0): the same coefficient on rho_f V, Zhu07's C_vm/2 = Delta_A.
 // Limits: A_c -> 0 (large acceleration, small slip) Delta_A -> 1.05 - 0.55 = 0.5 (the inviscid
 // 1/2); A_c -> infinity Delta_A -> 1.05.
-// Validity: Odar & Hamilton fitted a sphere oscillating in a liquid, Re_p = |w| d/nu < 62; Odar
-// (1966) checked it on a sphere falling from rest. Outside that range use C_vm = 1/2.
+// Validity: Odar & Hamilton fitted a sphere oscillating in a liquid, Re_p = |w| d/nu < 62 (as
+// quoted by Clift, Grace & Weber 1978 ch. 11; the original was not at hand); Odar (1966) tested
+// the equation on further accelerating-sphere data. Outside that range use C_vm = 1/2.
 // w = 0 with dw/dt != 0: A_c = 0, Delta_A = 1/2. dw/dt = 0: A_c is infinite, Delta_A = 1.05
 // (the force C_vm rho_f V (Du/Dt - dv/dt) is then whatever the accelerations give); no 0/0.
 #pragma once
