@@ -42,6 +42,7 @@
 //   (the tail's 1e-3 dominates at DT = 0.01). A sphere released from rest (Stokes drag, added
 //   mass, Basset; Crank-Nicolson with the newest interval implicit): max |v - v_ref|/v_t =
 //   3.3e-3, 7.4e-4, 2.4e-4, 6e-5 at DT = tau/8, tau/20, tau/40, tau/100 over 0..10 tau.
+//   With backward Euler in the added-mass form below: 1.5e-3 at tau/100, 3.8e-4 at tau/400.
 //
 // Use in a time loop (the newest interval implicit). With samples w_0..w_n stored,
 //   I(t_{n+1}) = c_new w_{n+1} + known(i),      c_new = 2/sqrt(DT)      (per axis)

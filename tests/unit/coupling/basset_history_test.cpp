@@ -318,7 +318,8 @@ std::vector<Release> load_release() {
 /// with v_{n+1} (the newest interval implicit), push(-v_{n+1}) after the step. Returns
 /// max |v - v_ref|/v_t at the file's times (linear interpolation between steps is not needed:
 /// the file's times are multiples of tau/4, steps_per_tau is a multiple of 4).
-double release_error(const Release& r, int steps_per_tau, int window, bool basset) {
+double release_error(const Release& r, int steps_per_tau, int window, bool basset,
+                     bool backward_euler = false) {
   const double pi = std::numbers::pi;
   const double vol = pi * r.d * r.d * r.d / 6.0;
   const double mass = (r.rho_p + 0.5 * r.rho_f) * vol;
@@ -334,9 +335,18 @@ double release_error(const Release& r, int steps_per_tau, int window, bool basse
   for (int n = 0; n < steps; ++n) {
     const double known = h.known(0).z;
     const double c = h.c_new(0);
-    // mass (v1 - v)/dt = fg - drag (v + v1)/2 + cb (i_old + (-c v1 + known))/2
-    const double v1 = (mass * v / dt + fg - 0.5 * drag * v + 0.5 * cb * (i_old + known)) /
-                      (mass / dt + 0.5 * drag + 0.5 * cb * c);
+    double v1 = 0.0;
+    if (backward_euler) {
+      // The header's added-mass form: F_B(t_{n+1}) = C_B (c_new (u - v_n) + known) - m_B (v1 -
+      // v)/dt (u = 0), m_B = basset_added_mass; (mass + m_B)(v1 - v)/dt = fg - drag v1 +
+      // C_B (-c v + known).
+      const double m_b = basset ? basset_added_mass(cb, dt) : 0.0;
+      v1 = ((mass + m_b) * v / dt + fg + cb * (-c * v + known)) / ((mass + m_b) / dt + drag);
+    } else {
+      // mass (v1 - v)/dt = fg - drag (v + v1)/2 + cb (i_old + (-c v1 + known))/2
+      v1 = (mass * v / dt + fg - 0.5 * drag * v + 0.5 * cb * (i_old + known)) /
+           (mass / dt + 0.5 * drag + 0.5 * cb * c);
+    }
     i_old = -c * v1 + known;
     v = v1;
     h.push(0, {0.0, 0.0, -v1});
@@ -371,6 +381,22 @@ TEST(BassetHistory, ReleaseFromRestMatchesClosedForm) {
     }
     const double e0 = release_error(r, 20, 4, false);
     EXPECT_LT(e0, 1e-3) << r.name << " (no Basset)";
+  }
+}
+
+// The header's added-mass form of the implicit newest interval with backward Euler (first
+// order): (m + m_a + m_B)(v1 - v0)/DT = F_g - 3 pi mu d v1 + C_B (c_new (u - v0) + known).
+// Reference: bbo_release.toml. Tolerance: 1% at DT = tau/100 and tau/400, and first-order
+// convergence (the error at tau/400 below a third of that at tau/100).
+TEST(BassetHistory, ReleaseFromRestBackwardEulerAddedMassForm) {
+  for (const Release& r : load_release()) {
+    const double e100 = release_error(r, 100, 8, true, true);
+    const double e400 = release_error(r, 400, 8, true, true);
+    std::printf("%-15s backward Euler m 8 DT = tau/100: %.2e, tau/400: %.2e\n", r.name.c_str(),
+                e100, e400);
+    EXPECT_LT(e100, 0.01) << r.name;
+    EXPECT_LT(e400, 0.01) << r.name;
+    EXPECT_LT(e400, e100 / 3.0) << r.name;
   }
 }
 
