@@ -24,7 +24,8 @@
 Also fit_tail(): the 14-term exponential sum sigma^-1/2 ~ sum a_i exp(-b_i sigma) on
 sigma in [1, 1e6] used by basset_history.cpp (printed; the C++ test checks its error).
 
-Run:  /usr/bin/python3 tools/bbo_reference.py      (rewrites both files)
+Run:  /usr/bin/python3 tools/bbo_reference.py [--fit]   (rewrites both files; --fit also refits
+      the tail and prints a_i, b_i: the same 17 digits as basset_history.cpp, ~25 s)
 """
 import os
 import sys
