@@ -61,8 +61,21 @@ void print_gas_report(const CaseSpec& spec, const CaseReport& r) {
   const int scheme = spec.coupling.scheme == coupling::ExchangeScheme::scheme1   ? 1
                      : spec.coupling.scheme == coupling::ExchangeScheme::scheme2 ? 2
                                                                                  : 3;
-  fmt::print("coupling           drag {}, porosity {}, exchange scheme {} [Zhu07 §3.2]\n",
-             spec.coupling.drag, coupling::to_string(spec.coupling.porosity.method), scheme);
+  fmt::print("coupling           {}, drag {}, porosity {}, exchange scheme {} [Zhu07 §3.2]\n",
+             coupling::to_string(spec.coupling.mode), spec.coupling.drag,
+             coupling::to_string(spec.coupling.porosity.method), scheme);
+  const coupling::FluidForceSettings& ff = spec.coupling.forces;
+  std::string particle_force(
+      spec.coupling.particle_force
+          ? coupling::to_string(*spec.coupling.particle_force)
+          : (g.model == gas::PressureModel::A ? "pressure_gradient" : "buoyancy"));
+  if (ff.virtual_mass)
+    particle_force += fmt::format(", virtual mass C = {:.3g}", ff.virtual_mass_coefficient);
+  if (ff.basset) particle_force += fmt::format(", Basset (window {} flow steps)", ff.basset_window);
+  if (ff.saffman) particle_force += ", Saffman-Mei lift";
+  if (ff.magnus != "off") particle_force += ", Magnus lift (" + ff.magnus + ")";
+  if (ff.torque != "off") particle_force += ", fluid torque (" + ff.torque + ")";
+  fmt::print("particle force     {}\n", particle_force);
   fmt::print("gas time step DT   {:.4g} s", r.flow_time_step);
   if (spec.simulation.engine == Engine::SoftSphere)
     fmt::print(" ({} DEM steps each)", r.steps_per_flow_step);

@@ -43,6 +43,29 @@ enum class ParticleForceForm {
   total ///< the closure's total force + (-V rho g) [Hoomans96 eq. 34; buoyancy added]; Model B
 };
 
+/// `[coupling.forces]`: the particle-fluid forces beyond drag and pressure [Zhu07 Table 3]
+/// (docs/coupling.md, "Fluid forces beyond drag"; kernels in src/coupling/forces/).
+struct FluidForceSettings {
+  /// `virtual_mass`: the added-mass force C rho_f V (Du/Dt - dv/dt), implicit in the particle's
+  /// inertia; `virtual_mass_coefficient` C (0.5: a sphere in potential flow).
+  bool virtual_mass = false;
+  double virtual_mass_coefficient = 0.5;
+  /// `basset`: the Basset history force [Zhu07 Table 3]; `basset_window`: the flow steps of
+  /// recent history integrated exactly (older history: an exponential-sum tail).
+  bool basset = false;
+  int basset_window = 10;
+  /// `saffman`: shear lift, Saffman 1965/68 with Mei's (1992) finite-Re correction.
+  bool saffman = false;
+  /// `magnus`: "off" | "rubinow_keller" (low Re) | "oesterle_bui_dinh" (finite Re).
+  std::string magnus = "off";
+  /// `torque`: the fluid torque on a spinning particle, "off" | "stokes" (8 pi mu a^3
+  /// (Omega/2 - omega)) | "dennis" (Dennis, Singh & Ingham 1980, finite Re).
+  std::string torque = "off";
+  bool any() const {
+    return virtual_mass || basset || saffman || magnus != "off" || torque != "off";
+  }
+};
+
 struct CouplingSettings {
   /// `coupling.drag`: the name of a closure of src/coupling/drag/drag_model.hpp (checked there
   /// at set-up: coupling::drag::drag_model_of_case). Empty: the key was not given, and the
@@ -67,6 +90,7 @@ struct CouplingSettings {
   /// `coupling.frozen_velocity_gradient`); the pressure is hydrostatic.
   std::array<double, 3> frozen_velocity{};
   std::array<std::array<double, 3>, 3> frozen_gradient{};
+  FluidForceSettings forces; ///< `[coupling.forces]`
 };
 
 std::string_view to_string(CouplingMode m);

@@ -83,6 +83,7 @@ public:
   std::vector<double>& drag_coefficient(int d) { return K_[d]; }
   std::vector<double>& drag_velocity_term(int d) { return Kus_[d]; }
   std::vector<double>& explicit_source(int d) { return f_[d]; }
+  const std::vector<double>& explicit_source(int d) const { return f_[d]; }
   /// K_us - K u + f on every face with the current u, N m^-3 (0 on faces that take no source:
   /// those neither solved nor inflow faces).
   std::vector<double> applied_source(int d) const;

@@ -32,7 +32,29 @@ const double* ForceSources::total(int axis) const {
   return s.empty() ? nullptr : s.data();
 }
 
+const double* ForceSources::total_torque(int axis) const {
+  if (torque_sources_ == 0) return nullptr;
+  if (torque_sources_ == 1) return torque_source_->torque(axis);
+  const auto& s = torque_sum_[static_cast<std::size_t>(axis)];
+  return s.empty() ? nullptr : s.data();
+}
+
 void ForceSources::refresh(std::size_t n) {
+  torque_sources_ = 0;
+  torque_source_ = nullptr;
+  for (const ForceSource* src : sources_)
+    if (src->torque(0) != nullptr) {
+      ++torque_sources_;
+      torque_source_ = src;
+    }
+  if (torque_sources_ > 1)
+    for (int a = 0; a < 3; ++a) {
+      std::vector<double>& s = torque_sum_[static_cast<std::size_t>(a)];
+      s.assign(n, 0.0);
+      for (const ForceSource* src : sources_)
+        if (const double* t = src->torque(a))
+          for (std::size_t i = 0; i < n; ++i) s[i] += t[i];
+    }
   if (sources_.size() < 2) return; // read directly
   for (int a = 0; a < 3; ++a) {
     std::vector<double>& s = sum_[static_cast<std::size_t>(a)];
@@ -82,6 +104,14 @@ void ForceSources::kick(ParticleStore& p, double dt) const {
     p.vx[i] += a * fx[i];
     p.vy[i] += a * fy[i];
     p.vz[i] += a * fz[i];
+  }
+  const double *tx = total_torque(0), *ty = total_torque(1), *tz = total_torque(2);
+  if (tx == nullptr) return;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double b = dt * p.inv_inertia[i];
+    p.wx[i] += b * tx[i];
+    p.wy[i] += b * ty[i];
+    p.wz[i] += b * tz[i];
   }
 }
 

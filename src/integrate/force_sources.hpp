@@ -39,6 +39,9 @@ public:
   /// The force on particle i along `axis` is force(axis)[i]; nullptr before its first
   /// evaluation (no force yet).
   virtual const double* force(int axis) const = 0;
+  /// The torque on particle i about `axis` is torque(axis)[i], N m; nullptr: the source exerts
+  /// none (or none yet).
+  virtual const double* torque(int /*axis*/) const { return nullptr; }
   /// Conservative sources: the potential energy of the particles' configuration, J.
   virtual double potential_energy(const ParticleStore&) const { return 0.0; }
   /// The particles were reordered (ParticleStore::permute with the same new_to_old).
@@ -89,6 +92,9 @@ public:
   bool any_step_sources() const { return !step_sources_.empty(); }
   /// The summed force along `axis` per particle, N (nullptr: none yet). Current after refresh().
   const double* total(int axis) const;
+  /// The summed torque about `axis` per particle, N m (nullptr: no source exerts one). Current
+  /// after refresh().
+  const double* total_torque(int axis) const;
   /// Sums the sources' forces again (after any source changed them); n particles.
   void refresh(std::size_t n);
   /// Evaluates the StepForceSources at the particles' state, then refresh().
@@ -98,7 +104,8 @@ public:
   /// -dt sum_i F_i . v_i of the dissipative sources with p's velocities (serial, fixed order).
   double dissipated_work(const ParticleStore& p, double dt) const;
   void permute(const std::vector<std::uint32_t>& new_to_old);
-  /// v_i += dt F_i / m_i with the summed forces (the hard-sphere engine's kick per flow step).
+  /// v_i += dt F_i / m_i with the summed forces, w_i += dt T_i / I_i with the summed torques (the
+  /// hard-sphere engine's kick per flow step).
   void kick(ParticleStore& p, double dt) const;
   const std::vector<StepForceSource*>& step_sources() const { return step_sources_; }
 
@@ -110,6 +117,10 @@ private:
   std::vector<std::unique_ptr<ForceSource>> owned_;
   bool books_work_ = false;
   std::array<std::vector<double>, 3> sum_; ///< with two sources or more
+  /// Summed torques: with torques from two sources or more (else the one source's, read directly)
+  std::array<std::vector<double>, 3> torque_sum_;
+  const ForceSource* torque_source_ = nullptr; ///< the one source with torques, if one
+  int torque_sources_ = 0;                     ///< how many sources exert torques
 };
 
 } // namespace fluidem

@@ -72,6 +72,7 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
   }
   if (settings_.mode == coupling::CouplingMode::frozen) set_frozen_field();
   for (auto& f : force_) f.assign(p.size(), 0.0);
+
   f_.resize(p.size());
 }
 
@@ -81,8 +82,10 @@ void GasCoupling::step(const ParticleStore& p, double time, double dt) {
   using coupling::CouplingMode;
   coupling::update_porosity(*gas_, p, settings_, porosity_scratch_);
   coupling::compute_particle_forces(*gas_, p, settings_, f_);
+  if (fluid_) fluid_->begin_step(p, f_);
   if (settings_.mode == CouplingMode::two_way) {
     coupling::deposit_momentum_source(*gas_, p, f_);
+    if (fluid_) fluid_->deposit_reaction(*gas_, p);
     if (settings_.hold_gas_at_rest) hold_at_rest(dt);
   }
   if (settings_.mode != CouplingMode::frozen) {
@@ -104,6 +107,23 @@ void GasCoupling::step(const ParticleStore& p, double time, double dt) {
     force_[1][i] = f_.drag_y[i] + f_.pres_y[i];
     force_[2][i] = f_.drag_z[i] + f_.pres_z[i];
   }
+  if (fluid_) {
+    fluid_->compute(*gas_, p, f_);
+    for (std::size_t d = 0; d < 3; ++d)
+      for (std::size_t i = 0; i < n; ++i) force_[d][i] += fluid_->force()[d][i];
+  }
+}
+
+void GasCoupling::set_up_fluid_forces(double flow_dt, std::size_t n) {
+  if (settings_.forces.any())
+    fluid_ = std::make_unique<FluidForces>(settings_.forces, *gas_, flow_dt, n);
+}
+
+std::vector<std::string> GasCoupling::fluid_state_names() const {
+  std::vector<std::string> names;
+  if (fluid_)
+    for (const auto& [name, v] : fluid_->state()) names.push_back(name);
+  return names;
 }
 
 void GasCoupling::set_frozen_field() {
@@ -264,6 +284,7 @@ void GasCoupling::cell_fields(const ParticleStore& p, CellFields& out) const {
 }
 
 void GasCoupling::permute(const std::vector<std::uint32_t>& new_to_old) {
+  if (fluid_) fluid_->permute(new_to_old);
   for (std::vector<double>& f : force_) {
     if (f.size() != new_to_old.size()) continue; // no flow step yet
     const std::vector<double> old = f;

@@ -23,6 +23,7 @@
 #include "core/case_spec.hpp"
 #include "coupling/exchange.hpp"
 #include "gas/gas_solver.hpp"
+#include "integrate/fluid_forces.hpp"
 #include "integrate/force_sources.hpp"
 #include "particles/particle_store.hpp"
 
@@ -48,7 +49,20 @@ public:
   ~GasCoupling();
 
   /// Steps 1-4 above, from `time` to `time + dt`. InstabilityError if the gas solver fails.
+  /// With [coupling.forces]: their held forces are added to force() (fluid_forces.hpp), and
+  /// their reaction of the step before goes to the gas (two-way).
   void step(const ParticleStore& p, double time, double dt);
+
+  /// [coupling.forces], for n particles and the flow step flow_dt (every step() must be that
+  /// long: the Basset history's samples are uniform in time).
+  void set_up_fluid_forces(double flow_dt, std::size_t n);
+  /// The inertia [coupling.forces] adds to a moving particle of diameter d (virtual mass and
+  /// the newest Basset interval), kg; 0 without them. The set-up makes p.inv_mass 1/(m + it).
+  double added_inertia(double d) const { return fluid_ ? fluid_->added_inertia(d) : 0.0; }
+  const FluidForces* fluid_forces() const { return fluid_.get(); }
+  /// The fluid torque on each particle, N m, held over the current flow step; nullptr without
+  /// [coupling.forces] torque.
+  const double* torque(int d) const { return fluid_ ? fluid_->torque(d) : nullptr; }
 
   /// The gas force on each particle (drag + pressure), N, held over the current flow step.
   const std::vector<double>& force(int d) const { return force_[static_cast<std::size_t>(d)]; }
@@ -62,11 +76,18 @@ public:
   struct State {
     gas::GasSolver::State gas;
     std::array<std::vector<double>, 3> force;
+    std::vector<std::pair<std::string, std::vector<double>>> fluid; ///< FluidForces::state
   };
-  State state() const { return {gas_->state(), force_}; }
+  State state() const {
+    return {gas_->state(), force_,
+            fluid_ ? fluid_->state() : std::vector<std::pair<std::string, std::vector<double>>>{}};
+  }
+  /// The names of the fluid-force state a checkpoint of this run holds (empty without them).
+  std::vector<std::string> fluid_state_names() const;
   void restore(const State& s) {
     gas_->restore(s.gas);
     force_ = s.force;
+    if (fluid_) fluid_->restore(s.fluid);
   }
   /// The particles were reordered (ParticleStore::permute with the same new_to_old): the force
   /// on each particle, held until the next flow step, follows them.
@@ -99,6 +120,7 @@ private:
   void set_frozen_field();
   /// coupling.mode = "one_way": a porosity of 1 everywhere, swapped into the solver for its steps.
   std::vector<double> empty_porosity_;
+  std::unique_ptr<FluidForces> fluid_; ///< [coupling.forces]; null without any
   std::vector<ProbeSpec> probes_;
   std::unique_ptr<gas::GasSolver> gas_;
   coupling::CouplingSettings settings_;
@@ -118,6 +140,7 @@ public:
   std::string_view name() const override { return "gas"; }
   EnergyRole energy_role() const override { return EnergyRole::External; }
   const double* force(int axis) const override { return gas_.force(axis).data(); }
+  const double* torque(int axis) const override { return gas_.torque(axis); }
   void permute(const std::vector<std::uint32_t>& new_to_old) override { gas_.permute(new_to_old); }
 
 private:

@@ -104,11 +104,36 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial)
   if (spec_.gas) {
     gas_ = std::make_unique<GasCoupling>(spec_, p_);
     spec_.coupling.drag = gas_->drag_name(); // the resolved case names the closure used
+    set_up_fluid_forces();
     forces_.add(std::make_unique<GasForceSource>(*gas_));
   }
 }
 
 Simulation::~Simulation() = default;
+
+void Simulation::set_up_fluid_forces() {
+  if (!spec_.coupling.forces.any()) return;
+  if (spec_.body_force)
+    throw InputError(spec_.where("coupling.forces"), "coupling.forces",
+                     "virtual mass, Basset and lift forces are not available with a body-force "
+                     "field (allowed: [coupling.forces] without [body_force])");
+  const coupling::FluidForceSettings& f = spec_.coupling.forces;
+  // The added mass and the newest Basset interval enter the particle's inertia here, with the
+  // fluid's density now (docs/coupling.md).
+  if ((f.virtual_mass || f.basset) && spec_.gas->eos != gas::EquationOfState::incompressible)
+    throw InputError(spec_.where("coupling.forces"), "coupling.forces",
+                     std::string(f.virtual_mass ? "virtual_mass" : "basset") +
+                         " = true needs gas.eos = \"incompressible\" (the added mass enters the "
+                         "particle's inertia with a fixed fluid density; for a gas it is about "
+                         "rho_g/rho_p ~ 1e-3 of the particle's mass)");
+  gas_->set_up_fluid_forces(dt_ * static_cast<double>(steps_per_flow_), p_.size());
+  // The added inertia of the virtual mass and the newest Basset interval, implicit in the
+  // particle update (integrate/fluid_forces.hpp). A restart reads the particles' inverse masses
+  // from its checkpoint, where they already hold it.
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    if (p_.inv_mass[i] > 0.0)
+      p_.inv_mass[i] = 1.0 / (p_.mass[i] + gas_->added_inertia(2.0 * p_.radius[i]));
+}
 
 void Simulation::set_up_analyses() {
   if (spec_.output.collisions) {

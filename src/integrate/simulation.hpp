@@ -225,6 +225,8 @@ private:
   void step(bool defer_second_kick = false);
   /// The gas step and the new held forces, at the start of a flow step of DT.
   void flow_step();
+  /// [coupling.forces]: their state in the gas coupling, the added inertia in p_.inv_mass.
+  void set_up_fluid_forces();
   /// The analyses fed by the step just taken.
   void feed_analyses(bool sampled_continuum);
   /// Finishes a pending half kick, then the stability guard (InstabilityError).

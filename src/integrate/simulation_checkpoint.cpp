@@ -187,8 +187,11 @@ CollisionStatistics::State read_collisions(const CheckpointReader& r) {
   return c;
 }
 
-GasCoupling::State read_gas(const CheckpointReader& r, const std::string& checkpoint) {
+GasCoupling::State read_gas(const CheckpointReader& r, const std::string& checkpoint,
+                            const GasCoupling& gas) {
   GasCoupling::State g;
+  for (const std::string& name : gas.fluid_state_names()) // [coupling.forces]
+    g.fluid.emplace_back(name, r.doubles("gas/fluid/" + name));
   for (int d = 0; d < 3; ++d) {
     g.gas.u[static_cast<std::size_t>(d)] = r.doubles(kGasVelocity[d]);
     g.force[static_cast<std::size_t>(d)] = r.doubles(kGasForce[d]);
@@ -315,6 +318,7 @@ void Simulation::write_checkpoint(const std::string& path) {
     w.put("gas/diagnostics",
           std::vector<double>{g.gas.last_mass_residual, g.gas.last_velocity_change,
                               g.gas.boundary_outflow});
+    for (const auto& [name, v] : g.fluid) w.put("gas/fluid/" + name, v);
   }
   w.commit();
   // A synchronisation point: the run that continues from here and one restarted from the
@@ -398,7 +402,7 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
       s.collisions_->restore(read_collisions(r));
     else if (s.collisions_)
       s.collisions_ = std::make_unique<CollisionStatistics>(s.collisions_->settings(), s.time_);
-    if (s.gas_) s.gas_->restore(read_gas(r, checkpoint));
+    if (s.gas_) s.gas_->restore(read_gas(r, checkpoint, *s.gas_));
   } catch (const CheckpointError&) {
     throw;
   } catch (const std::exception& e) {

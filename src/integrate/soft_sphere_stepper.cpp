@@ -64,14 +64,15 @@ void SoftSphereStepper::compute_forces(ScratchState scratch) {
 }
 
 /// The half kick of a particle with the last force evaluation, dv = ((F + F_s)/m + g + a(x))
-/// dt/2, dw = T/I dt/2; F_s the sources' summed force, a(x) the body force field at the
-/// particle's current position (velocity Verlet with a position-dependent force: x^n in the
-/// first half kick, x^{n+1} in the second). The contact forces and torques are in nc_: a step's
-/// first kick reads the previous step's, the second this step's.
+/// dt/2, dw = (T + T_s)/I dt/2; F_s, T_s the sources' summed force and torque, a(x) the body force
+/// field at the particle's current position (velocity Verlet with a position-dependent force: x^n
+/// in the first half kick, x^{n+1} in the second). The contact forces and torques are in nc_: a
+/// step's first kick reads the previous step's, the second this step's.
 struct SoftSphereStepper::Kick {
   explicit Kick(const SoftSphereStepper& s)
       : contact(s.nc_.acc.data()), gfx(s.forces_.total(0)), gfy(s.forces_.total(1)),
-        gfz(s.forces_.total(2)), body(s.forces_.field()), inv_m(s.p_.inv_mass.data()),
+        gfz(s.forces_.total(2)), gtx(s.forces_.total_torque(0)), gty(s.forces_.total_torque(1)),
+        gtz(s.forces_.total_torque(2)), body(s.forces_.field()), inv_m(s.p_.inv_mass.data()),
         inv_i(s.p_.inv_inertia.data()), h(0.5 * s.dt_), gx(s.forces_.gravity()[0]),
         gy(s.forces_.gravity()[1]), gz(s.forces_.gravity()[2]) {}
   bool with_sources() const { return gfx != nullptr; }
@@ -95,11 +96,16 @@ struct SoftSphereStepper::Kick {
     // A fixed particle (1/m = 0, 1/I = 0: infinite mass) gets no acceleration at all: its
     // forces and torques vanish with 1/m and 1/I, gravity and the body force here.
     if (im == 0.0) a = {0.0, 0.0, 0.0};
+    double tx = fc[3], ty = fc[4], tz = fc[5];
+    if constexpr (Src) {
+      if (gtx != nullptr) tx = fc[3] + gtx[i], ty = fc[4] + gty[i], tz = fc[5] + gtz[i];
+    }
     return {h * (fx * im + a[0]), h * (fy * im + a[1]), h * (fz * im + a[2]),
-            h * fc[3] * ii,       h * fc[4] * ii,       h * fc[5] * ii};
+            h * tx * ii,          h * ty * ii,          h * tz * ii};
   }
   const double* contact;
   const double *gfx, *gfy, *gfz;
+  const double *gtx, *gty, *gtz; ///< the sources' summed torques (nullptr: none)
   const BodyForceSpec* body;
   const double *inv_m, *inv_i;
   double h, gx, gy, gz;

@@ -213,7 +213,14 @@ const Keys& coupling_keys() {
                          "mode",
                          "particle_force",
                          "frozen_velocity",
-                         "frozen_velocity_gradient"};
+                         "frozen_velocity_gradient",
+                         "forces"};
+  return k;
+}
+const Keys& coupling_force_keys() {
+  static const Keys k = {
+      "virtual_mass", "virtual_mass_coefficient", "basset", "basset_window", "saffman", "magnus",
+      "torque"};
   return k;
 }
 /// Keys of a top-level table section (species and insert are arrays of tables).
@@ -245,6 +252,7 @@ const Keys* subtable_keys(const std::string& parent, const std::string& sub) {
   if (parent == "walls" && contains(face_keys(), sub)) return &material_keys();
   if (parent == "insert" && sub == "region") return &region_keys();
   if (parent == "gas" && sub == "solver") return &gas_solver_keys();
+  if (parent == "coupling" && sub == "forces") return &coupling_force_keys();
   if (parent == "output" && sub == "continuum") return &continuum_keys();
   if (parent == "gas" && sub == "boundary") return &gas_side_keys();
   if (parent == "gas.boundary" && contains(gas_side_keys(), sub)) return &gas_face_keys();
@@ -1931,11 +1939,38 @@ private:
           for (std::size_t j = 0; j < 3; ++j) c.frozen_gradient[i][j] = g[3 * i + j];
       }
     }
+    if (const toml::table* ft = table(*t, "forces", p + ".forces", coupling_force_keys()))
+      read_fluid_forces(ft, p + ".forces", c.forces);
     if (c.hold_gas_at_rest && c.mode != CouplingMode::two_way)
       throw InputError(spec_.where(p + ".hold_gas_at_rest"), p + ".hold_gas_at_rest",
                        "true needs mode = \"two_way\" (the particles give the gas no momentum "
                        "in mode = \"" +
                            std::string(coupling::to_string(c.mode)) + "\")");
+  }
+
+  /// `[coupling.forces]` (docs/coupling.md, "Fluid forces beyond drag").
+  void read_fluid_forces(const toml::table* t, const std::string& p,
+                         coupling::FluidForceSettings& f) {
+    opt_bool(t, p, "virtual_mass", f.virtual_mass);
+    if (const auto e = find(*t, "virtual_mass_coefficient", p + ".virtual_mass_coefficient")) {
+      const std::string path = p + ".virtual_mass_coefficient";
+      if (!f.virtual_mass) throw InputError(e->where, path, "only with virtual_mass = true");
+      f.virtual_mass_coefficient = number(*e, path, {Bound::Positive, ""});
+    }
+    opt_bool(t, p, "basset", f.basset);
+    if (const auto e = find(*t, "basset_window", p + ".basset_window")) {
+      const std::string path = p + ".basset_window";
+      if (!f.basset) throw InputError(e->where, path, "only with basset = true");
+      f.basset_window = int_value(*e, path, 1, "a whole number of flow steps >= 1");
+    }
+    opt_bool(t, p, "saffman", f.saffman);
+    opt_enum<std::string>(t, p, "magnus",
+                          {{"off", "off"},
+                           {"rubinow_keller", "rubinow_keller"},
+                           {"oesterle_bui_dinh", "oesterle_bui_dinh"}},
+                          f.magnus);
+    opt_enum<std::string>(t, p, "torque",
+                          {{"off", "off"}, {"stokes", "stokes"}, {"dennis", "dennis"}}, f.torque);
   }
 
   /// `[output.continuum]`: discrete-to-continuum averages [Zhu07 Tables 5-6] (after [domain]:

@@ -212,6 +212,18 @@ void write_coupling(std::ostream& os, const coupling::CouplingSettings& c) {
         os << format_double(c.frozen_gradient[i][j]) << (i == 2 && j == 2 ? "" : ", ");
     os << "]  # 1/s, du_i/dx_j row-major\n";
   }
+  const coupling::FluidForceSettings& f = c.forces;
+  if (f.any()) {
+    os << "\n[coupling.forces]\n"
+       << "virtual_mass = " << (f.virtual_mass ? "true" : "false") << "\n";
+    if (f.virtual_mass)
+      os << "virtual_mass_coefficient = " << format_double(f.virtual_mass_coefficient) << "\n";
+    os << "basset = " << (f.basset ? "true" : "false") << "\n";
+    if (f.basset) os << "basset_window = " << f.basset_window << "  # flow steps\n";
+    os << "saffman = " << (f.saffman ? "true" : "false") << "\n"
+       << "magnus = " << toml_string(f.magnus) << "\n"
+       << "torque = " << toml_string(f.torque) << "\n";
+  }
 }
 
 } // namespace

@@ -299,6 +299,41 @@ TEST(Restart, CoupledHardSpheresContinueBitwise) {
   check_restart_identity(test::tsuji_column(c), 0.02, "coupled_hard");
 }
 
+// The coupled columns in a liquid with every fluid force of [coupling.forces] on: the Basset
+// history of each particle, the last step's velocities and fluid impulses (the gas's reaction)
+// and the held torque are in the checkpoint.
+CaseSpec with_fluid_forces(CaseSpec spec) {
+  spec.gas->eos = gas::EquationOfState::incompressible;
+  spec.gas->density = 1000.0;
+  spec.gas->viscosity = 1e-3;
+  spec.gas->boundary[gas::bottom].inflow = {gas::InflowMode::constant, 0.02};
+  coupling::FluidForceSettings& f = spec.coupling.forces;
+  f.virtual_mass = true;
+  f.basset = true;
+  f.basset_window = 4;
+  f.saffman = true;
+  f.magnus = "oesterle_bui_dinh";
+  f.torque = "dennis";
+  return spec;
+}
+
+TEST(Restart, CoupledSoftSpheresWithFluidForcesContinueBitwise) {
+  test::TsujiColumn c;
+  c.engine = Engine::SoftSphere;
+  c.count = 200;
+  CaseSpec spec = with_fluid_forces(test::tsuji_column(c));
+  spec.simulation.time_step = 2.5e-5;
+  spec.neighbour.sort_interval = 1;
+  check_restart_identity(spec, 0.02, "fluid_soft");
+}
+
+TEST(Restart, CoupledHardSpheresWithFluidForcesContinueBitwise) {
+  test::TsujiColumn c;
+  c.engine = Engine::HardSphere;
+  c.count = 200;
+  check_restart_identity(with_fluid_forces(test::tsuji_column(c)), 0.02, "fluid_hard");
+}
+
 // The soft-sphere pouring with the non-contact forces: van der Waals (particles and walls),
 // charged discs (Coulomb, image charges in the conducting floor) and wet discs (liquid bridges,
 // whose list with its bridges is in the checkpoint). The conservative forces are evaluated every

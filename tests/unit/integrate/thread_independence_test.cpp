@@ -271,5 +271,54 @@ TEST(ThreadIndependence, NonContactForcesGiveBitwiseIdenticalParticles) {
   EXPECT_GT(one.contacts, 100);
 }
 
+// A liquid-fluidised column of 5000 spheres (above kThreadedParticles: the fluid forces' particle
+// loop runs on the threads) with every fluid force of [coupling.forces] on.
+const char* const kFluidForcesCase = R"(
+[simulation]
+end_time = 1.0
+time_step = 1e-5
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [0.06, 0.06, 0.12]
+[[species]]
+name = "glass"
+diameter = 0.002
+density = 2500.0
+[[insert]]
+species = "glass"
+count = 5000
+placement = "random"
+velocity_spread = 0.1
+seed = 3
+[gas]
+cells = [6, 6, 12]
+time_step = 1e-4
+eos = "incompressible"
+density = 1000.0
+viscosity = 1e-3
+[gas.boundary.bottom]
+type = "inflow"
+velocity = 0.02
+[gas.boundary.top]
+type = "pressure"
+[coupling]
+drag = "wen_yu"
+[coupling.forces]
+virtual_mass = true
+basset = true
+basset_window = 5
+saffman = true
+magnus = "oesterle_bui_dinh"
+torque = "dennis"
+)";
+
+TEST(ThreadIndependence, FluidForcesGiveBitwiseIdenticalParticles) {
+  // 100 steps: 10 flow steps.
+  const State one = run_with_threads(1, kFluidForcesCase, 100);
+  const State two = run_with_threads(2, kFluidForcesCase, 100);
+  const State three = run_with_threads(3, kFluidForcesCase, 100);
+  expect_bitwise_equal(one, two, three);
+}
+
 } // namespace
 } // namespace fluidem
