@@ -59,7 +59,9 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
     if (std::abs(g[static_cast<std::size_t>(d)]) > std::abs(g[static_cast<std::size_t>(vertical_)]))
       vertical_ = d;
   falls_low_ = g[static_cast<std::size_t>(vertical_)] <= 0.0;
+  smoother_.configure(*gas_, settings_.smoothing_length);
   coupling::update_porosity(*gas_, p, settings_);
+  smoother_.smooth_porosity(gas_->porosity(), coupling::min_porosity);
   gas_->sync_old_porosity();
   for (auto& f : force_) f.assign(p.size(), 0.0);
   f_.resize(p.size());
@@ -69,8 +71,10 @@ GasCoupling::~GasCoupling() = default;
 
 void GasCoupling::step(const ParticleStore& p, double time, double dt) {
   coupling::update_porosity(*gas_, p, settings_, porosity_scratch_);
+  smoother_.smooth_porosity(gas_->porosity(), coupling::min_porosity); // (off: returns)
   coupling::compute_particle_forces(*gas_, p, settings_, f_);
   coupling::deposit_momentum_source(*gas_, p, f_);
+  smoother_.smooth_momentum_source(*gas_);
   if (settings_.hold_gas_at_rest) hold_at_rest(dt);
   const auto t0 = std::chrono::steady_clock::now();
   gas_->step(time, dt);

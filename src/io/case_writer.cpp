@@ -198,6 +198,8 @@ void write_coupling(std::ostream& os, const coupling::CouplingSettings& c) {
   os << "scheme = " << static_cast<int>(c.scheme) + 1 << "\n"
      << "d_mean = " << format_double(c.d_mean) << "  # m\n"
      << "hold_gas_at_rest = " << (c.hold_gas_at_rest ? "true" : "false") << "\n";
+  if (c.smoothing_length > 0.0)
+    os << "smoothing_length = " << format_double(c.smoothing_length) << "  # m\n";
 }
 
 } // namespace
