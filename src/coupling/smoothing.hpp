@@ -30,6 +30,7 @@
 #include "gas/gas_solver.hpp"
 #include <array>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace fluidem::coupling {
@@ -86,7 +87,37 @@ public:
   /// drag_velocity_term(d) and explicit_source(d) each smoothed with the same operator.
   void smooth_momentum_source(gas::GasSolver& gs);
 
+  /// Calls f() with the solver's gas velocity replaced by the smoothed one (the same operator
+  /// on the solved faces, periodic ghosts refilled), then puts the solver's back (also if f
+  /// throws). The particles reading the gas velocity inside f (compute_particle_forces,
+  /// update_particle_forces) then see the ADJOINT of the smoothing of the source: with G
+  /// symmetric, sum_f (G K)_f u_f = sum_f K_f (G u)_f, so the gas receives exactly minus the
+  /// particles' drag (Newton's third law to round-off; docs/smoothing.md). Off: just f().
+  template <class F>
+  void with_smoothed_velocity(gas::GasSolver& gs, F&& f) {
+    if (!enabled()) {
+      f();
+      return;
+    }
+    for (int d = 0; d < 3; ++d) {
+      std::vector<double>& v = velocity_[static_cast<std::size_t>(d)];
+      v = gs.velocity(d); // (no allocation once warmed up)
+      smooth_faces(d, v);
+      gas::fill_periodic_ghosts(g_, periodic_, v);
+      std::swap(gs.velocity(d), v);
+    }
+    struct Restore {
+      gas::GasSolver& gs;
+      std::array<std::vector<double>, 3>& v;
+      ~Restore() {
+        for (int d = 0; d < 3; ++d) std::swap(gs.velocity(d), v[static_cast<std::size_t>(d)]);
+      }
+    } restore{gs, velocity_};
+    f();
+  }
+
 private:
+  std::array<std::vector<double>, 3> velocity_; ///< the smoothed gas velocity (work space)
   gas::GasGrid g_;
   std::array<bool, 3> periodic_{};
   double sigma_ = 0.0;

@@ -72,7 +72,8 @@ GasCoupling::~GasCoupling() = default;
 void GasCoupling::step(const ParticleStore& p, double time, double dt) {
   coupling::update_porosity(*gas_, p, settings_, porosity_scratch_);
   smoother_.smooth_porosity(gas_->porosity(), coupling::min_porosity); // (off: returns)
-  coupling::compute_particle_forces(*gas_, p, settings_, f_);
+  smoother_.with_smoothed_velocity(                                    // (off: the call alone)
+      *gas_, [&] { coupling::compute_particle_forces(*gas_, p, settings_, f_); });
   coupling::deposit_momentum_source(*gas_, p, f_);
   smoother_.smooth_momentum_source(*gas_);
   if (settings_.hold_gas_at_rest) hold_at_rest(dt);
@@ -80,7 +81,7 @@ void GasCoupling::step(const ParticleStore& p, double time, double dt) {
   gas_->step(time, dt);
   gas_->check_courant(time + dt, dt);
   solver_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  coupling::update_particle_forces(*gas_, p, f_);
+  smoother_.with_smoothed_velocity(*gas_, [&] { coupling::update_particle_forces(*gas_, p, f_); });
   const std::size_t n = p.size();
   for (auto& f : force_) f.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
