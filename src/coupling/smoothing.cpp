@@ -141,6 +141,9 @@ void diffuse(const DiffusionDomain& dom, const std::array<double, 3>& h, double 
 void CouplingSmoother::configure(const gas::GasGrid& g, const std::array<bool, 3>& periodic,
                                  const std::array<const std::vector<unsigned char>*, 3>& face_role,
                                  unsigned char solved_role, double sigma) {
+  if (!(sigma >= 0.0) || std::isinf(sigma)) // (the case reader names the key's location)
+    throw InputError("coupling.smoothing_length: " + std::to_string(sigma) +
+                     " is out of range (allowed: 0 (off) or a length > 0, m)");
   g_ = g;
   periodic_ = periodic;
   if (g.dimension == 2) periodic_[1] = false; // one cell across y: nothing to link

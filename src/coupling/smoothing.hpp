@@ -70,6 +70,7 @@ void diffuse(const DiffusionDomain& dom, const std::array<double, 3>& h, double 
 /// `smooth_source` after the momentum source.
 class CouplingSmoother {
 public:
+  /// InputError if sigma is negative, nan or infinite (0: off).
   void configure(const gas::GasGrid& g, const std::array<bool, 3>& periodic,
                  const std::array<const std::vector<unsigned char>*, 3>& face_role,
                  unsigned char solved_role, double sigma);

@@ -15,13 +15,14 @@
 //     pressure top; and periodic x): the sum of every array of every component kept to 1e-13,
 //     faces the solver does not solve bitwise unchanged.
 //  3. A uniform field stays uniform: bitwise for the smoothing; the porosity 1 - (1 - eps) to
-//     1e-15.
+//     1e-15. (And CouplingSmoother refuses a negative or nan length: InputError.)
 //  5. Newton's third law with smoothing on (mirror of newton_third_law_test.cpp: 300 random
 //     particles, nonuniform gas velocity, ergun_wen_yu, Models A and B, a periodic x axis): the
 //     particles reading the gas velocity through the smoothing (with_smoothed_velocity, the
 //     adjoint), sum_i drag_i (+ pres_i, B) + sum_faces applied_source V_cell = 0 to 1e-10
 //     relative, before and after a change of u. The same with the particles reading the
 //     unsmoothed velocity is NOT balanced (> 1e-6 measured: the check can fail).
+#include "core/error.hpp"
 #include "coupling/exchange.hpp"
 #include "coupling/smoothing.hpp"
 #include <algorithm>
@@ -198,6 +199,8 @@ TEST(Smoothing, UniformFieldStaysUniform) {
   for (std::size_t q = 0; q < eps.size(); ++q)
     if (interior(g, q)) eps[q] = 0.4137;
   sm.smooth_porosity(eps, min_porosity);
+  EXPECT_THROW(CouplingSmoother().configure(gs, -1e-3), InputError);
+  EXPECT_THROW(CouplingSmoother().configure(gs, std::nan("")), InputError);
   for (std::size_t q = 0; q < eps.size(); ++q)
     if (interior(g, q)) {
       EXPECT_NEAR(eps[q], 0.4137, 1e-15) << q;
