@@ -114,11 +114,12 @@ void diffuse(const DiffusionDomain& dom, const std::array<double, 3>& h, double 
       const double pap = dot(s.p, s.ap, m);
       if (!(pap > 0.0)) break;
       const double al = rr / pap;
+      double rr_new = 0.0;
       for (std::size_t i = 0; i < m; ++i) {
         s.x[i] += al * s.p[i];
         s.r[i] -= al * s.ap[i];
+        rr_new += s.r[i] * s.r[i];
       }
-      const double rr_new = dot(s.r, s.r, m);
       const double beta = rr_new / rr;
       rr = rr_new;
       for (std::size_t i = 0; i < m; ++i) s.p[i] = s.r[i] + beta * s.p[i];
