@@ -9,6 +9,8 @@
 //  On: the porosity differs from the unsmoothed one (the key acts), the solids volume
 //      sum (1 - eps) V_cell is the unsmoothed one to 1e-13 relative, and the smallest porosity is
 //      not below the unsmoothed smallest (a weighted mean).
+//      Newton's third law in the coupled step (particles away from the side walls): the
+//      particles' drag plus the gas's applied source, summed, 1e-10 relative.
 //  (6) Threads: the Hoomans96 bubble bed (2-D, 2400 hard spheres, 15 x 25 cells) with
 //      smoothing_length = 15 mm, 20 flow steps on 1 and on 2 OpenMP threads: particle positions,
 //      velocities, porosity and gas velocity bitwise the same (the smoothing is serial; the
@@ -125,6 +127,34 @@ TEST(SmoothingCoupled, OnKeepsTheSolidsVolume) {
   EXPECT_LT(std::abs(s_on - s_off) / s_off, 1e-13);
   EXPECT_GE(min_on, min_off);
   EXPECT_GT(diff, 1e-4);
+}
+
+TEST(SmoothingCoupled, OnKeepsNewtonsThirdLawInTheStep) {
+  // Particles away from the side walls (their stencils on solved faces only, as in
+  // newton_third_law_test): the drag the particles got after the gas step plus the source the
+  // gas applied with its converged velocity, summed, vanish (GasCoupling::step reads the gas
+  // velocity through the smoothing, smoothing.hpp).
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> x(0.011, 0.029), z(0.011, 0.06), v(-0.5, 0.5);
+  ParticleStore p;
+  for (int n = 0; n < 250; ++n)
+    p.add({x(rng), x(rng), z(rng)}, {v(rng), v(rng), v(rng)}, 0.001, 2500.0, 0, n);
+  GasCoupling on(read_case_string(bed_case("smoothing_length = 0.012\n"), "case.toml"), p);
+  for (int s = 0; s < kSteps; ++s) on.step(p, s * kDt, kDt);
+  const coupling::ParticleGasForces& f = on.exchange();
+  const gas::GasGrid& g = on.solver().grid();
+  for (int d = 0; d < 3; ++d) {
+    const std::vector<double>& dr = d == 0 ? f.drag_x : (d == 1 ? f.drag_y : f.drag_z);
+    double sum_p = 0.0, abs_p = 0.0, sum_g = 0.0;
+    for (double q : dr) {
+      sum_p += q;
+      abs_p += std::abs(q);
+    }
+    for (double q : on.solver().applied_source(d)) sum_g += q * g.cell_volume();
+    std::printf("component %d: particles %.6e N, gas %.6e N, rel. imbalance %.2e\n", d, sum_p,
+                sum_g, std::abs(sum_p + sum_g) / abs_p);
+    EXPECT_LT(std::abs(sum_p + sum_g) / abs_p, 1e-10);
+  }
 }
 
 struct Snapshot {
