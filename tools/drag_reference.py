@@ -173,6 +173,68 @@ def chang_joint(eps, d, mu, rho, slip, **_):
     return q * (1 - eps) * mu / (d ** 2 * eps)
 
 
+def cd_dallavalle(re):
+    """Dalla Valle (1948): C_d = (0.63 + 4.8/sqrt(Re))^2 [MFiX C_DSXRE_DV; Di Felice 1994]."""
+    return (mpf("0.63") + mpf("4.8") / sqrt(re)) ** 2
+
+
+def syamlal_obrien(eps, d, mu, rho, slip, **_):
+    """Syamlal & O'Brien as in MFiX (DRAG_SYAM_OBRIEN, default c1 = 0.8, d1 = 2.65):
+    Re = rho |u-v| d / mu (interstitial, no eps), A = e^4.14, B = 0.8 e^1.28 (e <= 0.85) else
+    e^2.65, V_r = (A - 0.06 Re + sqrt((0.06 Re)^2 + 0.12 Re (2B - A) + A^2))/2,
+    C_d = (0.63 + 4.8 sqrt(V_r/Re))^2, beta = 3/4 (1-e) e rho C_d |u-v| / (V_r^2 d)."""
+    re = rho * slip * d / mu
+    a = eps ** mpf("4.14")
+    b = mpf("0.8") * eps ** mpf("1.28") if eps <= mpf(0.85) else eps ** mpf("2.65")
+    vr = (a - mpf("0.06") * re + sqrt((mpf("0.06") * re) ** 2 + mpf("0.12") * re * (2 * b - a)
+                                      + a ** 2)) / 2
+    cd = (mpf("0.63") + mpf("4.8") * sqrt(vr / re)) ** 2
+    return mpf(3) / 4 * (1 - eps) * eps * rho * cd * slip / (vr ** 2 * d)
+
+
+def tenneti_garg_subramaniam(eps, d, mu, rho, slip, **_):
+    """Tenneti, Garg & Subramaniam (2011): F_T = F_isol(Re_m)/(1-phi)^3 + F_phi + F_phi,Re,
+    F_isol = 1 + 0.15 Re_m^0.687, F_phi = 5.81 phi/(1-phi)^3 + 0.48 phi^(1/3)/(1-phi)^4,
+    F_phi,Re = phi^3 Re_m (0.95 + 0.61 phi^3/(1-phi)^2), Re_m = (1-phi) rho |u-v| d / mu.
+    F_T = total fluid-particle force (mean pressure gradient included) / (3 pi mu d (1-phi)|u-v|);
+    the drag without the pressure-gradient part is (1 - phi) times the total (-grad p = n F_total,
+    V_p n = phi); beta = drag (1 - e) / (V_p |u-v|)."""
+    phi = 1 - eps
+    re_m = re_p(eps, rho, slip, d, mu)
+    f_isol = 1 + mpf("0.15") * re_m ** mpf("0.687")
+    f_phi = mpf("5.81") * phi / (1 - phi) ** 3 + mpf("0.48") * phi ** (mpf(1) / 3) / (1 - phi) ** 4
+    f_phi_re = phi ** 3 * re_m * (mpf("0.95") + mpf("0.61") * phi ** 3 / (1 - phi) ** 2)
+    f_t = f_isol / (1 - phi) ** 3 + f_phi + f_phi_re
+    total = 3 * pi * mu * d * (1 - phi) * slip * f_t
+    drag = (1 - phi) * total
+    return drag * (1 - eps) / (vp(d) * slip)
+
+
+def rong_2013(eps, d, mu, rho, slip, **_):
+    """Rong, Dong & Yu (2013): F_d = C_d rho pi d^2/8 (e |u-v|)^2 e^-beta_R,
+    beta_R = 2.65 (e + 1) - (5.3 - 3.5 e) e^2 exp(-(1.5 - log10 Re_p)^2/2), C_d Dalla Valle on
+    Re_p = e rho |u-v| d/mu; beta = F_d (1 - e)/(V_p |u-v|)."""
+    re = re_p(eps, rho, slip, d, mu)
+    beta_r = mpf("2.65") * (eps + 1) - (mpf("5.3") - mpf("3.5") * eps) * eps ** 2 * exp(
+        -(mpf("1.5") - log10(re)) ** 2 / 2)
+    fd = cd_dallavalle(re) * rho * pi * d ** 2 / 8 * (eps * slip) ** 2 * eps ** (-beta_r)
+    return fd * (1 - eps) / (vp(d) * slip)
+
+
+def tang_2015(eps, d, mu, rho, slip, **_):
+    """Tang, Peters, Kuipers, Kriebitzsch, van der Hoef (2015) [eq. 21 as cited by MFiX TPKKV]:
+    F = 10 phi/(1-phi)^2 + (1-phi)^2 (1 + 1.5 sqrt(phi)) + [0.11 phi (1+phi) - 0.00456/(1-phi)^4
+        + (0.169 (1-phi) + 0.0644/(1-phi)^4) Re^-0.343] Re,  Re = (1-phi) rho |u-v| d/mu;
+    beta = 18 mu (1-phi) phi F / d^2 (Beetstra's normalisation, MFiX)."""
+    phi = 1 - eps
+    re = re_p(eps, rho, slip, d, mu)
+    f = (10 * phi / (1 - phi) ** 2 + (1 - phi) ** 2 * (1 + mpf("1.5") * sqrt(phi))
+         + (mpf("0.11") * phi * (1 + phi) - mpf("0.00456") / (1 - phi) ** 4
+            + (mpf("0.169") * (1 - phi) + mpf("0.0644") / (1 - phi) ** 4) * re ** mpf("-0.343"))
+         * re)
+    return 18 * mu * (1 - phi) * phi * f / d ** 2
+
+
 CLOSURES = {
     "ergun": (ergun, "Ergun 1952 [Hoomans96 eq. 45; Deen07 eq. 3]"),
     "wen_yu": (wen_yu, "Wen & Yu 1966 [Hoomans96 eq. 46-47; Deen07 eq. 4]"),
@@ -185,6 +247,12 @@ CLOSURES = {
     "di_felice": (di_felice, "Di Felice 1994 voidage function [Zhu07 Table 3]"),
     "koch_hill": (koch_hill, "Koch & Hill 2001 [Zhu07 Table 3]"),
     "chang_joint": (chang_joint, "joint Ergun/Wen-Yu correlation [Chang08 §2.1]"),
+    "syamlal_obrien": (syamlal_obrien,
+                       "Syamlal & O'Brien as in MFiX DRAG_SYAM_OBRIEN (c1 = 0.8, d1 = 2.65)"),
+    "tenneti_garg_subramaniam": (tenneti_garg_subramaniam,
+                                 "Tenneti, Garg & Subramaniam 2011, IJMF 37, 1072"),
+    "rong_2013": (rong_2013, "Rong, Dong & Yu 2013, CES 99, 44 (Dalla Valle C_d)"),
+    "tang_2015": (tang_2015, "Tang et al. 2015, AIChE J. 61, 688, eq. 21 (as cited by MFiX)"),
 }
 
 # Air-like gas, 1 mm particles; (eps, target Re_p). Spans eps 0.4-1.0, Re_p 0.1-2000, the

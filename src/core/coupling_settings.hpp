@@ -4,6 +4,8 @@
 // name as a string, which the coupling module checks against its registry at set-up (with the
 // key's source location), so that core knows no drag law.
 #pragma once
+#include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -25,6 +27,22 @@ struct PorositySettings {
 /// All three are implemented in coupling/exchange.cpp (docs/coupling.md).
 enum class ExchangeScheme { scheme1, scheme2, scheme3 };
 
+/// `coupling.mode`: who acts on whom (docs/coupling.md, "Coupling modes").
+enum class CouplingMode {
+  two_way, ///< the gas moves the particles and the particles the gas (porosity and momentum)
+  one_way, ///< the gas moves the particles; the gas is solved without them (porosity 1, no
+           ///< momentum source): its field is that of the empty domain
+  frozen   ///< the gas is not solved: a prescribed steady field (frozen_velocity + gradient)
+};
+
+/// `coupling.particle_force`: the form of the gas force on a particle (docs/coupling.md,
+/// "Particle force forms"); the gas receives exactly minus it in every form.
+enum class ParticleForceForm {
+  pressure_gradient, ///< drag + (-V grad p) [Zhu07 eq. 5]; gas Model A (its default)
+  buoyancy,          ///< drag / eps + (-V rho g) [Zhu07 §3.1 after eq. 7]; gas Model B (default)
+  total ///< the closure's total force + (-V rho g) [Hoomans96 eq. 34; buoyancy added]; Model B
+};
+
 struct CouplingSettings {
   /// `coupling.drag`: the name of a closure of src/coupling/drag/drag_model.hpp (checked there
   /// at set-up: coupling::drag::drag_model_of_case). Empty: the key was not given, and the
@@ -44,7 +62,19 @@ struct CouplingSettings {
   double smoothing_length = 0.0;
   double d_mean = 0.0; ///< `coupling.d_mean`, m: Sauter mean diameter (polydisperse closures;
                        ///< 0 = computed from the inserted particles)
+  CouplingMode mode = CouplingMode::two_way; ///< `coupling.mode`
+  /// `coupling.particle_force`; not given: pressure_gradient in gas Model A, buoyancy in Model B
+  /// (the set-up writes the resolved form here).
+  std::optional<ParticleForceForm> particle_force;
+  /// Frozen gas (mode = frozen): u(x) = frozen_velocity + frozen_gradient x, m/s, with
+  /// frozen_gradient[i][j] = du_i/dx_j, 1/s (`coupling.frozen_velocity`,
+  /// `coupling.frozen_velocity_gradient`); the pressure is hydrostatic.
+  std::array<double, 3> frozen_velocity{};
+  std::array<std::array<double, 3>, 3> frozen_gradient{};
 };
+
+std::string_view to_string(CouplingMode m);
+std::string_view to_string(ParticleForceForm f);
 
 std::string_view to_string(PorosityMethod m);
 PorosityMethod porosity_method_from_string(std::string_view name, const std::string& key);

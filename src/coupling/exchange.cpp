@@ -67,7 +67,7 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
     out.cell_vz[uq] += m * p.vz[i];
   }
   const double mu = gs.settings().viscosity;
-  const bool model_b = gs.settings().model == gas::PressureModel::B;
+  const bool divide_by_eps = particle_force_form(c, gs.settings()) == ParticleForceForm::buoyancy;
   for (std::size_t q = 0; q < nc; ++q) {
     if (!(vs[q] > 0.0)) continue;
     if (mass[q] > 0.0) {
@@ -86,8 +86,8 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
     in.mu = mu;
     in.d_mean = c.d_mean;
     in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
-    out.cell_coeff[q] = vs[q] * Closure::k(in); // C_c = V_s,c K_c [Chang08 eq. 2.10]
-    if (model_b) out.cell_coeff[q] /= in.eps;   // Model B: F_A / eps (exchange.hpp)
+    out.cell_coeff[q] = vs[q] * Closure::k(in);     // C_c = V_s,c K_c [Chang08 eq. 2.10]
+    if (divide_by_eps) out.cell_coeff[q] /= in.eps; // Model B: F_A / eps (exchange.hpp)
   }
   if (c.scheme != ExchangeScheme::scheme2) return;
   // [Chang08 eq. 2.11]: the particle's share of F_c is its surface area over the cell's.
@@ -108,11 +108,35 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
 }
 } // namespace
 
-void validate(const CouplingSettings& c, const gas::GasSettings& /*gas: Models A and B both*/) {
+ParticleForceForm particle_force_form(const CouplingSettings& c, const gas::GasSettings& gas) {
+  if (c.particle_force) return *c.particle_force;
+  return gas.model == gas::PressureModel::A ? ParticleForceForm::pressure_gradient
+                                            : ParticleForceForm::buoyancy;
+}
+
+void validate(const CouplingSettings& c, const gas::GasSettings& gas) {
   validate(c.porosity);
   const drag::DragModel m = drag::drag_model_named(c.drag);
   if (const auto why = drag::drag_model_refusal(m); !why.empty())
     throw InputError("coupling.drag = " + std::string(why));
+  const ParticleForceForm form = particle_force_form(c, gas);
+  if ((gas.model == gas::PressureModel::A) != (form == ParticleForceForm::pressure_gradient))
+    throw InputError("coupling.particle_force = \"" + std::string(to_string(form)) +
+                     "\" does not go with gas.model (allowed: \"pressure_gradient\" with "
+                     "gas.model = \"A\"; \"buoyancy\" or \"total\" with gas.model = \"B\")");
+  const bool total = form == ParticleForceForm::total;
+  if (drag::is_total_force(m) != total)
+    throw InputError(
+        "coupling.drag = \"" + std::string(drag::to_string(m)) +
+        "\" does not go with coupling.particle_force = \"" + std::string(to_string(form)) + "\": " +
+        (total ? "the \"total\" form takes a closure whose force is the total gas force on a "
+                 "particle, drag and pressure together (allowed: \"wen_yu_single\" "
+                 "[Hoomans96 eq. 34-37]); a drag coefficient needs the pressure force of the "
+                 "\"pressure_gradient\" (gas.model = \"A\") or \"buoyancy\" (\"B\") form"
+               : "this closure's force is the total gas force, drag and pressure together, and "
+                 "this form adds the pressure force a second time (allowed: "
+                 "coupling.particle_force = \"total\" with gas.model = \"B\", or a drag "
+                 "coefficient such as \"wen_yu\")"));
   if (drag::needs_mean_diameter(m) && !(c.d_mean > 0.0))
     throw InputError(std::string("coupling.d_mean must be > 0 for drag closure '") +
                      std::string(drag::to_string(m)) + "'");
@@ -143,6 +167,9 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   }
   const double mu = gs.settings().viscosity;
   const bool model_a = gs.settings().model == gas::PressureModel::A;
+  // Model B divides the drag by eps [Zhu07 §3.1]; the "total" form takes the closure's force as
+  // it is [Hoomans96 eq. 34].
+  const bool divide_by_eps = particle_force_form(c, gs.settings()) == ParticleForceForm::buoyancy;
   const Vec3 grav = gs.settings().gravity;
   const bool stencils = c.porosity.method != PorosityMethod::porous_cube;
   const std::array<bool, 3> periodic = periodic_axes(gs);
@@ -177,8 +204,8 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
           const Vec3 slip{u[0] - v[0], u[1] - v[1], u[2] - v[2]};
           in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
           const double vol = pi * in.d * in.d * in.d / 6.0;
-          double ci = vol * C::k(in); // [Deen07 eq. 1]: F = V K (u - v)
-          if (!model_a) ci /= in.eps; // Model B: f_d / eps (exchange.hpp)
+          double ci = vol * C::k(in);      // [Deen07 eq. 1]: F = V K (u - v)
+          if (divide_by_eps) ci /= in.eps; // Model B: f_d / eps (exchange.hpp)
           out.coeff[i] = ci;
           out.eps[i] = in.eps;
           out.ux[i] = u[0];

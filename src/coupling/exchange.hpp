@@ -4,10 +4,11 @@
 //
 // Per particle i (V_i = pi d_i^3 / 6; u_i, eps_i, rho_i interpolated at x_i [Hoomans96 eq. 40-41];
 // K_i = beta/(1 - eps) of the closure [Deen07 eq. 1]):
-//   c_i    = V_i K_i (Model A),  V_i K_i / eps_i (Model B)            kg/s
+//   c_i    = V_i K_i (Model A; form "total"),  V_i K_i / eps_i (Model B, form "buoyancy")  kg/s
 //   drag_i = c_i (u_i - v_i)                                          N, on the particle
 //   pres_i = -V_i grad p(x_i) (A [Zhu07 eq. 5]),  -V_i rho_i g (B, f_pf = f_d/eps - V rho g
-//            [Zhu07 §3.1 after eq. 7, Feng & Yu 2004])
+//            [Zhu07 §3.1 after eq. 7, Feng & Yu 2004]; form "total": f_pf = the closure's total
+//            force - V rho g [Hoomans96 eq. 34, with the buoyancy it neglects for a gas])
 // Gas source, semi-implicit S = K_us - K u + f per face (N m^-3), with the interpolation's own
 // stencil weights w_if:
 //   Scheme 3 (default): K_face = sum_i w_if c_i / V_cell, K_us,face = sum_i w_if c_i v_i / V_cell,
@@ -34,11 +35,16 @@
 
 namespace fluidem::coupling {
 
+/// The particle-force form of a case: coupling.particle_force, or the gas model's default
+/// (pressure_gradient in Model A, buoyancy in Model B).
+ParticleForceForm particle_force_form(const CouplingSettings& c, const gas::GasSettings& gas);
+
 /// InputError for: a bad cube factor, an unknown closure name, a polydisperse closure without
-/// d_mean, a closure a case may not choose (its `refusal`: wen_yu_single, a total force, to which
-/// this exchange would add the pressure force a second time). Gas Models A and B and schemes 1,
-/// 2, 3 are all accepted. (The set-up names the case-file key first:
-/// drag::drag_model_of_case.)
+/// d_mean, a closure a case may not choose (its `refusal`), a particle-force form that does not
+/// go with the gas model, and a closure not valid in the form (a total-force closure such as
+/// wen_yu_single outside "total", to which the other forms would add the pressure force a second
+/// time; a drag coefficient in "total"). Schemes 1, 2, 3 are all accepted. (The set-up names the
+/// case-file key first: drag::drag_model_of_case.)
 void validate(const CouplingSettings& c, const gas::GasSettings& gas);
 
 /// Per-particle results of the gas -> particle step (all of size p.size()), and the cell

@@ -157,9 +157,10 @@ void CouplingSmoother::configure(const gas::GasGrid& g, const std::array<bool, 3
   solid_.assign(g.size(), 0.0);
 }
 
-void CouplingSmoother::configure(const gas::GasSolver& gs, double sigma) {
+void CouplingSmoother::configure(const gas::GasSolver& gs, double sigma, bool smooth_velocity) {
   configure(gs.grid(), periodic_axes(gs), {&gs.face_role(0), &gs.face_role(1), &gs.face_role(2)},
             gas::GasSolver::solved, sigma);
+  smooth_velocity_ = smooth_velocity;
 }
 
 void CouplingSmoother::smooth_momentum_source(gas::GasSolver& gs) {

@@ -75,7 +75,9 @@ public:
                  const std::array<const std::vector<unsigned char>*, 3>& face_role,
                  unsigned char solved_role, double sigma);
   /// The same from a gas solver: its grid, periodic axes and face roles (GasSolver::solved).
-  void configure(const gas::GasSolver& gs, double sigma);
+  /// smooth_velocity = false: with_smoothed_velocity leaves the velocity alone (no source goes
+  /// to the gas, coupling.mode one_way / frozen: there is no third law to keep).
+  void configure(const gas::GasSolver& gs, double sigma, bool smooth_velocity = true);
   bool enabled() const { return sigma_ > 0.0; }
   /// eps (padded, interior cells): the solid fraction 1 - eps smoothed, then eps = 1 - s,
   /// capped at 1 (a solid fraction below 0 by the solver's residual); periodic ghosts refilled.
@@ -96,7 +98,7 @@ public:
   /// particles' drag (Newton's third law to round-off; docs/smoothing.md). Off: just f().
   template <class F>
   void with_smoothed_velocity(gas::GasSolver& gs, F&& f) {
-    if (!enabled()) {
+    if (!enabled() || !smooth_velocity_) {
       f();
       return;
     }
@@ -122,6 +124,7 @@ private:
   gas::GasGrid g_;
   std::array<bool, 3> periodic_{};
   double sigma_ = 0.0;
+  bool smooth_velocity_ = true;
   DiffusionDomain cells_;
   std::array<DiffusionDomain, 3> faces_;
   std::vector<double> solid_;

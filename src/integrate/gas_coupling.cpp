@@ -59,10 +59,23 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
     if (std::abs(g[static_cast<std::size_t>(d)]) > std::abs(g[static_cast<std::size_t>(vertical_)]))
       vertical_ = d;
   falls_low_ = g[static_cast<std::size_t>(vertical_)] <= 0.0;
-  smoother_.configure(*gas_, settings_.smoothing_length);
+  settings_.particle_force = coupling::particle_force_form(settings_, gs);
+  // coupling.smoothing_length: the particles read the smoothed velocity (the adjoint of the
+  // source's smoothing) only when the gas receives the source.
+  smoother_.configure(*gas_, settings_.smoothing_length,
+                      settings_.mode == coupling::CouplingMode::two_way);
   coupling::update_porosity(*gas_, p, settings_);
   smoother_.smooth_porosity(gas_->porosity(), coupling::min_porosity);
-  gas_->sync_old_porosity();
+  if (settings_.mode == coupling::CouplingMode::one_way) {
+    // The gas is solved as in the empty domain: porosity 1 in its own steps (step()).
+    empty_porosity_.assign(gas_->porosity().size(), 1.0);
+    gas_->porosity().swap(empty_porosity_);
+    gas_->sync_old_porosity();
+    gas_->porosity().swap(empty_porosity_);
+  } else {
+    gas_->sync_old_porosity();
+  }
+  if (settings_.mode == coupling::CouplingMode::frozen) set_frozen_field();
   for (auto& f : force_) f.assign(p.size(), 0.0);
   f_.resize(p.size());
 }
@@ -70,17 +83,27 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
 GasCoupling::~GasCoupling() = default;
 
 void GasCoupling::step(const ParticleStore& p, double time, double dt) {
+  using coupling::CouplingMode;
   coupling::update_porosity(*gas_, p, settings_, porosity_scratch_);
   smoother_.smooth_porosity(gas_->porosity(), coupling::min_porosity); // (off: returns)
   smoother_.with_smoothed_velocity(                                    // (off: the call alone)
       *gas_, [&] { coupling::compute_particle_forces(*gas_, p, settings_, f_); });
-  coupling::deposit_momentum_source(*gas_, p, f_);
-  smoother_.smooth_momentum_source(*gas_);
-  if (settings_.hold_gas_at_rest) hold_at_rest(dt);
-  const auto t0 = std::chrono::steady_clock::now();
-  gas_->step(time, dt);
-  gas_->check_courant(time + dt, dt);
-  solver_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (settings_.mode == CouplingMode::two_way) {
+    coupling::deposit_momentum_source(*gas_, p, f_);
+    smoother_.smooth_momentum_source(*gas_);
+    if (settings_.hold_gas_at_rest) hold_at_rest(dt);
+  }
+  if (settings_.mode != CouplingMode::frozen) {
+    // One-way: the gas steps with porosity 1 and no source (its source arrays stay zero), the
+    // particles keep seeing their own porosity (swapped back after the step).
+    const bool one_way = settings_.mode == CouplingMode::one_way;
+    if (one_way) gas_->porosity().swap(empty_porosity_);
+    const auto t0 = std::chrono::steady_clock::now();
+    gas_->step(time, dt);
+    gas_->check_courant(time + dt, dt);
+    solver_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (one_way) gas_->porosity().swap(empty_porosity_);
+  }
   smoother_.with_smoothed_velocity(*gas_, [&] { coupling::update_particle_forces(*gas_, p, f_); });
   const std::size_t n = p.size();
   for (auto& f : force_) f.resize(n);
@@ -89,6 +112,33 @@ void GasCoupling::step(const ParticleStore& p, double time, double dt) {
     force_[1][i] = f_.drag_y[i] + f_.pres_y[i];
     force_[2][i] = f_.drag_z[i] + f_.pres_z[i];
   }
+}
+
+void GasCoupling::set_frozen_field() {
+  // u_d(x) = U_d + sum_j G_dj x_j on every face of component d (ghosts included: the stencils
+  // near the boundary read them), p(x) = p_0 + rho g . (x - lo) at every cell centre
+  // (hydrostatic: -V grad p is the buoyancy -V rho g).
+  const gas::GasGrid& g = gas_->grid();
+  const auto& U = settings_.frozen_velocity;
+  const auto& G = settings_.frozen_gradient;
+  const gas::GasSettings& gs = gas_->settings();
+  const std::vector<double>& rho = gas_->density();
+  std::vector<double>& pr = gas_->pressure();
+  for (int k = 0; k < g.padded[2]; ++k)
+    for (int j = 0; j < g.padded[1]; ++j)
+      for (int i = 0; i < g.padded[0]; ++i) {
+        const auto q = static_cast<std::size_t>(g.idx(i, j, k));
+        for (int d = 0; d < 3; ++d) {
+          const Vec3 x = g.face_centre(d, i, j, k);
+          const auto ud = static_cast<std::size_t>(d);
+          gas_->velocity(d)[q] = U[ud] + G[ud][0] * x[0] + G[ud][1] * x[1] + G[ud][2] * x[2];
+        }
+        const Vec3 c = g.cell_centre(i, j, k);
+        double h = 0.0;
+        for (int d = 0; d < 3; ++d)
+          h += gs.gravity[static_cast<std::size_t>(d)] * (c[d] - g.lo[static_cast<std::size_t>(d)]);
+        pr[q] += rho[q] * h;
+      }
 }
 
 void GasCoupling::hold_at_rest(double dt) {

@@ -5,7 +5,10 @@
 //   3. the gas gets the semi-implicit sink S = sum_i w c_i (v^n_i - u^{n+1}) / V_cell and is
 //      advanced to t^{n+1} = t^n + DT (gas/gas_solver.hpp);
 //   4. the particles get drag_i = c_i (u^{n+1}_i - v^n_i) (exactly minus what the gas got) and,
-//      in Model A, -V_i grad p^{n+1} [Zhu07 eq. 5]. These forces act unchanged over the next
+//      in Model A, -V_i grad p^{n+1} [Zhu07 eq. 5].
+//   coupling.mode "one_way" skips the gas's sink in 3 and steps the gas with porosity 1 (the
+//   particles still see their own porosity); "frozen" skips 3 (a prescribed field). These forces
+//   act unchanged over the next
 //      DT: the hard-sphere engine takes them as one velocity kick before its collision sequence
 //      [Hoomans96 eq. 33, Fig. 7], the soft-sphere DEM adds them in each of its sub-steps.
 // The gas settings of the case are completed here from the particle domain: dimension, lo/hi,
@@ -93,6 +96,10 @@ private:
   /// coupling.hold_gas_at_rest: a uniform force on the gas removing its mean momentum along the
   /// periodic axes within the coming flow step of length dt.
   void hold_at_rest(double dt);
+  /// coupling.mode = "frozen": the prescribed velocity on every face, the hydrostatic pressure.
+  void set_frozen_field();
+  /// coupling.mode = "one_way": a porosity of 1 everywhere, swapped into the solver for its steps.
+  std::vector<double> empty_porosity_;
   std::vector<ProbeSpec> probes_;
   std::unique_ptr<gas::GasSolver> gas_;
   coupling::CouplingSettings settings_;

@@ -204,8 +204,17 @@ const std::vector<std::pair<std::string, std::string>>& gas_derived_keys() {
   return k;
 }
 const Keys& coupling_keys() {
-  static const Keys k = {"drag",   "porosity",         "cube_factor",     "scheme",
-                         "d_mean", "hold_gas_at_rest", "smoothing_length"};
+  static const Keys k = {"drag",
+                         "porosity",
+                         "cube_factor",
+                         "scheme",
+                         "d_mean",
+                         "hold_gas_at_rest",
+                         "mode",
+                         "particle_force",
+                         "frozen_velocity",
+                         "frozen_velocity_gradient",
+                         "smoothing_length"};
   return k;
 }
 /// Keys of a top-level table section (species and insert are arrays of tables).
@@ -1896,6 +1905,60 @@ private:
       throw InputError(spec_.where(p + ".hold_gas_at_rest"), p + ".hold_gas_at_rest",
                        "true needs a periodic axis (allowed: true only with domain.periodic true "
                        "on some axis; closed walls hold the gas already)");
+    read_coupling_mode(t, p, c);
+  }
+
+  /// coupling.mode, particle_force and the frozen field (docs/coupling.md, "Coupling modes",
+  /// "Particle force forms"). The closure's own form is checked at set-up
+  /// (coupling::validate), which knows the closures.
+  void read_coupling_mode(const toml::table* t, const std::string& p,
+                          coupling::CouplingSettings& c) {
+    using coupling::CouplingMode;
+    using coupling::ParticleForceForm;
+    std::vector<std::pair<std::string, CouplingMode>> modes;
+    for (const auto m : {CouplingMode::two_way, CouplingMode::one_way, CouplingMode::frozen})
+      modes.emplace_back(coupling::to_string(m), m);
+    opt_enum<CouplingMode>(t, p, "mode", modes, c.mode);
+    std::vector<std::pair<std::string, ParticleForceForm>> forms;
+    for (const auto f : {ParticleForceForm::pressure_gradient, ParticleForceForm::buoyancy,
+                         ParticleForceForm::total})
+      forms.emplace_back(coupling::to_string(f), f);
+    const bool model_a = spec_.gas->model == gas::PressureModel::A;
+    ParticleForceForm form =
+        model_a ? ParticleForceForm::pressure_gradient : ParticleForceForm::buoyancy;
+    opt_enum<ParticleForceForm>(t, p, "particle_force", forms, form);
+    // Model A's gas equation holds the pressure force's reaction in its -eps grad p; Model B's
+    // takes the whole interaction force through its source (docs/coupling.md).
+    if (model_a != (form == ParticleForceForm::pressure_gradient))
+      throw InputError(spec_.where(p + ".particle_force"), p + ".particle_force",
+                       "\"" + std::string(coupling::to_string(form)) +
+                           "\" does not go with gas.model = \"" + (model_a ? "A" : "B") +
+                           "\" (allowed: \"pressure_gradient\" with gas.model = \"A\"; "
+                           "\"buoyancy\" or \"total\" with gas.model = \"B\")");
+    c.particle_force = form;
+    const bool frozen = c.mode == CouplingMode::frozen;
+    for (const char* key : {"frozen_velocity", "frozen_velocity_gradient"}) {
+      const std::string path = p + "." + key;
+      const auto e = find(*t, key, path);
+      if (!e) continue;
+      if (!frozen)
+        throw InputError(e->where, path,
+                         "only with mode = \"frozen\" (the prescribed gas field; the gas of "
+                         "mode = \"" +
+                             std::string(coupling::to_string(c.mode)) + "\" is solved)");
+      if (std::string(key) == "frozen_velocity") {
+        c.frozen_velocity = vec3(*e, path, {Bound::Any, "m/s"});
+      } else {
+        const auto g = vec<9>(*e, path, {Bound::Any, "1/s, row-major du_i/dx_j"});
+        for (std::size_t i = 0; i < 3; ++i)
+          for (std::size_t j = 0; j < 3; ++j) c.frozen_gradient[i][j] = g[3 * i + j];
+      }
+    }
+    if (c.hold_gas_at_rest && c.mode != CouplingMode::two_way)
+      throw InputError(spec_.where(p + ".hold_gas_at_rest"), p + ".hold_gas_at_rest",
+                       "true needs mode = \"two_way\" (the particles give the gas no momentum "
+                       "in mode = \"" +
+                           std::string(coupling::to_string(c.mode)) + "\")");
   }
 
   /// `[output.continuum]`: discrete-to-continuum averages [Zhu07 Tables 5-6] (after [domain]:

@@ -197,7 +197,21 @@ void write_coupling(std::ostream& os, const coupling::CouplingSettings& c) {
     os << "cube_factor = " << format_double(c.porosity.cube_factor) << "\n";
   os << "scheme = " << static_cast<int>(c.scheme) + 1 << "\n"
      << "d_mean = " << format_double(c.d_mean) << "  # m\n"
-     << "hold_gas_at_rest = " << (c.hold_gas_at_rest ? "true" : "false") << "\n";
+     << "hold_gas_at_rest = " << (c.hold_gas_at_rest ? "true" : "false") << "\n"
+     << "mode = " << toml_string(std::string(coupling::to_string(c.mode))) << "\n";
+  if (c.particle_force)
+    os << "particle_force = " << toml_string(std::string(coupling::to_string(*c.particle_force)))
+       << "\n";
+  if (c.mode == coupling::CouplingMode::frozen) {
+    const auto& u = c.frozen_velocity;
+    os << "frozen_velocity = [" << format_double(u[0]) << ", " << format_double(u[1]) << ", "
+       << format_double(u[2]) << "]  # m/s\n"
+       << "frozen_velocity_gradient = [";
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = 0; j < 3; ++j)
+        os << format_double(c.frozen_gradient[i][j]) << (i == 2 && j == 2 ? "" : ", ");
+    os << "]  # 1/s, du_i/dx_j row-major\n";
+  }
   if (c.smoothing_length > 0.0)
     os << "smoothing_length = " << format_double(c.smoothing_length) << "  # m\n";
 }

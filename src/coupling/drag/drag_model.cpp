@@ -13,6 +13,10 @@ std::string_view drag_model_refusal(DragModel m) {
   return with_drag_closure(m, [](auto c) { return detail::refusal_of<decltype(c)>(); });
 }
 
+bool is_total_force(DragModel m) {
+  return with_drag_closure(m, [](auto c) { return detail::total_force_of<decltype(c)>(); });
+}
+
 std::string drag_model_names() {
   std::string s;
   for (DragModel m : all_drag_models) {

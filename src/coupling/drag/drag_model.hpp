@@ -12,8 +12,11 @@
 //
 // Every closure type C (one file in this folder) has: C::name (its case-file name),
 // C::needs_mean_diameter, C::validate(in), C::k(in) = beta/(1 - eps) and C::beta(in), in the
-// convention of drag_common.hpp; and, if a case may not choose it, C::refusal (why, and what to
-// use instead). The case (core/coupling_settings.hpp) holds only the name, as a string.
+// convention of drag_common.hpp; C::total_force = true if its force is the TOTAL gas force on a
+// particle (drag and the flow's pressure force together, [Hoomans96 eq. 34]), valid only in the
+// particle-force form "total" (absent: a drag coefficient, completed by the pressure-gradient or
+// the buoyancy form); and, if a case may not choose it, C::refusal (why, and what to use instead).
+// The case (core/coupling_settings.hpp) holds only the name, as a string.
 //
 // Adding a closure: its file here, its #include and its entry in `Closures` below (two lines),
 // tests/models/drag/<name>.toml (tools/drag_reference.py) and its row in docs/drag.md.
@@ -35,6 +38,10 @@
 #include "coupling/drag/ergun_wen_yu_switch.hpp"
 #include "coupling/drag/hill_koch_ladd.hpp"
 #include "coupling/drag/koch_hill.hpp"
+#include "coupling/drag/rong_2013.hpp"
+#include "coupling/drag/syamlal_obrien.hpp"
+#include "coupling/drag/tang_2015.hpp"
+#include "coupling/drag/tenneti_garg_subramaniam.hpp"
 #include "coupling/drag/wen_yu.hpp"
 #include "coupling/drag/wen_yu_single.hpp"
 
@@ -42,7 +49,8 @@ namespace fluidem::coupling::drag {
 
 /// The closures, in the order names are listed in messages.
 using Closures = std::tuple<Ergun, WenYu, WenYuSingle, ErgunWenYuSwitch, ErgunWenYuMin,
-                            HillKochLadd, Beetstra, BeetstraPoly, DiFelice, KochHill, ChangJoint>;
+                            HillKochLadd, Beetstra, BeetstraPoly, DiFelice, KochHill, ChangJoint,
+                            SyamlalOBrien, TennetiGargSubramaniam, Rong2013, Tang2015>;
 
 inline constexpr std::size_t drag_model_count = std::tuple_size_v<Closures>;
 
@@ -79,6 +87,14 @@ constexpr bool is_default() {
 }
 
 template <class C>
+constexpr bool total_force_of() {
+  if constexpr (requires { C::total_force; })
+    return C::total_force;
+  else
+    return false;
+}
+
+template <class C>
 constexpr std::string_view refusal_of() {
   if constexpr (requires { C::refusal; })
     return C::refusal;
@@ -109,6 +125,9 @@ decltype(auto) with_drag_closure(DragModel m, F&& f) {
 std::string_view to_string(DragModel m);
 /// Why a case may not choose m (the closure's `refusal`); empty if it may.
 std::string_view drag_model_refusal(DragModel m);
+/// Whether m's force is the total gas force on a particle (its `total_force`): the closures valid
+/// in coupling.particle_force = "total" and only there.
+bool is_total_force(DragModel m);
 /// Comma-separated list of the names a case may choose (those without a refusal), for error
 /// messages.
 std::string drag_model_names();

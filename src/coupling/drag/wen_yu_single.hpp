@@ -16,7 +16,8 @@
 //
 // NOTE: Hoomans96 eq. 34 has no pressure-gradient force (buoyancy neglected for gas-solid), so
 // F_d is the TOTAL gas force on the particle; it is larger than the Model-A drag of eq. 46 by
-// eps^-1.05 (4.7 = 3.65 + 1.05). Use it WITHOUT a separate -V_p grad p term, as in POGO.
+// eps^-1.05 (4.7 = 3.65 + 1.05). Use it WITHOUT a separate -V_p grad p term, as in POGO
+// (coupling.particle_force = "total").
 //
 // Validity: any eps in (0, 1], any Re_p (Wen & Yu's data: 0.4 < eps < 1). Single-particle limit:
 // eps = 1 is the isolated sphere (Schiller-Naumann), F -> 1 as Re_p -> 0.
@@ -31,19 +32,11 @@ namespace fluidem::coupling::drag {
 struct WenYuSingle {
   static constexpr const char* name = "wen_yu_single";
   static constexpr bool needs_mean_diameter = false;
-  /// A case may not choose it: the exchange (coupling/exchange.hpp) always adds -V grad p
-  /// (Model A) or the buoyancy term with the drag divided by eps (Model B), so the pressure force
-  /// would be counted twice. The closure stays (tests/models/drag/wen_yu_single.toml) for an
-  /// exchange form that omits the pressure force.
-  static constexpr std::string_view refusal =
-      "\"wen_yu_single\" is not allowed in a coupled case: it is the total gas force on a "
-      "particle, drag and pressure together [Hoomans96 eq. 34-37], meant to be used without "
-      "a pressure-gradient force, but the exchange always adds one (-V grad p in gas.model = "
-      "\"A\", the drag divided by the porosity plus the buoyancy term in \"B\"), so the "
-      "pressure force would be counted twice (about 1/eps times the right force). Use "
-      "\"wen_yu\" (the same Wen & Yu correlation as a drag coefficient [Deen07 eq. 4], which "
-      "the exchange completes with the pressure force) or \"ergun_wen_yu\" (the closure of "
-      "the gas phase of [Hoomans96 eq. 45-46])";
+  /// The TOTAL gas force on the particle (drag and the flow's pressure force together): valid
+  /// only in the particle-force form coupling.particle_force = "total" [Hoomans96 eq. 34], which
+  /// adds no pressure-gradient force (exchange.hpp); refused with the other forms, which would
+  /// count the pressure force twice (about 1/eps times the right force).
+  static constexpr bool total_force = true;
   static void validate(const DragInput& in) { validate_drag_input(in, name); }
 
   /// K = |F_d| / (V_p |u - v|), kg m^-3 s^-1.
