@@ -79,6 +79,10 @@ struct CouplingSettings {
   /// momentum along every periodic axis: the gas is at rest on average, the momentum the
   /// particles give it leaves the system. Only with a periodic axis.
   bool hold_gas_at_rest = false;
+  /// `coupling.smoothing_length`, m: standard deviation sigma of the Gaussian the diffusion
+  /// smoothing of the solids fraction and the momentum source spreads a cell's content over
+  /// (D T = sigma^2 / 2; coupling/smoothing.hpp, docs/smoothing.md). 0 = off.
+  double smoothing_length = 0.0;
   double d_mean = 0.0; ///< `coupling.d_mean`, m: Sauter mean diameter (polydisperse closures;
                        ///< 0 = computed from the inserted particles)
   CouplingMode mode = CouplingMode::two_way; ///< `coupling.mode`

@@ -60,7 +60,12 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
       vertical_ = d;
   falls_low_ = g[static_cast<std::size_t>(vertical_)] <= 0.0;
   settings_.particle_force = coupling::particle_force_form(settings_, gs);
+  // coupling.smoothing_length: the particles read the smoothed velocity (the adjoint of the
+  // source's smoothing) only when the gas receives the source.
+  smoother_.configure(*gas_, settings_.smoothing_length,
+                      settings_.mode == coupling::CouplingMode::two_way);
   coupling::update_porosity(*gas_, p, settings_);
+  smoother_.smooth_porosity(gas_->porosity(), coupling::min_porosity);
   if (settings_.mode == coupling::CouplingMode::one_way) {
     // The gas is solved as in the empty domain: porosity 1 in its own steps (step()).
     empty_porosity_.assign(gas_->porosity().size(), 1.0);
@@ -81,11 +86,14 @@ GasCoupling::~GasCoupling() = default;
 void GasCoupling::step(const ParticleStore& p, double time, double dt) {
   using coupling::CouplingMode;
   coupling::update_porosity(*gas_, p, settings_, porosity_scratch_);
-  coupling::compute_particle_forces(*gas_, p, settings_, f_);
+  smoother_.smooth_porosity(gas_->porosity(), coupling::min_porosity); // (off: returns)
+  smoother_.with_smoothed_velocity(                                    // (off: the call alone)
+      *gas_, [&] { coupling::compute_particle_forces(*gas_, p, settings_, f_); });
   if (fluid_) fluid_->begin_step(p, f_);
   if (settings_.mode == CouplingMode::two_way) {
     coupling::deposit_momentum_source(*gas_, p, f_);
     if (fluid_) fluid_->deposit_reaction(*gas_, p);
+    smoother_.smooth_momentum_source(*gas_);
     if (settings_.hold_gas_at_rest) hold_at_rest(dt);
   }
   if (settings_.mode != CouplingMode::frozen) {
@@ -99,7 +107,7 @@ void GasCoupling::step(const ParticleStore& p, double time, double dt) {
     solver_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (one_way) gas_->porosity().swap(empty_porosity_);
   }
-  coupling::update_particle_forces(*gas_, p, f_);
+  smoother_.with_smoothed_velocity(*gas_, [&] { coupling::update_particle_forces(*gas_, p, f_); });
   const std::size_t n = p.size();
   for (auto& f : force_) f.resize(n);
   for (std::size_t i = 0; i < n; ++i) {

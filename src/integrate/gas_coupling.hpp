@@ -22,6 +22,7 @@
 
 #include "core/case_spec.hpp"
 #include "coupling/exchange.hpp"
+#include "coupling/smoothing.hpp"
 #include "gas/gas_solver.hpp"
 #include "integrate/fluid_forces.hpp"
 #include "integrate/force_sources.hpp"
@@ -126,6 +127,7 @@ private:
   coupling::CouplingSettings settings_;
   coupling::ParticleGasForces f_;
   coupling::PorosityScratch porosity_scratch_; ///< kept between flow steps: no allocation
+  coupling::CouplingSmoother smoother_;        ///< coupling.smoothing_length (off: unused)
   std::array<std::vector<double>, 3> force_;
   double solver_seconds_ = 0.0;
   int vertical_ = 2;      ///< the axis of gravity (z if there is none)

@@ -214,7 +214,8 @@ const Keys& coupling_keys() {
                          "particle_force",
                          "frozen_velocity",
                          "frozen_velocity_gradient",
-                         "forces"};
+                         "forces",
+                         "smoothing_length"};
   return k;
 }
 const Keys& coupling_force_keys() {
@@ -1837,6 +1838,27 @@ private:
     }
   }
 
+  /// `coupling.smoothing_length`: 0 (off) up to the domain's largest extent, m.
+  void read_smoothing_length(const toml::table& t, const std::string& path, double& out) {
+    const auto e = find(t, "smoothing_length", path);
+    if (!e) return;
+    double extent = 0.0;
+    for (int d = 0; d < 3; ++d)
+      extent = std::max(extent, spec_.domain.hi[static_cast<std::size_t>(d)] -
+                                    spec_.domain.lo[static_cast<std::size_t>(d)]);
+    const std::string rule = "0 (off) or a length in m up to the domain's largest extent, " +
+                             format_double(extent) + " m (docs/smoothing.md)";
+    if (e->node->is_floating_point() && !std::isfinite(*e->node->value<double>()))
+      throw InputError(e->where, path,
+                       format_double(*e->node->value<double>()) +
+                           " is out of range (allowed: " + rule + ")");
+    const double b = number(*e, path, {Bound::Any, "m"});
+    if (!(b >= 0.0) || !(b <= extent))
+      throw InputError(e->where, path,
+                       format_double(b) + " is out of range (allowed: " + rule + ")");
+    out = b;
+  }
+
   void read_coupling(const toml::table* t) {
     if (t == nullptr) return;
     if (!spec_.gas)
@@ -1885,6 +1907,7 @@ private:
     }
     opt_number(t, p, "d_mean", {Bound::NonNegative, "m"}, c.d_mean);
     opt_bool(t, p, "hold_gas_at_rest", c.hold_gas_at_rest);
+    read_smoothing_length(*t, p + ".smoothing_length", c.smoothing_length);
     const auto& per = spec_.domain.periodic;
     if (c.hold_gas_at_rest && !per[0] && !per[1] && !per[2])
       throw InputError(spec_.where(p + ".hold_gas_at_rest"), p + ".hold_gas_at_rest",

@@ -212,6 +212,8 @@ void write_coupling(std::ostream& os, const coupling::CouplingSettings& c) {
         os << format_double(c.frozen_gradient[i][j]) << (i == 2 && j == 2 ? "" : ", ");
     os << "]  # 1/s, du_i/dx_j row-major\n";
   }
+  if (c.smoothing_length > 0.0)
+    os << "smoothing_length = " << format_double(c.smoothing_length) << "  # m\n";
   const coupling::FluidForceSettings& f = c.forces;
   if (f.any()) {
     os << "\n[coupling.forces]\n"

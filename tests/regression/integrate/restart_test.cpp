@@ -334,6 +334,17 @@ TEST(Restart, CoupledHardSpheresWithFluidForcesContinueBitwise) {
   check_restart_identity(with_fluid_forces(test::tsuji_column(c)), 0.02, "fluid_hard");
 }
 
+// coupling.smoothing_length: stateless (recomputed every flow step from the porosity and the
+// source), so a restarted run must repeat the original bitwise with it too.
+TEST(Restart, CoupledSmoothedContinueBitwise) {
+  test::TsujiColumn c;
+  c.engine = Engine::HardSphere;
+  c.count = 200;
+  CaseSpec spec = test::tsuji_column(c);
+  spec.coupling.smoothing_length = 0.01;
+  check_restart_identity(spec, 0.02, "coupled_smoothed");
+}
+
 // The soft-sphere pouring with the non-contact forces: van der Waals (particles and walls),
 // charged discs (Coulomb, image charges in the conducting floor) and wet discs (liquid bridges,
 // whose list with its bridges is in the checkpoint). The conservative forces are evaluated every

@@ -19,7 +19,8 @@
 //  (c) the hard-sphere engine coupled to the gas: the Hoomans96 bubble bed (2-D, 2400 discs,
 //      cases/hoomans96/bubble_orifice.toml; the engine rebuilds its lists every few flow steps);
 //  (d) soft spheres coupled to a 3-D gas (ideal gas, Beetstra drag, porous-cube porosity,
-//      several particle steps per flow step).
+//      several particle steps per flow step);
+//  (e) (c) with coupling.smoothing_length = 15 mm (the smoothing's work space is kept).
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -192,6 +193,16 @@ TEST(SteadySteps, HardSphereBubbleBedAllocatesNothing) {
   for (std::size_t k = 0; k < w.size(); ++k) EXPECT_EQ(w[k].allocations, 0) << "window " << k;
   ASSERT_NE(sim.hard_sphere(), nullptr);
   EXPECT_GT(sim.hard_sphere()->stats().collisions, 0);
+}
+
+TEST(SteadySteps, SmoothedCouplingFieldsAllocateNothing) {
+  // (e) the bubble bed of (c) with coupling.smoothing_length (coupling/smoothing.hpp: the work
+  // space is kept between flow steps).
+  Simulation sim(
+      read_case_file(std::string(FLUIDEM_SOURCE_DIR) + "/cases/hoomans96/bubble_orifice.toml",
+                     {"coupling.smoothing_length=0.015"}));
+  const std::vector<Window> w = count_allocations(sim, 30, 5, 1);
+  for (std::size_t k = 0; k < w.size(); ++k) EXPECT_EQ(w[k].allocations, 0) << "window " << k;
 }
 
 TEST(SteadySteps, SoftSpheresInA3DGasAllocateOnlyAtListBuilds) {
