@@ -17,7 +17,7 @@ faces = ["x_lo", "x_hi", "y_lo", "y_hi", "z_lo", "z_hi"]
 sides = ["left", "right", "front", "back", "bottom", "top"]
 headers = ["[simulation]", "[output]", "[[output.probe]]", "[domain]", "[walls]", "[[species]]",
            "[[insert]]", "[contact]", "[neighbour]", "[hardsphere]", "[gas]", "[gas.solver]",
-           "[gas.boundary]", "[coupling]"]
+           "[gas.boundary]", "[coupling]", "[coupling.forces]"]
 headers += [f"[walls.{f}]" for f in faces] + ["[insert.region]"]
 headers += [f"[gas.boundary.{s}]" for s in sides]
 headers += [f"[[gas.boundary.{s}.region]]" for s in sides]

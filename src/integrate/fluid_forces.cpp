@@ -47,11 +47,11 @@ bool takes_source(unsigned char r) {
 } // namespace
 
 FluidForces::FluidForces(const coupling::FluidForceSettings& s, const gas::GasSolver& gs,
-                         double flow_dt, std::size_t n)
+                         double flow_dt, std::size_t n, const BodyForceSpec* field)
     : s_(s), dt_(flow_dt), rho_(gs.settings().density),
       mu_(gs.settings().viscosity), g_{gs.settings().gravity[0], gs.settings().gravity[1],
                                        gs.settings().gravity[2]},
-      two_d_(gs.settings().dimension == 2) {
+      two_d_(gs.settings().dimension == 2), field_(field) {
   for (auto* a : {&held_, &physical_, &v_start_, &u_start_, &reaction_, &torque_})
     for (auto& v : *a) v.assign(n, 0.0);
   if (s_.basset)
@@ -160,9 +160,14 @@ void FluidForces::compute(const gas::GasSolver& gs, const ParticleStore& p,
       F = F + kb * basset_->integral(i, w);
     }
     const double mx = added_inertia(d);
+    std::array<double, 3> acc = g_; // what the kick gives every unit of the particle's mass
+    if (field_ != nullptr) {
+      const auto b = body_acceleration(*field_, x[0], x[1], x[2]);
+      for (std::size_t a = 0; a < 3; ++a) acc[a] += b[a];
+    }
     for (std::size_t a = 0; a < 3; ++a) {
       physical_[a][i] = F[static_cast<int>(a)];
-      held_[a][i] = F[static_cast<int>(a)] - mx * g_[a];
+      held_[a][i] = F[static_cast<int>(a)] - mx * acc[a];
     }
   });
   started_ = true;

@@ -17,10 +17,12 @@
 // The unknown dv/dt is implicit: m_x = m_a + m_B (m_B = K_B c_new DT, the newest Basset
 // interval) is added to the particle's inertia at set-up (p.inv_mass = 1/(m + m_x)), and the
 // held force over the step is
-//   F_held = F_S + F_M + m_a Du/Dt + K_B [c_new (u^{n+1} - v^n) + H_i] - m_x g,
-// so that (m + m_x) dv/dt = F_other + m g + F_held + m_x g: the equation of motion with the
-// added mass and the Basset force of the step, stable for any density ratio (no explicit
-// dv/dt). The impulse the fluid gave the particle over the step, J = DT (F_held + m_x g) -
+//   F_held = F_S + F_M + m_a Du/Dt + K_B [c_new (u^{n+1} - v^n) + H_i] - m_x (g + a(x^n)),
+// so that (m + m_x) dv/dt = F_other + m (g + a) + F_held + m_x (g + a): the equation of motion
+// with the added mass and the Basset force of the step, stable for any density ratio (no
+// explicit dv/dt); a(x) a body-force field (acceleration of the particle's own mass), taken at
+// the step's start. The impulse the fluid gave the particle over the step, J = DT (F_held +
+// m_x (g + a)) -
 // m_x (v^{n+1} - v^n), is known at the next flow step: the gas receives -J/DT then (two-way),
 // with the particle's interpolation weights, so that Newton's third law holds over the run
 // with a lag of one flow step.
@@ -32,6 +34,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/body_force.hpp"
 #include "core/coupling_settings.hpp"
 #include "coupling/exchange.hpp"
 #include "coupling/forces/basset_history.hpp"
@@ -43,8 +46,10 @@ namespace fluidem {
 class FluidForces {
 public:
   /// flow_dt: the flow step DT (the Basset samples' spacing); n: the particles.
+  /// field: the case's body-force field, or nullptr (its acceleration acts on the particle's own
+  /// mass: the held force takes -m_x a(x^n) with the added inertia, as it takes -m_x g).
   FluidForces(const coupling::FluidForceSettings& s, const gas::GasSolver& gs, double flow_dt,
-              std::size_t n);
+              std::size_t n, const BodyForceSpec* field);
 
   /// The inertia m_x added to a moving particle of diameter d, kg (virtual mass and the newest
   /// Basset interval, with the fluid density at set-up).
@@ -78,6 +83,7 @@ private:
   double dt_, rho_, mu_;
   std::array<double, 3> g_;
   bool two_d_;
+  const BodyForceSpec* field_;
   std::array<std::vector<double>, 3> held_;     ///< F_held, N
   std::array<std::vector<double>, 3> physical_; ///< F_held + m_x g, N (the impulse's rate)
   std::array<std::vector<double>, 3> v_start_;  ///< v^n, m/s

@@ -122,9 +122,9 @@ void GasCoupling::step(const ParticleStore& p, double time, double dt) {
   }
 }
 
-void GasCoupling::set_up_fluid_forces(double flow_dt, std::size_t n) {
+void GasCoupling::set_up_fluid_forces(double flow_dt, std::size_t n, const BodyForceSpec* field) {
   if (settings_.forces.any())
-    fluid_ = std::make_unique<FluidForces>(settings_.forces, *gas_, flow_dt, n);
+    fluid_ = std::make_unique<FluidForces>(settings_.forces, *gas_, flow_dt, n, field);
 }
 
 std::vector<std::string> GasCoupling::fluid_state_names() const {

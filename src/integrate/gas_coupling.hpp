@@ -56,7 +56,7 @@ public:
 
   /// [coupling.forces], for n particles and the flow step flow_dt (every step() must be that
   /// long: the Basset history's samples are uniform in time).
-  void set_up_fluid_forces(double flow_dt, std::size_t n);
+  void set_up_fluid_forces(double flow_dt, std::size_t n, const BodyForceSpec* field);
   /// The inertia [coupling.forces] adds to a moving particle of diameter d (virtual mass and
   /// the newest Basset interval), kg; 0 without them. The set-up makes p.inv_mass 1/(m + it).
   double added_inertia(double d) const { return fluid_ ? fluid_->added_inertia(d) : 0.0; }

@@ -113,10 +113,6 @@ Simulation::~Simulation() = default;
 
 void Simulation::set_up_fluid_forces() {
   if (!spec_.coupling.forces.any()) return;
-  if (spec_.body_force)
-    throw InputError(spec_.where("coupling.forces"), "coupling.forces",
-                     "virtual mass, Basset and lift forces are not available with a body-force "
-                     "field (allowed: [coupling.forces] without [body_force])");
   const coupling::FluidForceSettings& f = spec_.coupling.forces;
   // The added mass and the newest Basset interval enter the particle's inertia here, with the
   // fluid's density now (docs/coupling.md).
@@ -126,7 +122,8 @@ void Simulation::set_up_fluid_forces() {
                          " = true needs gas.eos = \"incompressible\" (the added mass enters the "
                          "particle's inertia with a fixed fluid density; for a gas it is about "
                          "rho_g/rho_p ~ 1e-3 of the particle's mass)");
-  gas_->set_up_fluid_forces(dt_ * static_cast<double>(steps_per_flow_), p_.size());
+  gas_->set_up_fluid_forces(dt_ * static_cast<double>(steps_per_flow_), p_.size(),
+                            spec_.body_force ? &*spec_.body_force : nullptr);
   // The added inertia of the virtual mass and the newest Basset interval, implicit in the
   // particle update (integrate/fluid_forces.hpp). A restart reads the particles' inverse masses
   // from its checkpoint, where they already hold it.

@@ -1943,7 +1943,7 @@ private:
                            "\" does not go with gas.model = \"" + (model_a ? "A" : "B") +
                            "\" (allowed: \"pressure_gradient\" with gas.model = \"A\"; "
                            "\"buoyancy\" or \"total\" with gas.model = \"B\")");
-    c.particle_force = form;
+    if (t->contains("particle_force")) c.particle_force = form; // else: the gas model's
     const bool frozen = c.mode == CouplingMode::frozen;
     for (const char* key : {"frozen_velocity", "frozen_velocity_gradient"}) {
       const std::string path = p + "." + key;

@@ -10,6 +10,8 @@
 //  - the first acceleration from rest (no drag yet, no history) is (m - rho V) g/(m + 0.5 rho V)
 //    to 1e-9: the added-mass force is -0.5 rho V dv/dt; a bubble (rho_p = rho_f/1000) starts at
 //    ~2 g upwards, stably (the added mass is implicit).
+//  - a body-force field acts on the particle's own mass: the first acceleration is
+//    m a/(m + 0.5 rho V) (1e-9).
 //  - Saffman: a sphere at rest in the frozen shear u = (U_0 + G z, 0, 0) feels 6.46 mu a^2 U
 //    sqrt(G/nu) f_Mei along +z (Saffman 1965/68; Mei 1992), f_Mei computed here, to 1e-9.
 //  - Magnus: a spinning sphere moving through still liquid: pi a^3 rho (omega x v) (Rubinow &
@@ -133,6 +135,24 @@ TEST(FluidForcesRun, FirstAccelerationCarriesTheAddedMass) {
     EXPECT_TRUE(std::isfinite(sim.particles().vz[0]));
     EXPECT_EQ(std::signbit(sim.particles().vz[0]), rho_p > l.rho);
   }
+}
+
+TEST(FluidForcesRun, ABodyForceFieldActsOnTheParticlesOwnMassOnly) {
+  // [body_force] (the [Chang08] field): a(x) per unit of the particle's mass; with the added
+  // inertia the first acceleration is m a / (m + 0.5 rho V) (no gravity, no buoyancy: the liquid
+  // does not feel the field). At the box centre with wavelength 0.1 m, a = (A, A, A).
+  const Liquid l{1000.0, 1e-3};
+  const double d = 1e-3, rho_p = 2500.0, dt = 1e-6, A = 2.0;
+  std::string text =
+      one_sphere(d, rho_p, l, dt, "virtual_mass = true\n", "frozen", "[0.0, 0.0, 0.0]");
+  text += "[body_force]\ntype = \"sinusoidal_cube\"\namplitude = 2.0\nwavelength = 0.1\n";
+  Simulation sim = make(text);
+  place(sim, 0.05, 0.05, 0.05);
+  sim.advance(1);
+  const double vol = kPi * d * d * d / 6.0, m = rho_p * vol;
+  const double a = m * A / (m + 0.5 * l.rho * vol);
+  const ParticleStore& p = sim.particles();
+  for (const double v : {p.vx[0], p.vy[0], p.vz[0]}) EXPECT_NEAR(v / dt, a, 1e-9 * a);
 }
 
 TEST(FluidForcesRun, SaffmanLiftInALinearShearIsSaffmansTimesMeis) {
