@@ -1,5 +1,5 @@
 // The [Chang08] cube (cases/chang08/binary_collision_d10.toml: 512 hard spheres of 10 mm in a
-// periodic 0.1 m box of water, coupled fluid, sinusoidal_cube body force A = 0.1 m/s2), run for
+// periodic 0.1 m box of water, one-way coupled, sinusoidal_cube body force A = 0.1 m/s2), run for
 // 3 s (~30 s of wall time). Checks:
 // - the global void fraction 1 - 512 (pi/6) d^3 / L^3 = 0.7319 [Chang08 Table 1: 0.732], 1e-4;
 // - no particle is lost and the hard spheres do not overlap (a pair closer than d (1 - 1e-9)
