@@ -20,12 +20,6 @@ void ParticleGasForces::resize(std::size_t n) {
 }
 
 namespace {
-/// Faces that take the particles' momentum source: the solved ones, and inflow faces, where it
-/// sets the pressure on the face (gas_solver.hpp, inflow_face_pressure).
-bool solved_face(unsigned char r) {
-  return r == gas::GasSolver::solved || r == gas::GasSolver::pressure_face ||
-         r == gas::GasSolver::inflow;
-}
 
 /// u_c: mean of the two faces of cell q (grid index) along d (the face at q is the HIGH one).
 double cell_gas_velocity(const gas::GasSolver& gs, long q, int d) {
@@ -260,11 +254,12 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
       for (std::size_t q = 0; q < f.cell_coeff.size(); ++q) {
         if (!(f.cell_coeff[q] > 0.0)) continue;
         const std::array<std::size_t, 2> faces = faces_of(q);
-        const int ns = int(solved_face(role[faces[0]])) + int(solved_face(role[faces[1]]));
+        const int ns =
+            int(takes_particle_source(role[faces[0]])) + int(takes_particle_source(role[faces[1]]));
         if (ns == 0) continue;
         const double w = f.cell_coeff[q] * inv_v / ns;
         for (std::size_t fq : faces) {
-          if (!solved_face(role[fq])) continue;
+          if (!takes_particle_source(role[fq])) continue;
           K[fq] += w;
           Kus[fq] += w * vc[q];
         }
@@ -272,11 +267,12 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
       if (model_b) // per particle, to the faces of its cell as the cell's drag
         for (std::size_t i = 0; i < p.size(); ++i) {
           const std::array<std::size_t, 2> faces = faces_of(static_cast<std::size_t>(f.cell[i]));
-          const int ns = int(solved_face(role[faces[0]])) + int(solved_face(role[faces[1]]));
+          const int ns = int(takes_particle_source(role[faces[0]])) +
+                         int(takes_particle_source(role[faces[1]]));
           if (ns == 0) continue;
           const double w = -pr[i] * inv_v / ns;
           for (std::size_t fq : faces)
-            if (solved_face(role[fq])) src[fq] += w;
+            if (takes_particle_source(role[fq])) src[fq] += w;
         }
       continue;
     }
@@ -289,7 +285,7 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
       double wsum = 0.0;
       bool solved[8] = {}; // stencils: nw <= 8; the porous cube's lists may be longer
       for (std::size_t m = 0; m < nw; ++m) {
-        const bool sv = solved_face(role[static_cast<std::size_t>(qs[m])]);
+        const bool sv = takes_particle_source(role[static_cast<std::size_t>(qs[m])]);
         if (m < 8) solved[m] = sv;
         if (sv) wsum += wt[m];
       }
@@ -297,7 +293,7 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
       const double ci = f.coeff[i] * inv_v / wsum;
       for (std::size_t m = 0; m < nw; ++m) {
         const auto q = static_cast<std::size_t>(qs[m]);
-        if (!(m < 8 ? solved[m] : solved_face(role[q]))) continue;
+        if (!(m < 8 ? solved[m] : takes_particle_source(role[q]))) continue;
         const double w = wt[m] * ci;
         K[q] += w;
         Kus[q] += w * v[i];

@@ -35,6 +35,14 @@
 
 namespace fluidem::coupling {
 
+/// Faces that take the particles' momentum source (gas::GasSolver::face_role): the solved ones,
+/// pressure faces, and inflow faces, where it sets the pressure on the face (gas_solver.hpp,
+/// inflow_face_pressure).
+inline bool takes_particle_source(unsigned char role) {
+  return role == gas::GasSolver::solved || role == gas::GasSolver::pressure_face ||
+         role == gas::GasSolver::inflow;
+}
+
 /// The particle-force form of a case: coupling.particle_force, or the gas model's default
 /// (pressure_gradient in Model A, buoyancy in Model B).
 ParticleForceForm particle_force_form(const CouplingSettings& c, const gas::GasSettings& gas);

@@ -39,11 +39,6 @@ std::array<std::array<double, 3>, 3> velocity_gradient(const gas::GasSolver& gs,
   return G;
 }
 
-/// Faces that take a particle's momentum (exchange.cpp's rule): solved, pressure and inflow.
-bool takes_source(unsigned char r) {
-  return r == gas::GasSolver::solved || r == gas::GasSolver::pressure_face ||
-         r == gas::GasSolver::inflow;
-}
 } // namespace
 
 FluidForces::FluidForces(const coupling::FluidForceSettings& s, const gas::GasSolver& gs,
@@ -98,14 +93,15 @@ void FluidForces::deposit_reaction(gas::GasSolver& gs, const ParticleStore& p) c
       for (int m = 0; m < st.n; ++m) {
         const auto q = static_cast<std::size_t>(
             coupling::periodic_image(g, periodic, d, st.q[static_cast<std::size_t>(m)]));
-        if (takes_source(role[q])) wsum += st.w[static_cast<std::size_t>(m)];
+        if (coupling::takes_particle_source(role[q])) wsum += st.w[static_cast<std::size_t>(m)];
       }
       if (!(wsum > 0.0)) continue;
       const double share = -reaction_[ud][i] * inv_v / wsum;
       for (int m = 0; m < st.n; ++m) {
         const auto q = static_cast<std::size_t>(
             coupling::periodic_image(g, periodic, d, st.q[static_cast<std::size_t>(m)]));
-        if (takes_source(role[q])) src[q] += st.w[static_cast<std::size_t>(m)] * share;
+        if (coupling::takes_particle_source(role[q]))
+          src[q] += st.w[static_cast<std::size_t>(m)] * share;
       }
     }
   }
