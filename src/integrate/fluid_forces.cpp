@@ -69,7 +69,8 @@ void FluidForces::begin_step(const ParticleStore& p, const coupling::ParticleGas
     const double mx = p.inv_mass[i] > 0.0 ? added_inertia(2.0 * p.radius[i]) : 0.0;
     for (std::size_t d = 0; d < 3; ++d) {
       const double vi = (*v[d])[i];
-      // J / DT = F_held + m_x g - m_x (v^{n+1} - v^n) / DT (none before the first step).
+      // J / DT = F_held + m_x (g + a) - m_x (v^{n+1} - v^n) / DT: physical_ holds the first two
+      // (none before the first step).
       reaction_[d][i] = started_ ? physical_[d][i] - mx * (vi - v_start_[d][i]) / dt_ : 0.0;
       v_start_[d][i] = vi;
       u_start_[d][i] = (*u[d])[i];
