@@ -18,6 +18,8 @@
 //    Keller 1961) to 1e-9.
 //  - fluid torque: spin-down in still liquid, omega(t) = omega_0 exp(-t/tau_r),
 //    tau_r = I/(pi mu d^3) (Stokes), to 1e-9 (the held torque is the exact mean of each step).
+//  - bad [coupling.forces] keys are input errors naming the key; virtual mass and Basset need
+//    an incompressible fluid.
 //  - two-way with every force on: the gas's explicit source (Model A: nothing else is in it)
 //    sums to minus the particles' fluid impulses of the step before, over DT, to 1e-12.
 #include <gtest/gtest.h>
@@ -30,6 +32,7 @@
 #include <string>
 #include <toml++/toml.h>
 
+#include "core/error.hpp"
 #include "integrate/gas_coupling.hpp"
 #include "integrate/simulation.hpp"
 #include "io/case_reader.hpp"
@@ -250,6 +253,44 @@ TEST(FluidForcesRun, TheGasReceivesMinusTheParticlesFluidImpulse) {
     for (const double s : gs.explicit_source(a)) sum += s * gs.grid().cell_volume();
     EXPECT_NEAR(sum, -rate, 1e-12 * std::max(1e-12, std::abs(rate))) << "axis " << a;
   }
+}
+
+std::string setup_error(const std::string& text) {
+  try {
+    Simulation sim(read_case_string(text, "case.toml"));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(FluidForcesRun, BadKeysAreInputErrorsNamingTheKey) {
+  const Liquid l{1000.0, 1e-3};
+  const auto msg = [&](const std::string& forces) {
+    return setup_error(one_sphere(1e-3, 2500.0, l, 1e-5, forces));
+  };
+  EXPECT_NE(msg("virtual_mass_coefficient = 0.5\n")
+                .find("coupling.forces.virtual_mass_coefficient: only with virtual_mass = true"),
+            std::string::npos);
+  EXPECT_NE(msg("virtual_mass = true\nvirtual_mass_coefficient = -1\n")
+                .find("coupling.forces.virtual_mass_coefficient"),
+            std::string::npos);
+  EXPECT_NE(msg("basset = true\nbasset_window = 0\n").find("coupling.forces.basset_window"),
+            std::string::npos);
+  EXPECT_NE(msg("magnus = \"fast\"\n").find("coupling.forces.magnus: unknown value \"fast\""),
+            std::string::npos);
+  EXPECT_NE(msg("lift = true\n").find("coupling.forces.lift"), std::string::npos);
+  // The added inertia needs a fluid of fixed density.
+  std::string ideal = one_sphere(1e-3, 2500.0, l, 1e-5, "basset = true\n");
+  ideal.replace(ideal.find("eos = \"incompressible\""), 22, "eos = \"ideal_gas\"");
+  ideal.replace(ideal.find("density = 1000"), 14, "temperature = 293");
+  const std::string m = setup_error(ideal);
+  EXPECT_NE(m.find("coupling.forces: basset = true needs gas.eos = \"incompressible\""),
+            std::string::npos)
+      << m;
+  EXPECT_EQ(msg("virtual_mass = true\nbasset = true\nsaffman = true\nmagnus = "
+                "\"rubinow_keller\"\ntorque = \"stokes\"\n"),
+            "");
 }
 
 } // namespace
