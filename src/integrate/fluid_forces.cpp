@@ -20,13 +20,12 @@ namespace {
 /// distance actually spanned); exact for a linear field. None along an axis the grid does not
 /// resolve (one cell across: 2-D, or a 3-D column one cell deep), whose walls' ghost values
 /// would otherwise read as a wall shear at every particle.
-std::array<std::array<double, 3>, 3> velocity_gradient(const gas::GasSolver& gs, const Vec3& x,
-                                                       bool two_d) {
+std::array<std::array<double, 3>, 3> velocity_gradient(const gas::GasSolver& gs, const Vec3& x) {
   const gas::GasGrid& g = gs.grid();
   std::array<std::array<double, 3>, 3> G{};
   for (int j = 0; j < 3; ++j) {
     const auto uj = static_cast<std::size_t>(j);
-    if ((two_d && j == 1) || g.n[uj] == 1) continue;
+    if (g.n[uj] == 1) continue;
     const double lo = g.lo[uj], hi = g.lo[uj] + g.n[uj] * g.h[uj];
     Vec3 a = x, b = x;
     a[j] = std::max(lo, x[j] - 0.5 * g.h[uj]);
@@ -46,7 +45,7 @@ FluidForces::FluidForces(const coupling::FluidForceSettings& s, const gas::GasSo
     : s_(s), dt_(flow_dt), rho_(gs.settings().density),
       mu_(gs.settings().viscosity), g_{gs.settings().gravity[0], gs.settings().gravity[1],
                                        gs.settings().gravity[2]},
-      two_d_(gs.settings().dimension == 2), field_(field) {
+      field_(field) {
   for (auto* a : {&held_, &physical_, &v_start_, &u_start_, &reaction_, &torque_})
     for (auto& v : *a) v.assign(n, 0.0);
   if (s_.basset)
@@ -90,20 +89,20 @@ void FluidForces::deposit_reaction(gas::GasSolver& gs, const ParticleStore& p) c
     const std::vector<unsigned char>& role = gs.face_role(d);
     for (std::size_t i = 0; i < p.size(); ++i) {
       const coupling::Stencil st = coupling::face_stencil(g, d, p.position(i));
+      // The stencil's nodes that take a source (periodic images resolved), weight redistributed
+      // over them as the drag's (exchange.cpp).
+      std::array<std::size_t, 8> q{};
+      std::array<bool, 8> takes{};
       double wsum = 0.0;
-      for (int m = 0; m < st.n; ++m) {
-        const auto q = static_cast<std::size_t>(
-            coupling::periodic_image(g, periodic, d, st.q[static_cast<std::size_t>(m)]));
-        if (coupling::takes_particle_source(role[q])) wsum += st.w[static_cast<std::size_t>(m)];
+      for (std::size_t m = 0; m < static_cast<std::size_t>(st.n); ++m) {
+        q[m] = static_cast<std::size_t>(coupling::periodic_image(g, periodic, d, st.q[m]));
+        takes[m] = coupling::takes_particle_source(role[q[m]]);
+        if (takes[m]) wsum += st.w[m];
       }
       if (!(wsum > 0.0)) continue;
       const double share = -reaction_[ud][i] * inv_v / wsum;
-      for (int m = 0; m < st.n; ++m) {
-        const auto q = static_cast<std::size_t>(
-            coupling::periodic_image(g, periodic, d, st.q[static_cast<std::size_t>(m)]));
-        if (coupling::takes_particle_source(role[q]))
-          src[q] += st.w[static_cast<std::size_t>(m)] * share;
-      }
+      for (std::size_t m = 0; m < static_cast<std::size_t>(st.n); ++m)
+        if (takes[m]) src[q[m]] += st.w[m] * share;
     }
   }
 }
@@ -124,7 +123,7 @@ void FluidForces::compute(const gas::GasSolver& gs, const ParticleStore& p,
     const Vec3 v{v_start_[0][i], v_start_[1][i], v_start_[2][i]};
     const Vec3 w{u[0] - v[0], u[1] - v[1], u[2] - v[2]};
     std::array<std::array<double, 3>, 3> G{};
-    if (lift || s_.virtual_mass) G = velocity_gradient(gs, x, two_d_);
+    if (lift || s_.virtual_mass) G = velocity_gradient(gs, x);
     const Vec3 omega{G[2][1] - G[1][2], G[0][2] - G[2][0], G[1][0] - G[0][1]};
     Vec3 F{0.0, 0.0, 0.0};
     if (s_.saffman) F = F + coupling::forces::saffman_mei_lift(w, omega, d, rho_, mu_);

@@ -82,7 +82,6 @@ private:
   coupling::FluidForceSettings s_;
   double dt_, rho_, mu_;
   std::array<double, 3> g_;
-  bool two_d_;
   const BodyForceSpec* field_;
   std::array<std::vector<double>, 3> held_;     ///< F_held, N
   std::array<std::vector<double>, 3> physical_; ///< F_held + m_x g, N (the impulse's rate)
