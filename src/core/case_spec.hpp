@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/body_force.hpp"
+#include "core/coarse_graining.hpp"
 #include "core/coupling_settings.hpp"
 #include "core/error.hpp"
 #include "core/gas_settings.hpp"
@@ -198,6 +199,9 @@ struct CaseSpec {
   std::optional<BodyForceSpec> body_force;
   /// Non-contact forces between particles ([van_der_waals], [electrostatics]).
   NonContactSpec noncontact;
+  /// Coarse-grained parcels (`[coarse_graining]`): the species are the real particles, the run
+  /// simulates parcels of `ratio` of them (integrate/coarse_graining.hpp).
+  CoarseGrainingSpec coarse_graining;
 
   /// Dotted key path -> location, e.g. "contact.stiffness", "species[1].restitution",
   /// "insert[0].count", "walls.z_lo.friction". Filled by the reader for every key it saw.

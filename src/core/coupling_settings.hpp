@@ -95,6 +95,10 @@ struct CouplingSettings {
   std::array<double, 3> frozen_velocity{};
   std::array<std::array<double, 3>, 3> frozen_gradient{};
   FluidForceSettings forces; ///< `[coupling.forces]`
+  /// Not a case key: the factor from a particle's diameter to the one the drag closure sees,
+  /// set by the coarse-graining set-up (integrate/coarse_graining.hpp; 1 without it). The
+  /// particle's volume stays its own.
+  double drag_diameter_factor = 1.0;
 };
 
 std::string_view to_string(CouplingMode m);

@@ -76,7 +76,8 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
     drag::DragInput in;
     in.eps = gs.porosity()[q];
     in.rho = gs.density()[q];
-    in.d = sd3[q] / sd2[q]; // Sauter mean of the cell's particles
+    // Sauter mean of the cell's particles (of their real particles: coarse graining)
+    in.d = sd3[q] / sd2[q] * c.drag_diameter_factor;
     in.mu = mu;
     in.d_mean = c.d_mean;
     in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
@@ -179,7 +180,8 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
         [&](ParticleMapping& map, std::size_t i) {
           const Vec3 x = p.position(i);
           drag::DragInput in;
-          in.d = 2.0 * p.radius[i];
+          const double d = 2.0 * p.radius[i];
+          in.d = d; // the particle's own size for the porous cube's mapping
           Vec3 u, gp;
           if (stencils) { // [Hoomans96 eq. 40-41], the stencils kept for the rest of the step
             Stencil* st = &out.face_stencils[3 * i];
@@ -194,10 +196,11 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
           }
           in.mu = mu;
           in.d_mean = c.d_mean;
+          in.d = d * c.drag_diameter_factor; // a parcel's real particles' (coarse graining)
           const Vec3 v = p.velocity(i);
           const Vec3 slip{u[0] - v[0], u[1] - v[1], u[2] - v[2]};
           in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
-          const double vol = pi * in.d * in.d * in.d / 6.0;
+          const double vol = pi * d * d * d / 6.0;
           double ci = vol * C::k(in);      // [Deen07 eq. 1]: F = V K (u - v)
           if (divide_by_eps) ci /= in.eps; // Model B: f_d / eps (exchange.hpp)
           out.coeff[i] = ci;

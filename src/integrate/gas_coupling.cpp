@@ -46,7 +46,7 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
       s3 += d * d * d;
       s2 += d * d;
     }
-    if (s2 > 0.0) settings_.d_mean = s3 / s2;
+    if (s2 > 0.0) settings_.d_mean = s3 / s2 * settings_.drag_diameter_factor; // real particles
   }
   try {
     coupling::validate(settings_, gs);

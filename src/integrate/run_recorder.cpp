@@ -44,9 +44,10 @@ void write_overlap_histogram(const std::string& path, const CollisionStatistics&
 
 RunRecorder::RunRecorder(Simulation& sim, const OutputDirectory& dir, bool resume)
     : sim_(sim), dir_(dir),
-      outputs_(resume ? RunOutputs::resume(dir, layout(sim), sim.marks_, write_case_toml(sim.spec_),
-                                           kVersion)
-                      : RunOutputs::start(dir, layout(sim), write_case_toml(sim.spec_), kVersion)),
+      outputs_(resume ? RunOutputs::resume(dir, layout(sim), sim.marks_,
+                                           write_case_toml(sim.resolved_case()), kVersion)
+                      : RunOutputs::start(dir, layout(sim), write_case_toml(sim.resolved_case()),
+                                          kVersion)),
       eps_(1e-9 * sim.dt_), total_(sim.total_steps()) {
   sim_.outputs_ = &outputs_;
   OutputClock& clock = sim_.clock_;

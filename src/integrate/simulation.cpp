@@ -37,7 +37,7 @@ int gravity_axis(const std::array<double, 3>& g) {
 Simulation::Simulation(CaseSpec spec) : Simulation(std::move(spec), nullptr) {}
 
 Simulation::Simulation(CaseSpec spec, const ParticleStore* initial)
-    : spec_(std::move(spec)),
+    : case_(std::move(spec)), spec_(simulated_case(case_)),
       forces_(spec_.simulation.gravity, spec_.body_force ? &*spec_.body_force : nullptr) {
   const bool hard = spec_.simulation.engine == Engine::HardSphere;
   // Memory first: no table, particle or grid is allocated for a case that cannot fit.

@@ -17,6 +17,7 @@
 #include "analysis/energies.hpp"
 #include "contact/contact_forces.hpp"
 #include "core/case_spec.hpp"
+#include "integrate/coarse_graining.hpp"
 #include "integrate/force_sources.hpp"
 #include "integrate/gas_coupling.hpp"
 #include "integrate/hard_sphere_stepper.hpp"
@@ -121,7 +122,11 @@ public:
   void write_checkpoint(const std::string& path);
 
   const CaseReport& report() const { return report_; }
+  /// The case as simulated (a coarse-grained run's parcels: integrate/coarse_graining.hpp).
   const CaseSpec& spec() const { return spec_; }
+  /// The case a run writes (case.resolved.toml, checkpoints): what the set-up resolved, in the
+  /// terms of the case as given.
+  CaseSpec resolved_case() const { return user_values(spec_, case_); }
   ParticleStore& particles() { return p_; }
   const ParticleStore& particles() const { return p_; }
   double time() const { return time_; }
@@ -237,6 +242,9 @@ private:
   bool continuum_samples_next_step() const;
   RunSummary summary(long steps, double seconds, double seconds_output, long folded) const;
 
+  /// The case as given (the real particles of a coarse-grained run), then the case simulated
+  /// (integrate/coarse_graining.hpp; the same without [coarse_graining]).
+  CaseSpec case_;
   CaseSpec spec_;
   ParticleStore p_;
   ForceSources forces_;

@@ -217,7 +217,7 @@ void Simulation::write_checkpoint(const std::string& path) {
   const ContactStats& stats = contact_stats();
   CheckpointWriter w(path);
   w.put_string("meta/fluidem_version", kVersion);
-  w.put_string("case/resolved", write_case_toml(spec_));
+  w.put_string("case/resolved", write_case_toml(resolved_case()));
   w.put_scalar("run/step", static_cast<std::int64_t>(step_));
   w.put_scalar("run/time", time_);
   w.put_scalar("run/dt", dt_);

@@ -33,9 +33,10 @@ constexpr const char* kSetFile = "--set";
 
 const Keys& root_keys() {
   static const Keys k = {
-      "simulation", "output",     "domain",        "walls",          "species",
-      "insert",     "contact",    "neighbour",     "hardsphere",     "gas",
-      "coupling",   "body_force", "van_der_waals", "electrostatics", "liquid_bridge"};
+      "simulation",     "output",     "domain",        "walls",          "species",
+      "insert",         "contact",    "neighbour",     "hardsphere",     "gas",
+      "coupling",       "body_force", "van_der_waals", "electrostatics", "liquid_bridge",
+      "coarse_graining"};
   return k;
 }
 const Keys& simulation_keys() {
@@ -125,6 +126,10 @@ const Keys& neighbour_keys() {
 }
 const Keys& hardsphere_keys() {
   static const Keys k = {"tc_time", "elastic_below", "max_events_per_particle"};
+  return k;
+}
+const Keys& coarse_graining_keys() {
+  static const Keys k = {"ratio", "contact_scaling", "drag_diameter"};
   return k;
 }
 const Keys& van_der_waals_keys() {
@@ -236,6 +241,7 @@ const Keys& section_keys(const std::string& section) {
   if (section == "insert") return insert_keys();
   if (section == "contact") return contact_keys();
   if (section == "hardsphere") return hardsphere_keys();
+  if (section == "coarse_graining") return coarse_graining_keys();
   if (section == "body_force") return body_force_keys();
   if (section == "van_der_waals") return van_der_waals_keys();
   if (section == "electrostatics") return electrostatics_keys();
@@ -677,6 +683,7 @@ public:
     read_contact(section(root, "contact"));
     read_neighbour(section(root, "neighbour"));
     read_hardsphere(section(root, "hardsphere"));
+    read_coarse_graining(section(root, "coarse_graining"));
     read_body_force(section(root, "body_force"));
     read_van_der_waals(section(root, "van_der_waals"));
     read_electrostatics(section(root, "electrostatics"));
@@ -1431,6 +1438,24 @@ private:
     auto_number(t, "hardsphere", "elastic_below", {Bound::NonNegative, "m/s"}, h.elastic_below);
     opt_number(t, "hardsphere", "max_events_per_particle", {Bound::AtLeastOne, ""},
                h.max_events_per_particle);
+  }
+
+  /// `[coarse_graining]` [Chang08 §2.2.3] (docs/coarse-graining.md). What it does not go with
+  /// is refused at set-up (integrate/coarse_graining.hpp), which knows the models.
+  void read_coarse_graining(const toml::table* t) {
+    if (t == nullptr) return;
+    CoarseGrainingSpec& c = spec_.coarse_graining;
+    const std::string p = "coarse_graining";
+    opt_number(t, p, "ratio", {Bound::AtLeastOne, ""}, c.ratio);
+    std::vector<std::pair<std::string, ContactScaling>> scalings;
+    for (const auto s :
+         {ContactScaling::chang08, ContactScaling::scale_invariant, ContactScaling::collision_time})
+      scalings.emplace_back(to_string(s), s);
+    opt_enum<ContactScaling>(t, p, "contact_scaling", scalings, c.contact_scaling);
+    std::vector<std::pair<std::string, DragDiameter>> drags;
+    for (const auto d : {DragDiameter::real, DragDiameter::parcel})
+      drags.emplace_back(to_string(d), d);
+    opt_enum<DragDiameter>(t, p, "drag_diameter", drags, c.drag_diameter);
   }
 
   /// `[body_force]`: after [domain] (the wavelength must fit a periodic box).

@@ -368,6 +368,12 @@ std::string write_case_toml(const CaseSpec& spec) {
      << "elastic_below = " << auto_or(h.elastic_below) << "  # m/s\n"
      << "max_events_per_particle = " << format_double(h.max_events_per_particle) << "\n";
 
+  if (const CoarseGrainingSpec& cg = spec.coarse_graining; cg.active())
+    os << "\n[coarse_graining]\n"
+       << "ratio = " << format_double(cg.ratio) << "  # real particles per parcel\n"
+       << "contact_scaling = " << toml_string(std::string(to_string(cg.contact_scaling))) << "\n"
+       << "drag_diameter = " << toml_string(std::string(to_string(cg.drag_diameter))) << "\n";
+
   if (spec.body_force) {
     const BodyForceSpec& b = *spec.body_force;
     os << "\n[body_force]\n"
