@@ -292,6 +292,20 @@ TEST(Restart, CoupledSoftSpheresContinueBitwise) {
   check_restart_identity(spec, 0.02, "coupled_soft");
 }
 
+// Coarse-grained parcels (W = 8 real particles of 2 mm: the column's 4 mm parcels): the
+// checkpoint holds the case as given (the real particles), which the restart scales again.
+TEST(Restart, CoupledCoarseGrainedContinueBitwise) {
+  test::TsujiColumn c;
+  c.engine = Engine::SoftSphere;
+  c.count = 200;
+  CaseSpec spec = test::tsuji_column(c);
+  spec.species[0].diameter = 0.002;
+  spec.coarse_graining.ratio = 8.0;
+  spec.simulation.time_step = 2.5e-5;
+  spec.neighbour.sort_interval = 1;
+  check_restart_identity(spec, 0.02, "coupled_coarse_grained");
+}
+
 TEST(Restart, CoupledHardSpheresContinueBitwise) {
   test::TsujiColumn c;
   c.engine = Engine::HardSphere;

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -317,6 +319,26 @@ TEST(ThreadIndependence, FluidForcesGiveBitwiseIdenticalParticles) {
   const State one = run_with_threads(1, kFluidForcesCase, 100);
   const State two = run_with_threads(2, kFluidForcesCase, 100);
   const State three = run_with_threads(3, kFluidForcesCase, 100);
+  expect_bitwise_equal(one, two, three);
+}
+
+} // namespace
+} // namespace fluidem
+
+namespace fluidem {
+namespace {
+
+// A coarse-grained coupled bed: Case D of the Chang08 bubbling bed (1850 parcels of W = 64 real
+// particles, chang08 Hertz scaling, drag at the real diameter shared by scheme 2), 300 steps.
+TEST(ThreadIndependence, CoarseGrainedBubblingBedGivesBitwiseIdenticalParticles) {
+  std::ifstream f(std::string(FLUIDEM_SOURCE_DIR) + "/cases/chang08/bubbling_D.toml");
+  std::stringstream text;
+  text << f.rdbuf();
+  const std::string s = text.str();
+  ASSERT_NE(s.find("[coarse_graining]"), std::string::npos);
+  const State one = run_with_threads(1, s.c_str(), 300);
+  const State two = run_with_threads(2, s.c_str(), 300);
+  const State three = run_with_threads(3, s.c_str(), 300);
   expect_bitwise_equal(one, two, three);
 }
 
