@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace fluidem {
 
@@ -56,7 +57,12 @@ SizeDistribution::SizeDistribution(const SizeDistributionSpec& spec) : spec_(spe
   const bool in_log = spec.kind == Kind::LogNormal;
   if (spec.kind == Kind::Normal || in_log) {
     const double a = in_log ? std::log(lo_) : lo_, b = in_log ? std::log(hi_) : hi_;
-    p_lo_ = phi_cdf((a - mu_) / sigma_), p_hi_ = phi_cdf((b - mu_) / sigma_);
+    z_lo_ = (a - mu_) / sigma_, z_hi_ = (b - mu_) / sigma_;
+    // An interval mostly above the mean is sampled mirrored (-z): Phi is resolved to the last
+    // bit near 0, not near 1 (1 - Phi(8) = 6e-16 is below the spacing of doubles at 1).
+    reflect_ = z_lo_ + z_hi_ > 0.0;
+    if (reflect_) std::swap(z_lo_, z_hi_), z_lo_ = -z_lo_, z_hi_ = -z_hi_;
+    p_lo_ = phi_cdf(z_lo_), p_hi_ = phi_cdf(z_hi_);
   }
   if (spec.kind == Kind::Normal && spec.basis == Basis::Mass) {
     // Envelope of q3(d) d^-3 (unnormalised: exp(-z^2/2) d^-3) on each panel [a, b].
@@ -98,14 +104,14 @@ double SizeDistribution::truncated_normal(double u) const {
   // Bisection on Phi(z) = p in [z_lo, z_hi] until the interval stops shrinking (the last bit).
   const bool in_log = spec_.kind == Kind::LogNormal;
   const double p = p_lo_ + u * (p_hi_ - p_lo_);
-  double a = ((in_log ? std::log(lo_) : lo_) - mu_) / sigma_;
-  double b = ((in_log ? std::log(hi_) : hi_) - mu_) / sigma_;
+  double a = z_lo_, b = z_hi_;
   for (int it = 0; it < 200; ++it) {
     const double m = 0.5 * (a + b);
     if (m <= a || m >= b) break;
     (phi_cdf(m) < p ? a : b) = m;
   }
-  const double x = mu_ + sigma_ * 0.5 * (a + b);
+  const double z = 0.5 * (a + b);
+  const double x = mu_ + sigma_ * (reflect_ ? -z : z);
   return std::clamp(in_log ? std::exp(x) : x, lo_, hi_);
 }
 

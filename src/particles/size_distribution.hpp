@@ -51,7 +51,9 @@ private:
   SizeDistributionSpec spec_;
   double lo_ = 0.0, hi_ = 0.0;
   double mu_ = 0.0, sigma_ = 0.0;  ///< normal (in d) or log-normal (in ln d) parameters
-  double p_lo_ = 0.0, p_hi_ = 0.0; ///< Phi at the truncation bounds
+  double z_lo_ = 0.0, z_hi_ = 0.0; ///< the standardised truncation bounds (mirrored)
+  bool reflect_ = false;           ///< sampled as -z (an interval mostly above the mean)
+  double p_lo_ = 0.0, p_hi_ = 0.0; ///< Phi at z_lo_ and z_hi_
   std::vector<double> cumulative_; ///< table: the CDF; discrete and mass table: choice
   std::vector<double> envelope_;   ///< mass normal: panel bounds of q3 d^-3
   std::vector<double> envelope_cumulative_;

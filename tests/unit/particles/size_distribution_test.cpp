@@ -179,6 +179,17 @@ TEST(SizeDistribution, DiscreteByNumberAndMass) {
   expect_matches(m, discrete(m.diameters, m.fractions), 110);
 }
 
+// A truncation far in the upper tail, [mean + 9 std, mean + 10 std], where Phi rounds to 1: the
+// reference with the upper tail Q(z) = erfc(z / sqrt 2) / 2, Z = Q(9) - Q(10) (the sampler
+// mirrors such an interval; sampled through Phi the draws would all sit at one bound).
+TEST(SizeDistribution, FarUpperTail) {
+  const double a = 9.0, b = 10.0;
+  const auto Q = [](double z) { return 0.5 * std::erfc(z / std::numbers::sqrt2); };
+  const double z = Q(a) - Q(b), r = (phi(a) - phi(b)) / z;
+  const Moments ref{1e-3 + 2e-4 * r, 4e-8 * (1.0 + (a * phi(a) - b * phi(b)) / z - r * r)};
+  expect_matches(normal(Basis::Number, 1e-3 + 9.0 * 2e-4, 1e-3 + 10.0 * 2e-4), ref, 111);
+}
+
 // The test can fail: a mass basis read as a number basis misses the mass-weighted mean by far
 // more than 3 standard errors, for every kind.
 TEST(SizeDistribution, MassBasisIsNotNumberBasis) {
