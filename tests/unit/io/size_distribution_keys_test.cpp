@@ -151,6 +151,23 @@ TEST(SizeDistributionKeys, BadValuesNameTheKey) {
                                          "case.toml"));
 }
 
+// --set reaches the sub-table's keys, and refuses a key of no kind naming it.
+TEST(SizeDistributionKeys, SetOverrides) {
+  const std::string text =
+      base() + "size_distribution = { kind = \"normal\", mean = 0.004, std = 0.0005 }\n";
+  const CaseSpec c =
+      read_case_string(text, "case.toml", {"insert[0].size_distribution.std=0.0002"});
+  EXPECT_EQ(c.inserts[0].size_distribution->std, 0.0002);
+  EXPECT_EQ(c.inserts[0].size_distribution->min, 0.004 - 3.0 * 0.0002);
+  try {
+    (void)read_case_string(text, "case.toml", {"insert[0].size_distribution.sigma=1"});
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("insert[0].size_distribution.sigma"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(SizeDistributionKeys, NotWithAFile) {
   const std::string e =
       error_of(base("file") + "size_distribution = { kind = \"normal\", mean = 0.004, std = "
