@@ -18,7 +18,7 @@ sides = ["left", "right", "front", "back", "bottom", "top"]
 headers = ["[simulation]", "[output]", "[[output.probe]]", "[domain]", "[walls]", "[[species]]",
            "[[insert]]", "[contact]", "[neighbour]", "[hardsphere]", "[gas]", "[gas.solver]",
            "[gas.boundary]", "[coupling]", "[coupling.forces]"]
-headers += [f"[walls.{f}]" for f in faces] + ["[insert.region]"]
+headers += [f"[walls.{f}]" for f in faces] + ["[insert.region]", "[insert.size_distribution]"]
 headers += [f"[gas.boundary.{s}]" for s in sides]
 headers += [f"[[gas.boundary.{s}.region]]" for s in sides]
 syntax = ["=", " = ", "[", "]", "[[", "]]", "{", "}", ",", ".", "\"", "'", "\"\"\"", "'''", "#",

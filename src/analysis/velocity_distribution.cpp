@@ -31,7 +31,8 @@ void check_options(const VelocityDistributionOptions& o) {
 void append_velocity_fluctuations(const ParticleStore& p, const std::array<double, 3>& lo,
                                   const std::array<double, 3>& hi,
                                   const VelocityDistributionOptions& o,
-                                  std::vector<std::array<double, 3>>& C) {
+                                  std::vector<std::array<double, 3>>& C,
+                                  std::vector<std::size_t>* which) {
   check_options(o);
   std::array<int, 3> nc = o.cells;
   for (int d = 0; d < 3; ++d)
@@ -69,6 +70,7 @@ void append_velocity_fluctuations(const ParticleStore& p, const std::array<doubl
     std::array<double, 3> c{};
     for (int d = 0; d < 3; ++d) c[d] = v[d] - mv[d][q] / mass[q];
     C.push_back(c);
+    if (which) which->push_back(i);
   }
 }
 

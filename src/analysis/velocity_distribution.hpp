@@ -53,11 +53,13 @@ VelocityDistribution velocity_distribution(const ParticleStore& p, const std::ar
 /// The fluctuation velocities C_i (as velocity_distribution defines them, cells with a single
 /// particle left out) of the particles of `p`, appended to `out`: to pool several frames (each
 /// frame with its own local means) into one distribution. Throws for bad options as
-/// velocity_distribution does.
+/// velocity_distribution does. `which` (when given) gets the index in `p` of each appended
+/// sample (to split the samples by particle, e.g. by size class).
 void append_velocity_fluctuations(const ParticleStore& p, const std::array<double, 3>& lo,
                                   const std::array<double, 3>& hi,
                                   const VelocityDistributionOptions& o,
-                                  std::vector<std::array<double, 3>>& out);
+                                  std::vector<std::array<double, 3>>& out,
+                                  std::vector<std::size_t>* which = nullptr);
 
 /// The distribution of the fluctuation velocities `C` (from append_velocity_fluctuations, one
 /// or many frames): moments, granular temperature, anisotropy and histograms as above.

@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "analysis/segregation.hpp"
+#include "analysis/size_classes.hpp"
 #include "analysis/spectrum.hpp"
 #include "analysis/velocity_distribution.hpp"
 #include "app/analyse_bed.hpp"
@@ -33,6 +34,45 @@ namespace fluidem {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The velocity distribution per size class (analysis/size_classes.hpp) of the fluctuations `C`
+// (sample j of class sample_class[j]; the local means are those of all particles, so the classes'
+// samples together are the whole bed's) into `path`, one row per class, and summary rows
+// granular_temperature_size_K. A class whose distribution cannot be formed (fewer than 2
+// samples, a zero variance) gets NaN.
+void write_velocity_by_size(const SizeClasses& classes, const std::vector<std::array<double, 3>>& C,
+                            const std::vector<std::size_t>& sample_class,
+                            const VelocityDistributionOptions& vo, const fs::path& path,
+                            std::vector<SummaryRow>& summary) {
+  std::vector<std::vector<std::array<double, 3>>> by(classes.size());
+  for (std::size_t j = 0; j < C.size(); ++j) by[sample_class[j]].push_back(C[j]);
+  std::ofstream f = open_out(path);
+  f << (vo.two_d ? "class,d_min,d_max,particles,samples,variance_x,variance_z,"
+                   "granular_temperature,anisotropy\n"
+                 : "class,d_min,d_max,particles,samples,variance_x,variance_y,variance_z,"
+                   "granular_temperature,anisotropy\n");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t k = 0; k < classes.size(); ++k) {
+    VelocityDistribution vd;
+    bool ok = true;
+    try {
+      vd = fluctuation_distribution(by[k], vo);
+    } catch (const std::invalid_argument&) {
+      ok = false;
+    }
+    f << k << ',' << g(classes.d_min[k]) << ',' << g(classes.d_max[k]) << ',' << classes.count[k]
+      << ',' << by[k].size();
+    for (int d = 0; d < 3; ++d)
+      if (!(vo.two_d && d == 1)) f << ',' << g(ok ? vd.variance[d] : nan);
+    f << ',' << g(ok ? vd.granular_temperature : nan) << ',' << g(ok ? vd.anisotropy : nan) << '\n';
+    summary.push_back({"granular_temperature_size_" + std::to_string(k),
+                       ok ? vd.granular_temperature : nan, "m^2/s^2"});
+    fmt::print("  size class {} ({:.4g} to {:.4g} m, {} particles): granular temperature {:.4g} "
+               "m^2/s^2\n",
+               k, classes.d_min[k], classes.d_max[k], classes.count[k],
+               ok ? vd.granular_temperature : nan);
+  }
+}
 
 // The particle analyses of the run in `out` into `dir`; true when segregation.csv was written.
 bool analyse_particles(const fs::path& particles_path, const fs::path& out, const fs::path& dir,
@@ -69,11 +109,24 @@ bool analyse_particles(const fs::path& particles_path, const fs::path& out, cons
   ParticleStore p;
   long frames_used = 0;
   const auto& ft = reader->times();
+  // The size classes of the first frame's diameters (analysis/size_classes.hpp), and the class
+  // of each fluctuation sample.
+  std::vector<double> diameters;
+  std::optional<SizeClasses> classes;
+  std::vector<std::size_t> sample_class, which;
   try {
+    if (reader->frames() > 0) {
+      reader->read_frame(0, p);
+      for (const double r : p.radius) diameters.push_back(2.0 * r);
+      if (!diameters.empty()) classes = size_classes(diameters);
+    }
     for (std::size_t k = 0; k < reader->frames(); ++k) {
       if (ft[k] < t0 || ft[k] > t1) continue;
       reader->read_frame(k, p);
-      append_velocity_fluctuations(p, lo, hi, vo, C);
+      which.clear();
+      append_velocity_fluctuations(p, lo, hi, vo, C, &which);
+      if (classes)
+        for (const std::size_t i : which) sample_class.push_back(classes->of(2.0 * p.radius[i]));
       ++frames_used;
     }
   } catch (const std::runtime_error& e) {
@@ -133,16 +186,23 @@ bool analyse_particles(const fs::path& particles_path, const fs::path& out, cons
     fmt::print("  granular temperature {:.4g} m^2/s^2, anisotropy {:.3f} (vertical / horizontal "
                "variance)\n",
                vd.granular_temperature, vd.anisotropy);
+    if (classes && classes->size() >= 2)
+      write_velocity_by_size(*classes, C, sample_class, vo,
+                             dir / "velocity_distribution_by_size.csv", summary);
   }
 
-  // Segregation when the particles have exactly two sizes.
+  // Segregation when the particles have two sizes or more: two split at the mean of their
+  // diameters, more (a size distribution, three species) at the volume-weighted median diameter.
   std::set<double> radii;
   if (reader->frames() > 0) {
     reader->read_frame(0, p);
     radii.insert(p.radius.begin(), p.radius.end());
   }
-  if (radii.size() == 2) {
-    const double split = *radii.begin() + *radii.rbegin(); // the mean of the two diameters
+  if (radii.size() >= 2) {
+    const double split = radii.size() == 2
+                             ? *radii.begin() + *radii.rbegin() // the mean of the two diameters
+                             : volume_weighted_median_diameter(diameters, two_d);
+    if (radii.size() > 2) summary.push_back({"segregation_split_diameter", split, "m"});
     std::ofstream f = open_out(dir / "segregation.csv");
     f << "time,s\n";
     double sum = 0.0, last = 0.0;
@@ -157,11 +217,17 @@ bool analyse_particles(const fs::path& particles_path, const fs::path& out, cons
     summary.push_back({"segregation_last_frame", last, "1"});
     if (in_window > 0)
       summary.push_back({"segregation_mean_window", sum / static_cast<double>(in_window), "1"});
-    fmt::print("segregation        s = {:.4f} at the last frame (diameters {:.4g} and {:.4g} m)\n",
-               last, 2.0 * *radii.begin(), 2.0 * *radii.rbegin());
+    if (radii.size() == 2)
+      fmt::print("segregation        s = {:.4f} at the last frame (diameters {:.4g} and {:.4g} "
+                 "m)\n",
+                 last, 2.0 * *radii.begin(), 2.0 * *radii.rbegin());
+    else
+      fmt::print("segregation        s = {:.4f} at the last frame ({} diameters from {:.4g} to "
+                 "{:.4g} m, split at the volume-weighted median {:.4g} m)\n",
+                 last, radii.size(), 2.0 * *radii.begin(), 2.0 * *radii.rbegin(), split);
   }
 
-  return radii.size() == 2;
+  return radii.size() >= 2;
 }
 
 } // namespace
@@ -395,7 +461,7 @@ int analyse(const AnalyseOptions& o) {
   f << "name,value,unit\n";
   for (const auto& r : summary) f << r.name << ',' << g(r.value) << ',' << r.unit << '\n';
   fmt::print("written            {}/ (summary.csv, velocity_distribution.csv, spectrum_*.csv{})\n",
-             dir.string(), two_sizes ? ", segregation.csv" : "");
+             dir.string(), two_sizes ? ", velocity_distribution_by_size.csv, segregation.csv" : "");
   return 0;
 }
 

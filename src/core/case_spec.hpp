@@ -59,6 +59,25 @@ struct DomainSpec {
 
 enum class Placement { Random, Lattice, File };
 
+/// A particle-size distribution of one [[insert]] block (`size_distribution`,
+/// docs/case-file.md): the diameters of the block's particles, drawn from `seed`; the material
+/// stays the species'. Sampled by particles/size_distribution.hpp.
+struct SizeDistributionSpec {
+  enum class Kind { Normal, LogNormal, Table, Discrete };
+  enum class Basis { Number, Mass };
+  Kind kind = Kind::Normal;
+  Basis basis = Basis::Number;    ///< what the parameters describe: counts, or mass (volume)
+  double mean = 0.0;              ///< normal: mean, m
+  double std = 0.0;               ///< normal: standard deviation, m
+  double median = 0.0;            ///< log_normal: geometric mean d_g, m
+  double geometric_std = 0.0;     ///< log_normal: sigma_g > 1
+  double min = 0.0;               ///< normal, log_normal: truncation, m (resolved: always set)
+  double max = 0.0;               ///< m
+  std::vector<double> diameters;  ///< table, discrete: m, increasing
+  std::vector<double> cumulative; ///< table: CDF at the diameters, 0 ... 1
+  std::vector<double> fractions;  ///< discrete: fraction of each diameter, summing to 1
+};
+
 struct InsertSpec {
   std::string species;               ///< name of a [[species]]
   long count = 0;                    ///< particles to insert (ignored for File placement)
@@ -75,6 +94,8 @@ struct InsertSpec {
   std::uint64_t seed = 1;
   /// C per particle of this insert; empty: the species' charge.
   std::optional<double> charge;
+  /// The diameters of this block's particles; empty: the species' diameter.
+  std::optional<SizeDistributionSpec> size_distribution;
 };
 
 /// One contact sub-model as the case names it: its name (the case-file string; empty: the kind's

@@ -101,7 +101,14 @@ const Keys& species_keys() {
 const Keys& insert_keys() {
   static const Keys k = {"species", "count",    "placement",       "file",
                          "region",  "velocity", "velocity_spread", "angular_velocity",
-                         "fixed",   "seed",     "charge"};
+                         "fixed",   "seed",     "charge",          "size_distribution"};
+  return k;
+}
+/// [[insert]] size_distribution: every kind's keys (read_size_distribution says which belong to
+/// which kind).
+const Keys& size_distribution_keys() {
+  static const Keys k = {"kind", "basis", "mean",      "std",        "median",   "geometric_std",
+                         "min",  "max",   "diameters", "cumulative", "fractions"};
   return k;
 }
 const Keys& region_keys() {
@@ -258,6 +265,7 @@ bool contains(const Keys& keys, const std::string& k) {
 const Keys* subtable_keys(const std::string& parent, const std::string& sub) {
   if (parent == "walls" && contains(face_keys(), sub)) return &material_keys();
   if (parent == "insert" && sub == "region") return &region_keys();
+  if (parent == "insert" && sub == "size_distribution") return &size_distribution_keys();
   if (parent == "gas" && sub == "solver") return &gas_solver_keys();
   if (parent == "coupling" && sub == "forces") return &coupling_force_keys();
   if (parent == "output" && sub == "continuum") return &continuum_keys();
@@ -1323,8 +1331,135 @@ private:
       }
       if (const auto seed = find(*t, "seed", p + ".seed"))
         in.seed = static_cast<std::uint64_t>(integer(*seed, p + ".seed", 0, "an integer >= 0"));
+      const std::string sd = p + ".size_distribution";
+      if (const toml::table* d = table(*t, "size_distribution", sd, size_distribution_keys())) {
+        if (from_file)
+          throw InputError(spec_.where(sd), sd,
+                           "not allowed with placement = \"file\" (the file gives each "
+                           "particle's diameter; allowed: placement = \"random\" or "
+                           "\"lattice\")");
+        in.size_distribution = read_size_distribution(*d, sd);
+      }
       spec_.inserts.push_back(in);
     }
+  }
+
+  /// An [[insert]] size_distribution (docs/case-file.md): its kind's keys, every diameter the
+  /// distribution can reach positive, min < max, a table's diameters increasing with its CDF
+  /// non-decreasing from 0 to 1, discrete fractions summing to 1 (both within 1e-6; the sampler
+  /// divides by the sum).
+  SizeDistributionSpec read_size_distribution(const toml::table& t, const std::string& p) {
+    using Kind = SizeDistributionSpec::Kind;
+    using Basis = SizeDistributionSpec::Basis;
+    SizeDistributionSpec d;
+    const std::string shown = "[insert.size_distribution] of " + p;
+    const auto kind = find(t, "kind", p + ".kind");
+    const Keys kinds = {"normal", "log_normal", "table", "discrete"};
+    if (!kind) missing(&t, p, shown, "kind", "one of " + join_quoted(kinds));
+    opt_enum<Kind>(&t, p, "kind",
+                   {{"normal", Kind::Normal},
+                    {"log_normal", Kind::LogNormal},
+                    {"table", Kind::Table},
+                    {"discrete", Kind::Discrete}},
+                   d.kind);
+    opt_enum<Basis>(&t, p, "basis", {{"number", Basis::Number}, {"mass", Basis::Mass}}, d.basis);
+    const std::string kind_name = *kind->node->value_exact<std::string>();
+    const Keys own = d.kind == Kind::Normal      ? Keys{"mean", "std", "min", "max"}
+                     : d.kind == Kind::LogNormal ? Keys{"median", "geometric_std", "min", "max"}
+                     : d.kind == Kind::Table     ? Keys{"diameters", "cumulative"}
+                                                 : Keys{"diameters", "fractions"};
+    for (auto&& [k, v] : t) {
+      const std::string name(k.str());
+      if (name == "kind" || name == "basis" || contains(own, name)) continue;
+      throw InputError(loc(p + "." + name, k.source().begin), p + "." + name,
+                       "not a key of kind = " + in_quotes(kind_name) + " (allowed: kind, basis, " +
+                           join_quoted(own) + ")");
+    }
+    const NumRule length{Bound::Positive, "m"};
+    if (d.kind == Kind::Normal || d.kind == Kind::LogNormal) {
+      const bool normal = d.kind == Kind::Normal;
+      if (normal) {
+        d.mean = req_number(&t, p, shown, "mean", length);
+        d.std = req_number(&t, p, shown, "std", length);
+        d.min = d.mean - 3.0 * d.std, d.max = d.mean + 3.0 * d.std;
+      } else {
+        d.median = req_number(&t, p, shown, "median", length);
+        const std::string gp = p + ".geometric_std";
+        const auto g = find(t, "geometric_std", gp);
+        if (!g) missing(&t, p, shown, "geometric_std", "a number > 1");
+        d.geometric_std = number(*g, gp, {Bound::AtLeastOne, ""});
+        if (!(d.geometric_std > 1.0))
+          throw InputError(g->where, gp,
+                           format_double(d.geometric_std) +
+                               " is out of range (allowed: a number > 1; 1 is one diameter: "
+                               "leave size_distribution out)");
+        const double s3 = std::pow(d.geometric_std, 3.0);
+        d.min = d.median / s3, d.max = d.median * s3;
+      }
+      const bool min_given = t.contains("min");
+      opt_number(&t, p, "min", length, d.min);
+      opt_number(&t, p, "max", length, d.max);
+      if (!(d.min > 0.0))
+        throw InputError(spec_.where(p + ".std"), p + ".std",
+                         "mean - 3 std = " + format_double(d.min) +
+                             " m: the distribution reaches d <= 0 (allowed: give min > 0, or a "
+                             "smaller std)");
+      if (!(d.max > d.min))
+        throw InputError(spec_.where(p + (t.contains("max") ? ".max" : ".min")),
+                         p + (t.contains("max") ? ".max" : ".min"),
+                         "min = " + format_double(d.min) + " m, max = " + format_double(d.max) +
+                             " m (allowed: 0 < min < max" +
+                             (min_given || t.contains("max")
+                                  ? std::string(")")
+                                  : std::string(", defaults ") +
+                                        (normal ? "mean -+ 3 std)" : "median /* sigma_g^3)")));
+      return d;
+    }
+    const std::string second = d.kind == Kind::Table ? "cumulative" : "fractions";
+    std::vector<double>& values = d.kind == Kind::Table ? d.cumulative : d.fractions;
+    if (!t.contains("diameters"))
+      missing(&t, p, shown, "diameters", "an array of increasing diameters > 0, in m");
+    if (!t.contains(second)) missing(&t, p, shown, second, "an array of numbers, one per diameter");
+    opt_numbers(&t, p, "diameters", length, d.diameters);
+    opt_numbers(&t, p, second, {Bound::NonNegative, ""}, values);
+    for (std::size_t i = 1; i < d.diameters.size(); ++i)
+      if (!(d.diameters[i] > d.diameters[i - 1]))
+        throw InputError(spec_.where(p + ".diameters"), p + ".diameters",
+                         "diameters[" + std::to_string(i) + "] = " + format_double(d.diameters[i]) +
+                             " m is not above diameters[" + std::to_string(i - 1) +
+                             "] = " + format_double(d.diameters[i - 1]) +
+                             " m (allowed: strictly increasing diameters > 0)");
+    const std::string vp = p + "." + second;
+    if (values.size() != d.diameters.size())
+      throw InputError(spec_.where(vp), vp,
+                       std::to_string(values.size()) + " values for " +
+                           std::to_string(d.diameters.size()) +
+                           " diameters (allowed: one per diameter)");
+    if (d.kind == Kind::Table) {
+      if (d.diameters.size() < 2)
+        throw InputError(spec_.where(p + ".diameters"), p + ".diameters",
+                         "one point (allowed: at least two points of the CDF)");
+      for (std::size_t i = 1; i < values.size(); ++i)
+        if (values[i] < values[i - 1])
+          throw InputError(spec_.where(vp), vp,
+                           "cumulative[" + std::to_string(i) + "] = " + format_double(values[i]) +
+                               " is below cumulative[" + std::to_string(i - 1) +
+                               "] (allowed: non-decreasing from 0 to 1)");
+      if (values.front() != 0.0 || std::fabs(values.back() - 1.0) > 1e-6)
+        throw InputError(spec_.where(vp), vp,
+                         "runs from " + format_double(values.front()) + " to " +
+                             format_double(values.back()) +
+                             " (allowed: from 0 at the smallest diameter to 1 within 1e-6 at the "
+                             "largest)");
+    } else {
+      double sum = 0.0;
+      for (const double f : values) sum += f;
+      if (std::fabs(sum - 1.0) > 1e-6)
+        throw InputError(spec_.where(vp), vp,
+                         "the fractions sum to " + format_double(sum) +
+                             " (allowed: fractions >= 0 summing to 1 within 1e-6)");
+    }
+    return d;
   }
 
   /// [contact]: the sub-models and their coefficients, as the models declare them

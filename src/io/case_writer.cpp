@@ -61,6 +61,39 @@ std::string vec3(const std::array<double, 3>& v) {
   return s;
 }
 
+std::string numbers(const std::vector<double>& v) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (i > 0) s += ", ";
+    s += format_double(v[i]);
+  }
+  s += "]";
+  return s;
+}
+
+/// An [[insert]] size_distribution as an inline table, the truncation resolved.
+std::string size_distribution(const SizeDistributionSpec& d) {
+  using Kind = SizeDistributionSpec::Kind;
+  const char* kind = d.kind == Kind::Normal      ? "normal"
+                     : d.kind == Kind::LogNormal ? "log_normal"
+                     : d.kind == Kind::Table     ? "table"
+                                                 : "discrete";
+  std::string s = std::string("{ kind = \"") + kind + "\", basis = \"" +
+                  (d.basis == SizeDistributionSpec::Basis::Mass ? "mass" : "number") + "\"";
+  if (d.kind == Kind::Normal)
+    s += ", mean = " + format_double(d.mean) + ", std = " + format_double(d.std);
+  if (d.kind == Kind::LogNormal)
+    s += ", median = " + format_double(d.median) +
+         ", geometric_std = " + format_double(d.geometric_std);
+  if (d.kind == Kind::Normal || d.kind == Kind::LogNormal)
+    s += ", min = " + format_double(d.min) + ", max = " + format_double(d.max);
+  if (d.kind == Kind::Table || d.kind == Kind::Discrete)
+    s += ", diameters = " + numbers(d.diameters) +
+         (d.kind == Kind::Table ? ", cumulative = " + numbers(d.cumulative)
+                                : ", fractions = " + numbers(d.fractions));
+  return s + " }";
+}
+
 std::string bool3(const std::array<bool, 3>& v) {
   std::string s = "[";
   for (std::size_t i = 0; i < 3; ++i) s += std::string(i ? ", " : "") + (v[i] ? "true" : "false");
@@ -337,6 +370,8 @@ std::string write_case_toml(const CaseSpec& spec) {
        << "fixed = " << (in.fixed ? "true" : "false") << "\n"
        << "seed = " << in.seed << "\n";
     if (in.charge) os << "charge = " << format_double(*in.charge) << "  # C\n";
+    if (in.size_distribution)
+      os << "size_distribution = " << size_distribution(*in.size_distribution) << "  # m\n";
   }
 
   // Each model's name, then its coefficients as it declares them ("auto" when left to it).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -12,6 +13,7 @@
 
 #include "core/input_file.hpp"
 #include "core/memory_budget.hpp"
+#include "particles/size_distribution.hpp"
 
 namespace fluidem {
 
@@ -211,6 +213,17 @@ void check_random_fill(const CaseSpec& spec, const InsertSpec& ins, const std::s
                   two_d ? "Hinrichsen et al. 1986" : "Zhang & Torquato 2013", limit, limit));
 }
 
+/// The diameter of equal particles filling the region as the block's do: the species' diameter,
+/// or with a size distribution (d^3)^(1/3) over the drawn diameters ((d^2)^(1/2) for discs),
+/// which gives the same solids volume (area) for the jamming bound.
+double fill_diameter(const std::vector<double>& diameters, double species_diameter, bool two_d) {
+  if (diameters.empty()) return species_diameter;
+  const double p = two_d ? 2.0 : 3.0;
+  double sum = 0.0;
+  for (const double d : diameters) sum += std::pow(d, p);
+  return std::pow(sum / static_cast<double>(diameters.size()), 1.0 / p);
+}
+
 /// The sites of a simple cubic (square) lattice of spacing d between the centres' bounds lo and
 /// hi: per axis (m, clamped to 4e9) and in all (clamped to 4e18).
 long lattice_sites(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double d,
@@ -290,6 +303,9 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
   const double y_mid = 0.5 * (dom.lo[1] + dom.hi[1]);
   double dmax = 0.0;
   for (const auto& s : spec.species) dmax = std::max(dmax, s.diameter);
+  for (const auto& ins : spec.inserts)
+    if (ins.size_distribution)
+      dmax = std::max(dmax, SizeDistribution(*ins.size_distribution).largest());
   InsertionGrid grid(std::max(dmax, 1e-12));
   require_memory(spec, {particle_memory_share(spec)});
 
@@ -299,9 +315,24 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
     const int s = spec.species_index(ins.species);
     if (s < 0) throw InputError(spec.where(key + ".species"), key + ".species", "unknown species");
     const auto& sp = spec.species[s];
-    const double r = 0.5 * sp.diameter;
     std::mt19937_64 rng(ins.seed);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
+    // With a size distribution the block's diameters are drawn first, from the block's
+    // generator, and placed largest first (random sequential addition fills best that way);
+    // without one every particle has the species' diameter and no number is drawn for it.
+    std::vector<double> diameters;
+    if (ins.size_distribution && ins.placement != Placement::File) {
+      diameters =
+          SizeDistribution(*ins.size_distribution).sample(static_cast<std::size_t>(ins.count), rng);
+      if (ins.placement == Placement::Random)
+        std::stable_sort(diameters.begin(), diameters.end(), std::greater<>());
+    }
+    const auto diameter_of = [&](long c) {
+      return diameters.empty() ? sp.diameter : diameters[static_cast<std::size_t>(c)];
+    };
+    const double d_block =
+        diameters.empty() ? sp.diameter : SizeDistribution(*ins.size_distribution).largest();
+    const double r = 0.5 * d_block;
     const Vec3 spin{ins.angular_velocity[0], ins.angular_velocity[1], ins.angular_velocity[2]};
     auto velocity = [&]() {
       Vec3 v{ins.velocity[0], ins.velocity[1], ins.velocity[2]};
@@ -311,18 +342,24 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
       if (two_d) v.y = 0.0;
       return v;
     };
-    std::array<double, 3> lo = ins.region_lo, hi = ins.region_hi;
-    for (int a = 0; a < 3; ++a) lo[a] += r, hi[a] -= r;
-    if (two_d) lo[1] = hi[1] = y_mid;
-    for (int a = 0; a < 3; ++a) {
-      if (hi[a] < lo[a] && hi[a] > lo[a] - 1e-9 * sp.diameter) hi[a] = lo[a]; // round-off
-      if (hi[a] < lo[a]) {
-        throw InputError(spec.where(key + ".region"), key + ".region",
-                         fmt::format("the region is narrower than one particle diameter ({} m) "
-                                     "along {}",
-                                     sp.diameter, "xyz"[a]));
+    // The bounds of the centres of particles of radius ri in the region.
+    const auto centre_bounds = [&](double ri, std::array<double, 3>& lo,
+                                   std::array<double, 3>& hi) {
+      lo = ins.region_lo, hi = ins.region_hi;
+      for (int a = 0; a < 3; ++a) lo[a] += ri, hi[a] -= ri;
+      if (two_d) lo[1] = hi[1] = y_mid;
+      for (int a = 0; a < 3; ++a) {
+        if (hi[a] < lo[a] && hi[a] > lo[a] - 1e-9 * 2.0 * ri) hi[a] = lo[a]; // round-off
+        if (hi[a] < lo[a]) {
+          throw InputError(spec.where(key + ".region"), key + ".region",
+                           fmt::format("the region is narrower than one particle diameter ({} "
+                                       "m) along {}",
+                                       2.0 * ri, "xyz"[a]));
+        }
       }
-    }
+    };
+    std::array<double, 3> lo{}, hi{};
+    centre_bounds(r, lo, hi); // the largest particle's
 
     // A particle with velocity v and angular velocity w (rad/s), or held in place (fixed).
     auto place_moving = [&](const Vec3& x, double radius, double rho, const Vec3& v,
@@ -339,16 +376,19 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
     };
 
     if (ins.placement == Placement::Random) {
-      check_random_fill(spec, ins, key, sp.diameter, two_d);
+      check_random_fill(spec, ins, key, fill_diameter(diameters, sp.diameter, two_d), two_d);
       const long max_attempts = 2000 * ins.count + 100000;
       long placed = 0, attempts = 0;
+      double r_placed = r;
       while (placed < ins.count && attempts < max_attempts) {
         ++attempts;
+        const double ri = 0.5 * diameter_of(placed);
+        if (ri != r_placed) centre_bounds(ri, lo, hi), r_placed = ri;
         Vec3 x{lo[0] + (hi[0] - lo[0]) * unit(rng), lo[1] + (hi[1] - lo[1]) * unit(rng),
                lo[2] + (hi[2] - lo[2]) * unit(rng)};
         if (two_d) x.y = y_mid;
-        if (grid.max_overlap(store, x, r, nullptr) > 0.0) continue;
-        place(x, r, sp.density);
+        if (grid.max_overlap(store, x, ri, nullptr) > 0.0) continue;
+        place(x, ri, sp.density);
         ++placed;
       }
       if (placed < ins.count) {
@@ -356,28 +396,28 @@ void insert_particles(const CaseSpec& spec, ParticleStore& store) {
                          fmt::format("only {} of {} particles of diameter {} m fit in the region "
                                      "by random placement; enlarge the region or use "
                                      "placement = \"lattice\"",
-                                     placed, ins.count, sp.diameter));
+                                     placed, ins.count, diameter_of(placed)));
       }
     } else if (ins.placement == Placement::Lattice) {
-      // Simple cubic (square in 2-D) lattice of spacing d, filled x fastest, then y, then z.
+      // Simple cubic (square in 2-D) lattice of spacing d, filled x fastest, then y, then z;
+      // with a size distribution d is its largest diameter, each particle at a site with its own.
       // Sites per axis and the capacity in double first: a tiny diameter in a large region
       // would overflow the integers (the count is at most 2^31 - 1, so a capacity above that
       // is enough and is clamped).
       std::array<long, 3> m{};
-      const long capacity = lattice_sites(lo, hi, sp.diameter, two_d, m);
+      const long capacity = lattice_sites(lo, hi, d_block, two_d, m);
       if (capacity < ins.count) {
         throw InputError(spec.where(key + ".count"), key + ".count",
                          fmt::format("the region holds at most {} particles of diameter {} m on "
                                      "a lattice, {} requested",
-                                     capacity, sp.diameter, ins.count));
+                                     capacity, d_block, ins.count));
       }
       for (long c = 0; c < ins.count; ++c) {
         const long ix = c % m[0], iy = (c / m[0]) % m[1], iz = c / (m[0] * m[1]);
-        Vec3 x{lo[0] + static_cast<double>(ix) * sp.diameter,
-               lo[1] + static_cast<double>(iy) * sp.diameter,
-               lo[2] + static_cast<double>(iz) * sp.diameter};
+        Vec3 x{lo[0] + static_cast<double>(ix) * d_block, lo[1] + static_cast<double>(iy) * d_block,
+               lo[2] + static_cast<double>(iz) * d_block};
         if (two_d) x.y = y_mid;
-        place(x, r, sp.density);
+        place(x, 0.5 * diameter_of(c), sp.density);
       }
     } else {
       const DataFile data = read_lammps_data(spec, ins, key, 0.0);

@@ -257,6 +257,30 @@ void VelocityDensitiesAreNormalisedAndReferencesExact() {
   EXPECT_GT(vx, 0.0);
 }
 
+// The velocity statistics per size class (docs/analysis.md): the two species of distinct
+// diameters are the two classes, 150 particles each; their samples together are the bed's and,
+// the fluctuations being the bed's split by particle, the sample-weighted mean of the classes'
+// granular temperatures is the bed's (sums of the same squares: to the 10 digits written).
+void VelocityBySizeSumsToTheBed() {
+  const Csv by = read_csv(analysis() / "velocity_distribution_by_size.csv");
+  using V = std::vector<std::string>;
+  EXPECT_EQ(by.header, (V{"class", "d_min", "d_max", "particles", "samples", "variance_x",
+                          "variance_z", "granular_temperature", "anisotropy"}));
+  ASSERT_EQ(by.rows, 2u);
+  EXPECT_EQ(by.col.at("d_min")[0], 0.003);
+  EXPECT_EQ(by.col.at("d_max")[1], 0.004);
+  EXPECT_EQ(by.col.at("particles")[0], 150.0);
+  EXPECT_EQ(by.col.at("particles")[1], 150.0);
+  const auto s = read_summary(analysis() / "summary.csv");
+  const auto& n = by.col.at("samples");
+  const auto& theta = by.col.at("granular_temperature");
+  EXPECT_EQ(n[0] + n[1], s.at("velocity_samples"));
+  const double mixed = (n[0] * theta[0] + n[1] * theta[1]) / (n[0] + n[1]);
+  EXPECT_NEAR(mixed, s.at("granular_temperature"), 1e-8 * s.at("granular_temperature"));
+  EXPECT_EQ(s.at("granular_temperature_size_1"), theta[1]);
+  EXPECT_EQ(s.count("segregation_split_diameter"), 0u); // two sizes: split at their mean
+}
+
 // The degree of segregation of the first and last frames, computed here from particles.h5
 // [Deen07 eq. 49]: s = (S - 1)/(S_max - 1), S = <h_small>/<h_large>, S_max = (x_L + 1)/x_L with
 // x_L the disc-area fraction of the large particles (2-D).
@@ -404,6 +428,10 @@ TEST(CoupledRun, RunAnalyseAndPlot) {
   {
     SCOPED_TRACE("VelocityDensitiesAreNormalisedAndReferencesExact");
     VelocityDensitiesAreNormalisedAndReferencesExact();
+  }
+  {
+    SCOPED_TRACE("VelocityBySizeSumsToTheBed");
+    VelocityBySizeSumsToTheBed();
   }
   {
     SCOPED_TRACE("SegregationMatchesDeen07Eq49");
