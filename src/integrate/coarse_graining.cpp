@@ -56,6 +56,12 @@ CaseSpec simulated_case(const CaseSpec& user) {
   const double w = cg.ratio;
   const double sd = coarse_graining::diameter_factor(w);
   for (SpeciesSpec& sp : s.species) sp.diameter *= sd; // [Chang08 eq. 2.27]
+  for (InsertSpec& ins : s.inserts) // a size distribution's diameters (fractions unchanged)
+    if (ins.size_distribution) {
+      SizeDistributionSpec& dist = *ins.size_distribution;
+      for (double* x : {&dist.mean, &dist.std, &dist.median, &dist.min, &dist.max}) *x *= sd;
+      for (double& x : dist.diameters) x *= sd;
+    }
   const auto* normal = contact_models::find(contact_models::Kind::Normal, s.contact.normal.name);
   if (normal != nullptr && normal->takes_elastic_constants) { // Hertz-Mindlin: E and G
     const double f = coarse_graining::youngs_modulus_factor(cg.contact_scaling, w);
@@ -73,6 +79,7 @@ CaseSpec user_values(const CaseSpec& simulated, const CaseSpec& user) {
   if (!user.coarse_graining.active()) return simulated;
   CaseSpec c = simulated;
   c.species = user.species;
+  c.inserts = user.inserts;
   c.domain.wall_material = user.domain.wall_material;
   c.contact.normal.coefficients = user.contact.normal.coefficients;
   c.coupling.drag_diameter_factor = user.coupling.drag_diameter_factor;

@@ -2,8 +2,9 @@
 // particles and `[coarse_graining] ratio = W`; the run moves parcels of W real particles each.
 // simulated_case() turns the one into the other (core/coarse_graining.hpp has the factors,
 // docs/coarse-graining.md what each scaling conserves):
-//   species diameters x s, s = W^(1/3) [Chang08 eq. 2.27] (mass and volume x W, density kept,
-//     eq. 2.24-2.26: the insertion's spheres of the parcel diameter);
+//   species diameters and size distributions' diameters x s, s = W^(1/3) [Chang08 eq. 2.27]
+//     (mass and volume x W, density kept, eq. 2.24-2.26; the fractions, by number or mass, are
+//     the real particles');
 //   the contact law by contact_scaling: linear and Walton-Braun `contact.stiffness` (k_t follows
 //     through stiffness_ratio), Hertz-Mindlin E and G of every species and wall;
 //   the drag closure's diameter by drag_diameter (coupling.drag_diameter_factor).

@@ -49,8 +49,10 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial)
     std::vector<bool> used(spec_.species.size(), false);
     for (const InsertSpec& ins : spec_.inserts)
       if (const int s = spec_.species_index(ins.species); s >= 0) used[s] = true;
-    table = std::make_unique<ContactTable>(spec_, std::move(used));
-    check_contact_durations(spec_, *table, kMinStepsPerContact, kMaxSteps);
+    // The durations of each species' smallest particles (a size distribution's smallest draw).
+    const CaseSpec smallest = with_smallest_diameters(spec_);
+    table = std::make_unique<ContactTable>(smallest, std::move(used));
+    check_contact_durations(smallest, *table, kMinStepsPerContact, kMaxSteps);
   }
   if (initial) {
     p_ = *initial;

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "noncontact/liquid_bridges.hpp"
 #include "noncontact/pair_forces.hpp"
+#include "particles/size_distribution.hpp"
 
 namespace fluidem {
 
@@ -52,7 +53,7 @@ TimeSteps choose_time_steps(CaseSpec& spec, const ParticleStore& p, const Contac
   TimeSteps s;
   // The non-contact forces' stiffness counts as a contact of half-period pi sqrt(m*/k)
   // (noncontact/pair_forces.hpp).
-  double tc = std::min(shortest_possible_contact(spec, p, *table),
+  double tc = std::min(shortest_possible_contact(with_smallest_diameters(spec), p, *table),
                        shortest_noncontact_period(spec.noncontact, p));
   if (const auto& b = spec.noncontact.liquid_bridge)
     tc = std::min(tc, shortest_bridge_time(*b, liquid_fractions(spec), p));
@@ -84,6 +85,16 @@ TimeSteps choose_time_steps(CaseSpec& spec, const ParticleStore& p, const Contac
   check_step_count(spec, s.dt);
   s.forced = s.dt > s.stable_dt;
   return s;
+}
+
+CaseSpec with_smallest_diameters(const CaseSpec& spec) {
+  CaseSpec c = spec;
+  for (const InsertSpec& ins : spec.inserts)
+    if (const int k = spec.species_index(ins.species); k >= 0 && ins.size_distribution) {
+      double& d = c.species[static_cast<std::size_t>(k)].diameter;
+      d = std::min(d, SizeDistribution(*ins.size_distribution).smallest());
+    }
+  return c;
 }
 
 BoxGeometry box_from(const CaseSpec& spec) {

@@ -30,6 +30,12 @@ struct TimeSteps {
 /// a step above the stability limit, gas.time_step in a hard-sphere run or too many steps.
 TimeSteps choose_time_steps(CaseSpec& spec, const ParticleStore& p, const ContactTable* table);
 
+/// `spec` with each species' diameter lowered to the smallest one its [[insert]] blocks' size
+/// distributions can draw (particles/size_distribution.hpp): the species' contact durations are
+/// then those of its smallest particles, which the time step must resolve (the contact
+/// coefficients do not depend on the diameter: contact_table.hpp).
+CaseSpec with_smallest_diameters(const CaseSpec& spec);
+
 /// The domain as the neighbour lists and guards see it.
 BoxGeometry box_from(const CaseSpec& spec);
 
