@@ -39,7 +39,8 @@ namespace {
 
 constexpr double kD = 1e-3, kRho = 1.2, kMu = 1.8e-5, kG = 9.81;
 
-std::string bed_case(double u, int cells_z = 25) {
+/// `extra`: appended to the case ([coarse_graining]); `count`: the lattice's particles.
+std::string bed_case(double u, int cells_z = 25, long count = 2560, const std::string& extra = "") {
   const double eps = 1.0 - std::numbers::pi / 6.0;
   return fmt::format(R"(
 [simulation]
@@ -54,7 +55,7 @@ diameter = 0.001
 density = 2500.0
 [[insert]]
 species = "glass"
-count = 2560
+count = {count}
 placement = "lattice"
 region = {{ hi = [0.008, 0.008, 0.04] }}
 fixed = true
@@ -86,7 +87,9 @@ drag = "ergun"
 porosity = "cell"
 )",
                      fmt::arg("g", kG), fmt::arg("rho", kRho), fmt::arg("mu", kMu),
-                     fmt::arg("u", u), fmt::arg("eps", eps), fmt::arg("nz", cells_z));
+                     fmt::arg("u", u), fmt::arg("eps", eps), fmt::arg("nz", cells_z),
+                     fmt::arg("count", count)) +
+         extra;
 }
 
 TEST(FixedBed, PressureDropIsErguns) {
@@ -185,6 +188,52 @@ TEST(FixedBed, PressureDropBalancesTheGasForceOnTheParticlesAtAnyCellSize) {
                 g.h[2] * 1e3, drop, expected, drop / expected);
     EXPECT_NEAR(drop / expected, 1.0, 5e-3) << "cells of " << g.h[2] << " m";
   }
+}
+
+// A coarse-grained bed carries the pressure drop of the real one [Chang08 eq. 2.31-2.32]: the
+// same lattice built from parcels of W = 8 real particles (d2 = 2 mm, 4 x 4 x 20 of them): every
+// cell still holds whole lattice periods, so the cell porosity is 1 - pi/6 exactly (1e-12), and
+// -dp/dz - rho g must be Ergun's at the REAL diameter d1 = 1 mm within the 1% above. With
+// drag_diameter = "parcel" the closure sees d2 and the drop is Ergun's at d2 instead (1%): about
+// 0.36 of the real one at U = 0.5 m/s (docs/coarse-graining.md).
+TEST(FixedBed, CoarseGrainedBedCarriesTheRealBedsPressureDrop) {
+  const double eps = 1.0 - std::numbers::pi / 6.0, u = 0.5;
+  const auto ergun = [&](double d) {
+    return 150.0 * kMu * (1 - eps) * (1 - eps) * u / (eps * eps * eps * d * d) +
+           1.75 * kRho * (1 - eps) * u * u / (eps * eps * eps * d);
+  };
+  // -dp/dz - rho g between the centres of cells 4 .. 16 after 300 flow steps; their porosity.
+  const auto frictional_drop = [&](const char* drag_diameter) {
+    Simulation sim(read_case_string(
+        bed_case(u, 25, 320,
+                 fmt::format("[coarse_graining]\nratio = 8\ndrag_diameter = \"{}\"\n",
+                             drag_diameter)),
+        "cg_bed.toml"));
+    EXPECT_EQ(sim.particles().size(), 320u);
+    EXPECT_EQ(sim.particles().radius[0], kD); // parcels of twice the real diameter
+    sim.advance(300);
+    const gas::GasSolver& gs = sim.gas()->solver();
+    const gas::GasGrid& g = gs.grid();
+    double grad = 0.0, cell_eps = 0.0;
+    int m = 0;
+    for (int k = 4; k < 16; ++k)
+      for (int j = 1; j <= g.n[1]; ++j)
+        for (int i = 1; i <= g.n[0]; ++i, ++m) {
+          const auto q = static_cast<std::size_t>(g.idx(i, j, k));
+          const auto up = static_cast<std::size_t>(g.idx(i, j, k + 1));
+          grad += (gs.pressure()[up] - gs.pressure()[q]) / g.h[2];
+          cell_eps += gs.porosity()[q];
+        }
+    return std::array<double, 2>{-grad / m - kRho * kG, cell_eps / m};
+  };
+  const auto real = frictional_drop("real");
+  const auto coarse = frictional_drop("parcel");
+  std::printf("parcels W = 8: -dp/dz - rho g = %.6g Pa/m (Ergun at d1 %.6g); seen at their own "
+              "diameter %.6g Pa/m (Ergun at d2 %.6g)\n",
+              real[0], ergun(kD), coarse[0], ergun(2.0 * kD));
+  EXPECT_NEAR(real[1], eps, 1e-12);
+  EXPECT_NEAR(real[0] / ergun(kD), 1.0, 0.01);
+  EXPECT_NEAR(coarse[0] / ergun(2.0 * kD), 1.0, 0.01);
 }
 
 } // namespace
