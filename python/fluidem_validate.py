@@ -264,7 +264,7 @@ RUNS += [
     Run("velocity_ideal", "deen07/velocity_ideal.toml", analyse=["--from", "1.0"], long=True),
     Run("velocity_nonideal", "deen07/velocity_nonideal.toml", analyse=["--from", "1.0"],
         long=True),
-    # [Deen07 §6.2, Fig. 11]: 45,000 particles for 60 s, days each (cases/deen07/README.md)
+    # [Deen07 §6.2, Fig. 11]: 45,000 particles for 60 s, about a day each (cases/deen07/README.md)
     Run("segregation_beetstra", "deen07/segregation_beetstra.toml", long=True),
     Run("segregation_standard", "deen07/segregation_standard.toml", long=True),
 ]
