@@ -81,6 +81,21 @@ TEST(SegregationBed, TheMixedStartHasSNearZero) {
   EXPECT_LT(std::abs(s.s), 0.05);
 }
 
+// The full cases (segregation_beetstra.toml; segregation_standard.toml has the same particles)
+// start mixed too: 17,694 large and 27,306 small in 0-0.29 m, sampling deviation of s about
+// 0.005 (as above); bound 0.02, four deviations. Set-up only (about a second).
+TEST(SegregationBed, TheFullCaseStartsMixed) {
+  const Simulation sim(
+      read_case_file(std::string(FLUIDEM_SOURCE_DIR) + "/cases/deen07/segregation_beetstra.toml"));
+  const Segregation s = segregation_of(sim);
+  std::cout << fmt::format("full case: s(0) = {:.5f}, x_large = {:.6f}, {} small, {} large\n", s.s,
+                           s.x_large, s.n_small, s.n_large);
+  EXPECT_EQ(s.n_small, 27306);
+  EXPECT_EQ(s.n_large, 17694);
+  EXPECT_NEAR(s.x_large, 0.75, 1e-5); // 25 % small by mass (0.250003)
+  EXPECT_LT(std::abs(s.s), 0.02);
+}
+
 TEST(SegregationBed, OneAndTwoThreadsGiveBitwiseIdenticalParticlesAndS) {
   const State one = run_with_threads(1);
   const State two = run_with_threads(2);
