@@ -829,7 +829,7 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs):
         out = outputs.dir(r.name)
         shown = []
         # The snapshot drawn again at a lower resolution (the repository keeps the report), then
-        # the analysis pictures: velocity distribution, pressure-drop curve, first spectrum.
+        # the analysis pictures: velocity distribution, pressure-drop curve, s(t), first spectrum.
         if os.path.exists(os.path.join(out, "particles.h5")):
             dst = f"{r.name}_snapshot.png"
             code = subprocess.run([sys.executable, os.path.join(HERE, "fluidem_plot.py"), out,
@@ -840,7 +840,8 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs):
         adir = os.path.join(out, "analysis")
         spectra = sorted(f for f in os.listdir(adir) if f.startswith("spectrum_")
                          and f.endswith(".png")) if os.path.isdir(adir) else []
-        for f in ["velocity_distribution.png", "pressure_drop_velocity.png"] + spectra[:1]:
+        for f in (["velocity_distribution.png", "pressure_drop_velocity.png", "segregation.png"]
+                  + spectra[:1]):
             p = os.path.join(adir, f)
             if os.path.exists(p):
                 dst = f"{r.name}_{f}"
