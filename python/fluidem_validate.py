@@ -264,6 +264,9 @@ RUNS += [
     Run("velocity_ideal", "deen07/velocity_ideal.toml", analyse=["--from", "1.0"], long=True),
     Run("velocity_nonideal", "deen07/velocity_nonideal.toml", analyse=["--from", "1.0"],
         long=True),
+    # [Deen07 §6.2, Fig. 11]: 45,000 particles for 60 s, about a day each (cases/deen07/README.md)
+    Run("segregation_beetstra", "deen07/segregation_beetstra.toml", long=True),
+    Run("segregation_standard", "deen07/segregation_standard.toml", long=True),
 ]
 
 
@@ -302,6 +305,13 @@ def kurtosis_farthest(o, run):
 def pressure_drop_before_jet(o, run, t0, t1):
     """Mean pressure drop over [t0, t1] s / the bed's weight per area."""
     return o.window_mean(run, "pressure_drop", t0, t1) / o.summary(run, "bed_weight_per_area")
+
+
+def segregation_at_minute(o, run):
+    """The degree of segregation s [Deen07 eq. 49] of analysis/segregation.csv (one row per
+    frame) averaged over the frames of 59-60 s: "after 1 min" [Deen07 §6.2], over the last
+    second (5 frames at 0.25 s) against the frame-to-frame scatter of a bubbling bed."""
+    return o.window_mean(run, "s", 59.0, 60.0, os.path.join("analysis", "segregation.csv"))
 
 
 def cube_cc(o, run, what):
@@ -391,6 +401,12 @@ VALUES = {  # id: (the runs it needs, value(outputs) -> float)
         ["velocity_ideal", "velocity_nonideal"],
         lambda o: o.summary("velocity_nonideal", "anisotropy")
         / o.summary("velocity_ideal", "anisotropy")),
+    "segregation_beetstra.s_minute": (["segregation_beetstra"],
+                                      lambda o: segregation_at_minute(o, "segregation_beetstra")),
+    "segregation_beetstra.s_minute_experiment": (
+        ["segregation_beetstra"], lambda o: segregation_at_minute(o, "segregation_beetstra")),
+    "segregation_standard.s_minute": (["segregation_standard"],
+                                      lambda o: segregation_at_minute(o, "segregation_standard")),
 }
 
 # [Chang08 binary-collision paper, Table 1]: the whole cube, the granular centre GC (a sphere of
@@ -813,7 +829,7 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs):
         out = outputs.dir(r.name)
         shown = []
         # The snapshot drawn again at a lower resolution (the repository keeps the report), then
-        # the analysis pictures: velocity distribution, pressure-drop curve, first spectrum.
+        # the analysis pictures: velocity distribution, pressure-drop curve, s(t), first spectrum.
         if os.path.exists(os.path.join(out, "particles.h5")):
             dst = f"{r.name}_snapshot.png"
             code = subprocess.run([sys.executable, os.path.join(HERE, "fluidem_plot.py"), out,
@@ -824,7 +840,8 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs):
         adir = os.path.join(out, "analysis")
         spectra = sorted(f for f in os.listdir(adir) if f.startswith("spectrum_")
                          and f.endswith(".png")) if os.path.isdir(adir) else []
-        for f in ["velocity_distribution.png", "pressure_drop_velocity.png"] + spectra[:1]:
+        for f in (["velocity_distribution.png", "pressure_drop_velocity.png", "segregation.png"]
+                  + spectra[:1]):
             p = os.path.join(adir, f)
             if os.path.exists(p):
                 dst = f"{r.name}_{f}"
