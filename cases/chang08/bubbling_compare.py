@@ -50,12 +50,12 @@ def wall_rate(out):
     return None
 
 
-def probe_stats(out, t0):
+def probe_stats(out, t0, t1):
     head, rows = read_csv(os.path.join(out, "probes.csv"))
     i150, itop = head.index("p_150mm"), head.index("p_top")
     t = [float(r[0]) for r in rows]
     dp = [float(r[i150]) - float(r[itop]) for r in rows]
-    kept = [v for tt, v in zip(t, dp) if tt >= t0]
+    kept = [v for tt, v in zip(t, dp) if t0 <= tt <= t1]
     return t, dp, (sum(kept) / len(kept) if kept else float("nan"))
 
 
@@ -72,7 +72,7 @@ def main(argv):
     for out in outs:
         name = {1.0: "A", 8.0: "B", 27.0: "C", 64.0: "D"}.get(ratio_of(out), "?")
         s = summary(out)
-        t, dp, mean150 = probe_stats(out, s.get("window_start", 0.0))
+        t, dp, mean150 = probe_stats(out, s.get("window_start", 0.0), s.get("window_end", 1e300))
         wall = wall_rate(out)
         end = t[-1] if t else float("nan")
         rows.append(
@@ -89,6 +89,7 @@ def main(argv):
             }
         )
         traces.append((name, out, t, dp))
+    print(f"window {s.get('window_start', 0):g}-{s.get('window_end', 0):g} s (analysis/summary.csv)")
     print("| case | W | simulated s | wall s per simulated s | mean p(150 mm) - p(outlet), Pa "
           "(published) | bed drop / weight | dominant f at 150 mm, Hz (published) | bed expansion |")
     print("|---|---|---|---|---|---|---|---|")
