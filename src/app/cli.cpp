@@ -48,6 +48,17 @@ void print_contact_models(const CaseSpec& spec) {
   }
 }
 
+/// [coarse_graining]: what the run simulates (the contact values printed are the parcels').
+void print_coarse_graining(const CaseSpec& spec) {
+  const CoarseGrainingSpec& cg = spec.coarse_graining;
+  if (!cg.active()) return;
+  fmt::print("coarse graining    parcels of W = {:.6g} real particles (diameter x {:.6g}) "
+             "[Chang08 §2.2.3]; contact scaling {}, drag at the {} diameter "
+             "(docs/coarse-graining.md); the contact values below are the parcels'\n",
+             cg.ratio, coarse_graining::diameter_factor(cg.ratio), to_string(cg.contact_scaling),
+             to_string(cg.drag_diameter));
+}
+
 void print_gas_report(const CaseSpec& spec, const CaseReport& r) {
   if (!spec.gas) return;
   const auto& g = *spec.gas;
@@ -87,6 +98,7 @@ void print_report(const CaseSpec& spec, const CaseReport& r) {
   fmt::print("dimension          {} ({})\n", spec.simulation.dimension,
              spec.simulation.dimension == 2 ? "discs in the x-z plane" : "spheres");
   fmt::print("particle engine    {}\n", to_string(spec.simulation.engine));
+  print_coarse_graining(spec);
   if (spec.simulation.engine == Engine::HardSphere) {
     fmt::print("collisions         event-driven, e_n / mu / beta_0 per material [Deen07 eq. "
                "17-21]; TC model tc_time = {:.3g} s\n",
