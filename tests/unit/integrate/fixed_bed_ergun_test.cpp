@@ -92,6 +92,23 @@ porosity = "cell"
          extra;
 }
 
+/// -dp/dz between the centres of cells k and k+1, averaged over the columns and k = 4..15 (the
+/// middle of the bed), and the mean porosity of those cells.
+std::array<double, 2> bed_gradient(const gas::GasSolver& gs) {
+  const gas::GasGrid& g = gs.grid();
+  double grad = 0.0, cell_eps = 0.0;
+  int m = 0;
+  for (int k = 4; k < 16; ++k)
+    for (int j = 1; j <= g.n[1]; ++j)
+      for (int i = 1; i <= g.n[0]; ++i, ++m) {
+        const auto q = static_cast<std::size_t>(g.idx(i, j, k));
+        const auto up = static_cast<std::size_t>(g.idx(i, j, k + 1));
+        grad += (gs.pressure()[up] - gs.pressure()[q]) / g.h[2];
+        cell_eps += gs.porosity()[q];
+      }
+  return {-grad / m, cell_eps / m};
+}
+
 TEST(FixedBed, PressureDropIsErguns) {
   const double eps = 1.0 - std::numbers::pi / 6.0;
   for (const double u : {0.2, 0.5, 1.0}) {
@@ -102,20 +119,7 @@ TEST(FixedBed, PressureDropIsErguns) {
     ASSERT_NEAR(sim.time_step(), 1e-4, 1e-12); // every particle fixed: the flow step
     const gas::GasSolver& gs = sim.gas()->solver();
     const gas::GasGrid& g = gs.grid();
-    // -dp/dz between the centres of cells k and k+1, averaged over the columns and k = 4..15.
-    const auto gradient = [&] {
-      double grad = 0.0, cell_eps = 0.0;
-      int m = 0;
-      for (int k = 4; k < 16; ++k)
-        for (int j = 1; j <= g.n[1]; ++j)
-          for (int i = 1; i <= g.n[0]; ++i, ++m) {
-            const auto q = static_cast<std::size_t>(g.idx(i, j, k));
-            const auto up = static_cast<std::size_t>(g.idx(i, j, k + 1));
-            grad += (gs.pressure()[up] - gs.pressure()[q]) / g.h[2];
-            cell_eps += gs.porosity()[q];
-          }
-      return std::array<double, 2>{-grad / m, cell_eps / m};
-    };
+    const auto gradient = [&] { return bed_gradient(gs); };
     sim.advance(250);
     const double early = gradient()[0];
     sim.advance(50);
@@ -205,26 +209,15 @@ TEST(FixedBed, CoarseGrainedBedCarriesTheRealBedsPressureDrop) {
   // -dp/dz - rho g between the centres of cells 4 .. 16 after 300 flow steps; their porosity.
   const auto frictional_drop = [&](const char* drag_diameter) {
     Simulation sim(read_case_string(
-        bed_case(u, 25, 320,
-                 fmt::format("[coarse_graining]\nratio = 8\ndrag_diameter = \"{}\"\n",
-                             drag_diameter)),
+        bed_case(
+            u, 25, 320,
+            fmt::format("[coarse_graining]\nratio = 8\ndrag_diameter = \"{}\"\n", drag_diameter)),
         "cg_bed.toml"));
     EXPECT_EQ(sim.particles().size(), 320u);
     EXPECT_EQ(sim.particles().radius[0], kD); // parcels of twice the real diameter
     sim.advance(300);
-    const gas::GasSolver& gs = sim.gas()->solver();
-    const gas::GasGrid& g = gs.grid();
-    double grad = 0.0, cell_eps = 0.0;
-    int m = 0;
-    for (int k = 4; k < 16; ++k)
-      for (int j = 1; j <= g.n[1]; ++j)
-        for (int i = 1; i <= g.n[0]; ++i, ++m) {
-          const auto q = static_cast<std::size_t>(g.idx(i, j, k));
-          const auto up = static_cast<std::size_t>(g.idx(i, j, k + 1));
-          grad += (gs.pressure()[up] - gs.pressure()[q]) / g.h[2];
-          cell_eps += gs.porosity()[q];
-        }
-    return std::array<double, 2>{-grad / m - kRho * kG, cell_eps / m};
+    const auto [drop, cell_eps] = bed_gradient(sim.gas()->solver());
+    return std::array<double, 2>{drop - kRho * kG, cell_eps};
   };
   const auto real = frictional_drop("real");
   const auto coarse = frictional_drop("parcel");
