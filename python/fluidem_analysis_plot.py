@@ -2,6 +2,7 @@
 """Pictures of `fluidem analyse OUTDIR` (docs/analysis.md).
 
 Usage: /usr/bin/python3 python/fluidem_analysis_plot.py OUTDIR
+       /usr/bin/python3 python/fluidem_analysis_plot.py --compare OUTDIR1 OUTDIR2 [...]
 
 Reads OUTDIR/analysis/*.csv (written by `fluidem analyse`) and OUTDIR/probes.csv, and writes into
 OUTDIR/analysis/:
@@ -16,6 +17,14 @@ OUTDIR/analysis/:
   pressure_drop_velocity.png the bed pressure drop against the superficial velocity, rising and
                             falling branches (over the bed weight W), as [Chang08 Fig. 3.17],
                             when pressure_drop_velocity.csv exists (the inflow varied).
+With --compare (`fluidem plot OUT1 OUT2 ...`), the curves the runs share on one figure in
+OUTDIR1/analysis/:
+  segregation_compare.png   s(t) of every run that has segregation.csv, each labelled with its
+                            directory and drag closure, with the published values of each run's
+                            case: the [[quantity]] rows of the reference.toml next to the case file
+                            (recorded in OUTDIR/case.resolved.toml) whose `case` is the case file's
+                            name and whose `curve` is "segregation", drawn at their `at_time` (a
+                            point for a value, an arrow for a bound such as "above 0.9").
 Exit codes: 0 done; 2 bad input (no OUTDIR/analysis: run `fluidem analyse OUTDIR` first; an
 unreadable CSV); 3 matplotlib or numpy is missing.
 """
@@ -23,6 +32,7 @@ import csv
 import glob
 import os
 import sys
+import tomllib
 
 
 def fail(message, code=2):
@@ -158,7 +168,105 @@ def plot_pressure_velocity(adir):
     plt.close(fig)
 
 
+CASE_FILE_MARK = "# case file: "
+# analysis CSVs that --compare draws together: column, axis label
+COMPARABLE = {"segregation": ("s", "degree of segregation s [Deen07 eq. 49]")}
+
+
+def run_case(outdir):
+    """The case file recorded in OUTDIR/case.resolved.toml's header (or None) and the run's
+    coupling.drag (or None)."""
+    path = os.path.join(outdir, "case.resolved.toml")
+    try:
+        with open(path, "rb") as f:
+            text = f.read().decode("utf-8", "replace")
+    except OSError:
+        return None, None
+    case_file = next((line[len(CASE_FILE_MARK):].strip() for line in text.splitlines()[:3]
+                      if line.startswith(CASE_FILE_MARK)), None)
+    try:
+        drag = tomllib.loads(text).get("coupling", {}).get("drag")
+    except tomllib.TOMLDecodeError:
+        drag = None
+    return case_file, drag
+
+
+def published_points(case_file, curve):
+    """The [[quantity]] rows of the reference.toml next to `case_file` for this case and curve
+    with an at_time (python/fluidem_validate.py checks these files' keys)."""
+    if not case_file:
+        return []
+    ref = os.path.join(os.path.dirname(case_file), "reference.toml")
+    try:
+        with open(ref, "rb") as f:
+            rows = tomllib.load(f).get("quantity", [])
+    except (OSError, tomllib.TOMLDecodeError):
+        return []
+    stem = os.path.splitext(os.path.basename(case_file))[0]
+    return [r for r in rows if isinstance(r, dict) and r.get("case") == stem
+            and r.get("curve") == curve and isinstance(r.get("at_time"), (int, float))]
+
+
+def plot_compare(outdirs):
+    written = 0
+    markers = ["o", "s", "D", "v", "P"]
+    for curve, (column, ylabel) in COMPARABLE.items():
+        runs = [o for o in outdirs if os.path.exists(os.path.join(o, "analysis", curve + ".csv"))]
+        if len(runs) < 2:
+            continue
+        fig, ax = plt.subplots(figsize=(8, 4.8))
+        t_max, y_min, y_max, m = 0.0, 0.0, 1.0, 0
+        for k, o in enumerate(runs):
+            d = read_columns(os.path.join(o, "analysis", curve + ".csv"))
+            case_file, drag = run_case(o)
+            label = os.path.basename(os.path.normpath(o)) + (f" ({drag})" if drag else "")
+            colour = f"C{k}"
+            ax.plot(d["time"], d[column], "-", color=colour, lw=1.2, label=f"fluidem: {label}")
+            if len(d["time"]):
+                print(f"{label}: {column} = {d[column][-1]:.4f} at t = {d['time'][-1]:.3f} s "
+                      "(last frame)")
+                t_max = max(t_max, float(d["time"][-1]))
+                y_min = min(y_min, float(np.min(d[column])))
+                y_max = max(y_max, float(np.max(d[column])))
+            for row in published_points(case_file, curve):
+                t = float(row["at_time"])
+                t_max = max(t_max, t)
+                text = f"{row['published']} {row['source']}"
+                crit = row.get("criterion", {})
+                print(f"  published for {os.path.basename(case_file)}: {text} at t = {t:g} s")
+                if isinstance(row.get("value"), (int, float)):
+                    ax.plot([t], [row["value"]], markers[m % len(markers)], mfc="none",
+                            mec=colour, mew=1.5, ms=8, label=text)
+                    m += 1
+                elif crit.get("kind") in ("above", "below") and "bound" in crit:
+                    b = float(crit["bound"])
+                    up = crit["kind"] == "above"
+                    ax.annotate("", xy=(t, b + (0.12 if up else -0.12)), xytext=(t, b),
+                                arrowprops={"arrowstyle": "->", "color": colour, "lw": 1.5})
+                    ax.plot([t], [b], "_", color=colour, ms=14, mew=2,
+                            label=f"{text}: {crit.get('text', crit['kind'])}")
+        ax.axhline(0.0, color="k", lw=0.5)
+        ax.set_xlim(0.0, t_max * 1.04 + 1e-9)
+        ax.set_ylim(min(-0.1, y_min - 0.05), max(1.15, y_max + 0.05))
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel(ylabel)
+        ax.legend(loc="best", fontsize=7)
+        fig.tight_layout()
+        png = os.path.join(outdirs[0], "analysis", f"{curve}_compare.png")
+        fig.savefig(png, dpi=100)
+        plt.close(fig)
+        print(f"written {png}")
+        written += 1
+    if written == 0:
+        fail("the runs share no curve to compare (segregation.csv in two or more of them)")
+    return 0
+
+
 def main(argv):
+    if len(argv) >= 1 and argv[0] == "--compare":
+        if len(argv) < 3:
+            fail("--compare needs two or more output directories")
+        return plot_compare(argv[1:])
     if len(argv) != 1 or argv[0] in ("-h", "--help"):
         print(__doc__)
         return 0 if argv and argv[0] in ("-h", "--help") else 2

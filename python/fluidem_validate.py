@@ -483,6 +483,10 @@ QUANTITY_KEYS = {
     "format": (True, _format_spec, "a Python format spec such as \".3f\""),
     "note": (False, _is_text, "a string"),
     "criterion": (True, lambda x: isinstance(x, dict), "a table"),
+    # where `fluidem plot OUT1 OUT2 ...` draws the published value: on the curve of
+    # analysis/<curve>.csv at the simulated time at_time (fluidem_analysis_plot.py --compare)
+    "curve": (False, _is_text, "a string (an analysis CSV without .csv, e.g. \"segregation\")"),
+    "at_time": (False, _is_number, "a number (s)"),
 }
 NOT_RUN_KEYS = {
     "case": (True, _is_text, "a string"),

@@ -494,9 +494,23 @@ int plot(const std::string& out_dir, const char* argv0, int movie_every) {
   return 0;
 }
 
+int plot_together(const std::vector<std::string>& out_dirs, const char* argv0) {
+  for (const auto& d : out_dirs)
+    if (const int code = plot(d, argv0); code != 0) return code;
+  const auto lock = lock_run_directory(out_dirs.front(), nullptr, "fluidem plot");
+  const fs::path dir = find_python_script_dir("fluidem_analysis_plot.py", argv0);
+  std::vector<std::string> args = {"--compare"};
+  args.insert(args.end(), out_dirs.begin(), out_dirs.end());
+  return run_python_script(dir / "fluidem_analysis_plot.py", args);
+}
+
 int AnalysisCommands::run(const char* argv0) const {
   if (*analyse) return fluidem::analyse(options);
-  return fluidem::plot(plot_dir, argv0, movie ? movie_every : 0);
+  if (plot_dirs.size() > 1) {
+    if (movie) throw InputError("fluidem plot: --movie draws one run (give one OUT)");
+    return fluidem::plot_together(plot_dirs, argv0);
+  }
+  return fluidem::plot(plot_dirs.front(), argv0, movie ? movie_every : 0);
 }
 
 std::unique_ptr<AnalysisCommands> add_analysis_commands(CLI::App& app) {
@@ -515,8 +529,10 @@ std::unique_ptr<AnalysisCommands> add_analysis_commands(CLI::App& app) {
   c->analyse->add_option("--from", o.from, "Window start T0, s (default: half the run)");
   c->analyse->add_option("--to", o.to, "Window end T1, s (default: the end of the run)");
   c->plot = app.add_subcommand("plot", "Draw a run's pictures: OUT/snapshot.png and, from "
-                                       "`fluidem analyse`, OUT/analysis/*.png");
-  c->plot->add_option("out", c->plot_dir, "Output directory of a run")->required();
+                                       "`fluidem analyse`, OUT/analysis/*.png; several runs: "
+                                       "also their shared curves on one figure, with the "
+                                       "published values (OUT1/analysis/*_compare.png)");
+  c->plot->add_option("out", c->plot_dirs, "Output directory of a run (or several)")->required();
   c->plot->add_flag("--movie", c->movie,
                     "Every frame as a picture (OUT/movie_frames/) joined into OUT/movie.mp4 "
                     "(needs ffmpeg)");

@@ -48,12 +48,18 @@ int analyse(const AnalyseOptions& o);
 /// OUT/movie.mp4 (fluidem_plot.py --movie; exit 3 without ffmpeg, the frames kept).
 int plot(const std::string& out_dir, const char* argv0, int movie_every = 0);
 
+/// Several runs side by side (`fluidem plot OUT1 OUT2 ...`): each run's pictures as plot()
+/// draws them, then the curves the runs share on one figure in OUT1/analysis/ with the
+/// published values of their cases (fluidem_analysis_plot.py --compare). Returns 0 or the first
+/// failing exit code.
+int plot_together(const std::vector<std::string>& out_dirs, const char* argv0);
+
 /// The `analyse` and `plot` subcommands registered on the fluidem App.
 struct AnalysisCommands {
   CLI::App* analyse = nullptr;
   CLI::App* plot = nullptr;
   AnalyseOptions options;
-  std::string plot_dir;
+  std::vector<std::string> plot_dirs;
   bool movie = false;
   int movie_every = 1;
   bool selected() const { return *analyse || *plot; }

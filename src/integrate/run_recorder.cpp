@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "fluidem_version.hpp"
@@ -40,6 +41,17 @@ void write_overlap_histogram(const std::string& path, const CollisionStatistics&
   w.close();
 }
 
+/// The case file's absolute path for the outputs' header ("" for a case not read from a file).
+std::string absolute_case_file(const std::string& source) {
+  std::error_code ec;
+  // A run continued from a checkpoint into a new directory has no case file of its own.
+  if (std::filesystem::path(source).extension() != ".toml" ||
+      !std::filesystem::is_regular_file(source, ec))
+    return {};
+  const auto p = std::filesystem::absolute(source, ec);
+  return ec ? std::string() : p.lexically_normal().string();
+}
+
 } // namespace
 
 RunRecorder::RunRecorder(Simulation& sim, const OutputDirectory& dir, bool resume)
@@ -47,7 +59,7 @@ RunRecorder::RunRecorder(Simulation& sim, const OutputDirectory& dir, bool resum
       outputs_(resume ? RunOutputs::resume(dir, layout(sim), sim.marks_,
                                            write_case_toml(sim.resolved_case()), kVersion)
                       : RunOutputs::start(dir, layout(sim), write_case_toml(sim.resolved_case()),
-                                          kVersion)),
+                                          kVersion, absolute_case_file(sim.spec().source_file))),
       eps_(1e-9 * sim.dt_), total_(sim.total_steps()) {
   sim_.outputs_ = &outputs_;
   OutputClock& clock = sim_.clock_;

@@ -1,5 +1,6 @@
 #include "output/run_outputs.hpp"
 
+#include <fstream>
 #include <random>
 #include <stdexcept>
 
@@ -20,6 +21,17 @@ std::string names(const std::map<std::string, std::vector<std::string>>& m) {
   return s;
 }
 
+constexpr const char* kCaseFileMark = "# case file: ";
+
+/// The case file recorded in the header of an earlier case.resolved.toml, or "".
+std::string recorded_case_file(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  for (int k = 0; k < 3 && std::getline(in, line); ++k)
+    if (line.rfind(kCaseFileMark, 0) == 0) return line.substr(std::string(kCaseFileMark).size());
+  return {};
+}
+
 } // namespace
 
 std::string new_run_id() {
@@ -34,16 +46,20 @@ RunOutputs::RunOutputs(const OutputDirectory& dir, const OutputLayout& layout)
 
 void RunOutputs::write_resolved_case(const std::string& resolved_case,
                                      const std::string& version) const {
+  const std::string from =
+      case_file_.empty() ? std::string() : fmt::format("{}{}\n", kCaseFileMark, case_file_);
   safe_file::replace(dir_ + "/case.resolved.toml",
                      fmt::format("# fluidem {}, run {}: the fully resolved case of this run; "
-                                 "running it reproduces the run.\n{}",
-                                 version, run_id_, resolved_case));
+                                 "running it reproduces the run.\n{}{}",
+                                 version, run_id_, from, resolved_case));
 }
 
 RunOutputs RunOutputs::start(const OutputDirectory& dir, const OutputLayout& layout,
-                             const std::string& resolved_case, const std::string& version) {
+                             const std::string& resolved_case, const std::string& version,
+                             const std::string& case_file) {
   RunOutputs o(dir, layout);
   o.run_id_ = new_run_id();
+  o.case_file_ = case_file;
   o.write_resolved_case(resolved_case, version);
   o.particles_ =
       std::make_unique<H5mdWriter>(dir.file("particles.h5"), layout.particles, layout.dimension,
@@ -117,6 +133,7 @@ RunOutputs RunOutputs::resume(const OutputDirectory& dir, const OutputLayout& la
         fields("continuum.h5", *layout.continuum, marks.continuum_times, false));
   o.frame_times_ = marks.frame_times;
   o.continuum_times_ = marks.continuum_times;
+  o.case_file_ = recorded_case_file(dir.path() + "/case.resolved.toml");
   o.write_frame_indexes();
   if (layout.continuum) o.write_continuum_index();
   o.write_resolved_case(resolved_case, version);

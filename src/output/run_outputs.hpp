@@ -53,12 +53,16 @@ std::string new_run_id();
 class RunOutputs {
 public:
   /// New files for a new run (`dir` must not hold another run's: the caller decides that),
-  /// with a new run id. `resolved_case`: the text of case.resolved.toml after its header.
+  /// with a new run id. `resolved_case`: the text of case.resolved.toml after its header;
+  /// `case_file`: the case file's absolute path, recorded in that header (`# case file: ...`)
+  /// for the tools that look up the case's published values next to it (fluidem plot).
   static RunOutputs start(const OutputDirectory& dir, const OutputLayout& layout,
-                          const std::string& resolved_case, const std::string& version);
+                          const std::string& resolved_case, const std::string& version,
+                          const std::string& case_file = {});
   /// Continue the files of the run that wrote `marks` (from its checkpoint): every file is
   /// checked first (InputError naming the file and what is wrong: another run's, a gap, a
   /// missing or unexpected file, a checkpoint without marks), then cut back to the marks.
+  /// The header's case file is the one the run was started from.
   static RunOutputs resume(const OutputDirectory& dir, const OutputLayout& layout,
                            const OutputMarks& marks, const std::string& resolved_case,
                            const std::string& version);
@@ -93,6 +97,7 @@ private:
   std::string dir_;
   OutputLayout layout_;
   std::string run_id_;
+  std::string case_file_; ///< absolute path of the case file the run was started from, or ""
   std::unique_ptr<H5mdWriter> particles_;
   std::unique_ptr<FieldsWriter> fields_, continuum_;
   std::map<std::string, std::unique_ptr<SeriesWriter>> csv_;

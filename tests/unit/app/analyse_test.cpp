@@ -410,6 +410,42 @@ void PlotWritesValidPngs() {
     EXPECT_TRUE(is_png(p)) << p;
 }
 
+// `fluidem plot OUT1 OUT2`: the runs' s(t) on one figure with the published values that the
+// reference.toml next to the case file gives for this case (rows with curve = "segregation" and
+// at_time; the case file is found through the header of case.resolved.toml).
+void PlotTogetherDrawsThePublishedValues() {
+  const std::string resolved = read_file(out() / "case.resolved.toml");
+  const std::string mark =
+      "# case file: " + fs::absolute(dir_ / "bed.toml").lexically_normal().string() + "\n";
+  EXPECT_NE(resolved.find(mark), std::string::npos) << resolved.substr(0, 300);
+  if (!python_has_matplotlib()) {
+    std::cout << "plot check skipped: " << FLUIDEM_PYTHON << " lacks matplotlib/numpy/h5py\n";
+    return;
+  }
+  fs::copy(out(), dir_ / "out2", fs::copy_options::recursive);
+  std::ofstream(dir_ / "reference.toml")
+      << "[[quantity]]\nid = \"bed.s\"\ncase = \"bed\"\nsource = \"[test]\"\n"
+         "quantity = \"s\"\npublished = \"0.42 (made up)\"\nvalue = 0.42\nunit = \"\"\n"
+         "format = \".3f\"\ncurve = \"segregation\"\nat_time = 0.05\n"
+         "[quantity.criterion]\nkind = \"within_abs\"\ntolerance = 0.1\n"
+         "[[quantity]]\nid = \"other.s\"\ncase = \"other\"\nsource = \"[test]\"\n"
+         "quantity = \"s\"\npublished = \"0.9 (another case)\"\nvalue = 0.9\nunit = \"\"\n"
+         "format = \".3f\"\ncurve = \"segregation\"\nat_time = 0.05\n"
+         "[quantity.criterion]\nkind = \"within_abs\"\ntolerance = 0.1\n";
+  const Result r = fluidem({"plot", "out", "out2"}, dir_);
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_TRUE(is_png(analysis() / "segregation_compare.png"));
+  // the row of this case, twice (both runs come from bed.toml), and not the other case's
+  std::size_t rows = 0;
+  for (auto at = r.out.find("0.42 (made up) [test] at t = 0.05 s"); at != std::string::npos;
+       at = r.out.find("0.42 (made up) [test] at t = 0.05 s", at + 1))
+    ++rows;
+  EXPECT_EQ(rows, 2u) << r.out;
+  EXPECT_EQ(r.out.find("another case"), std::string::npos) << r.out;
+  // one run only: nothing to compare with --movie
+  EXPECT_EQ(fluidem({"plot", "out", "out2", "--movie"}, dir_).code, 2);
+}
+
 TEST(CoupledRun, RunAnalyseAndPlot) {
   dir_ = temp_dir("coupled");
   std::ofstream(dir_ / "bed.toml") << kCase;
@@ -452,6 +488,10 @@ TEST(CoupledRun, RunAnalyseAndPlot) {
   {
     SCOPED_TRACE("PlotWritesValidPngs");
     PlotWritesValidPngs();
+  }
+  {
+    SCOPED_TRACE("PlotTogetherDrawsThePublishedValues");
+    PlotTogetherDrawsThePublishedValues();
   }
   if (std::getenv("FLUIDEM_KEEP_TEST_FILES") == nullptr) fs::remove_all(dir_);
 }
