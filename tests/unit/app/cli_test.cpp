@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "../../common/cli_runner.hpp"
 #include "../../common/linear_impact.hpp"
 
@@ -250,6 +252,39 @@ Atoms # sphere
   const fs::path c = dir.write("overlap.toml", text);
   expect_one_line_error(fluidem({"check", c.string()}, dir.path), c, line_of(text, "[[insert]]"),
                         "insert", "particles 1 and 2 overlap by 0.25");
+}
+
+// The event-driven engine cannot start from an overlap (hard_sphere_engine.cpp stops when a pair
+// is closer than (1 - 5e-7) of its contact distance): with engine = "hard_sphere" an overlap of
+// 1e-5 of a diameter, which the soft-sphere engine's default tolerance (0.01) lets through, is
+// refused at set-up naming the pair; spheres exactly touching are accepted by both.
+TEST(Cli, HardSphereStartRefusesAnyOverlap) {
+  TempDir dir;
+  const auto data = [](const char* x2) {
+    return fmt::format("LAMMPS data file: two particles\n\n2 atoms\n1 atom types\n\n"
+                       "Atoms # sphere\n\n1 1 0.004 2700 0.010 0.002 0.010\n"
+                       "2 1 0.004 2700 {} 0.002 0.010\n",
+                       x2);
+  };
+  dir.write("overlap.data", data("0.01399996")); // 4e-8 m: 1e-5 of the diameter
+  dir.write("touch.data", data("0.014"));
+  for (const char* file : {"overlap.data", "touch.data"}) {
+    const std::string text =
+        replace(replace(kValid, "count = 10\n", fmt::format("file = \"{}\"\n", file)),
+                "placement = \"lattice\"", "placement = \"file\"");
+    const fs::path c = dir.write("case.toml", text);
+    SCOPED_TRACE(file);
+    EXPECT_EQ(fluidem({"check", c.string()}, dir.path).code, 0);
+    const Result hard =
+        fluidem({"check", c.string(), "--set", "simulation.engine=\"hard_sphere\""}, dir.path);
+    if (std::string(file) == "touch.data") {
+      EXPECT_EQ(hard.code, 0) << hard.out << hard.err;
+    } else {
+      EXPECT_EQ(hard.code, 2) << hard.out << hard.err;
+      EXPECT_TRUE(contains(hard.err, "particles 1 and 2 overlap by 1e-05")) << hard.err;
+      EXPECT_TRUE(contains(hard.err, "engine = \"hard_sphere\": none")) << hard.err;
+    }
+  }
 }
 
 TEST(Cli, UnknownSetKeyExits2) {
