@@ -422,9 +422,20 @@ TEST(Cli, ResolvedCaseReproducesTheRunBitwise) {
   // Something happened: the particles moved and touched (n_contacts column > 0 somewhere).
   EXPECT_TRUE(std::regex_search(s1, std::regex(R"(,[1-9][0-9]*,[0-9.e+-]+,[0-9]+\n)"))) << s1;
   // Resolving is idempotent: the resolved case of the rerun is the same file, but for the run ID
-  // of its first line (each run has its own: output/run_outputs.hpp).
-  const auto body = [](const std::string& text) { return text.substr(text.find('\n')); };
+  // of its first line (each run has its own: output/run_outputs.hpp) and the case file its
+  // second line names (the one each run was started from).
+  const auto body = [](const std::string& text) {
+    std::size_t k = text.find('\n');
+    if (text.compare(k + 1, 13, "# case file: ") == 0) k = text.find('\n', k + 1);
+    return text.substr(k);
+  };
   const std::string resolved2 = read_file(out2 / "case.resolved.toml");
+  EXPECT_TRUE(
+      contains(resolved, "\n# case file: " + fs::absolute(c).lexically_normal().string() + "\n"))
+      << resolved;
+  EXPECT_TRUE(contains(resolved2,
+                       "\n# case file: " + fs::absolute(moved).lexically_normal().string() + "\n"))
+      << resolved2;
   EXPECT_EQ(body(resolved2), body(resolved));
   EXPECT_NE(resolved2.substr(0, resolved2.find('\n')), resolved.substr(0, resolved.find('\n')));
 }

@@ -8,6 +8,8 @@
 #include "io/case_reader.hpp"
 #include "io/case_writer.hpp"
 
+#include "../../common/case_error.hpp"
+
 namespace fluidem {
 namespace {
 
@@ -17,15 +19,7 @@ const std::string kBase = "[simulation]\nend_time = 0.5\ngravity = [0.0, 0.0, 0.
                           "[[species]]\nname = \"s\"\ndiameter = 0.005\ndensity = 2700.0\n"
                           "[[insert]]\nspecies = \"s\"\ncount = 10\n";
 
-std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    (void)read_case_string(text, "case.toml", overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an InputError for:\n" << text;
-  return "";
-}
+using fluidem::test::error_of;
 
 TEST(BodyForceKeys, ReadAndWrittenBack) {
   const CaseSpec c = read_case_string(kBase + "[body_force]\ntype = \"sinusoidal_cube\"\n"

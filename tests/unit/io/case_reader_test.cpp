@@ -10,6 +10,8 @@
 #include "io/case_reader.hpp"
 #include "io/key_suggest.hpp"
 
+#include "../../common/case_error.hpp"
+
 namespace fluidem {
 namespace {
 
@@ -33,18 +35,7 @@ long line_of(const std::string& text, const std::string& marker) {
          static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
 }
 
-/// The InputError message of reading `text` as "case.toml", or "" (and a test failure) if none.
-std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    (void)read_case_string(text, "case.toml", overrides);
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << "message is not one line: " << msg;
-    return msg;
-  }
-  ADD_FAILURE() << "expected an InputError for:\n" << text;
-  return "";
-}
+using fluidem::test::error_of;
 
 /// Expects an InputError at the line of `marker` in `text`, naming `key`, containing `what`.
 void expect_error_at(const std::string& text, const std::string& marker, const std::string& key,

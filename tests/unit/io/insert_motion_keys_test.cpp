@@ -9,6 +9,8 @@
 #include "io/case_reader.hpp"
 #include "io/case_writer.hpp"
 
+#include "../../common/case_error.hpp"
+
 namespace fluidem {
 namespace {
 
@@ -20,15 +22,7 @@ std::string base(int dimension) {
          "[[insert]]\nspecies = \"s\"\ncount = 10\n";
 }
 
-std::string error_of(const std::string& text) {
-  try {
-    (void)read_case_string(text, "case.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an InputError for:\n" << text;
-  return "";
-}
+using fluidem::test::error_of;
 
 TEST(InsertMotionKeys, ReadAndWrittenBack) {
   const CaseSpec c = read_case_string(

@@ -9,6 +9,8 @@
 #include "io/case_reader.hpp"
 #include "io/case_writer.hpp"
 
+#include "../../common/case_error.hpp"
+
 namespace fluidem {
 namespace {
 
@@ -25,15 +27,7 @@ const std::string kForces = "[van_der_waals]\nhamaker = 6.5e-20\nmin_separation 
                             "[liquid_bridge]\nsurface_tension = 0.0728\ncontact_angle = 20\n"
                             "viscosity = 1e-3\nmin_gap = 1e-6\nwalls = false\n";
 
-std::string error_of(const std::string& text) {
-  try {
-    (void)read_case_string(text, "case.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an InputError for:\n" << text;
-  return "";
-}
+using fluidem::test::error_of;
 
 TEST(NonContactKeys, ReadAndWrittenBackToTheSameBits) {
   const CaseSpec c = read_case_string(kBase + kForces, "case.toml");

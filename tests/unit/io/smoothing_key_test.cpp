@@ -10,6 +10,8 @@
 #include "io/case_reader.hpp"
 #include "io/case_writer.hpp"
 
+#include "../../common/case_error.hpp"
+
 namespace fluidem {
 namespace {
 
@@ -39,16 +41,7 @@ std::string with_key(const std::string& value) {
   return kCase + "\n[coupling]\nsmoothing_length = " + value + "\n";
 }
 
-/// The InputError of reading `text`, "" (and a failure) if none.
-std::string error_of(const std::string& text) {
-  try {
-    (void)read_case_string(text, "case.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an InputError for:\n" << text;
-  return "";
-}
+using fluidem::test::error_of;
 
 TEST(SmoothingKey, AbsentIsOffAndNotWritten) {
   const CaseSpec c = read_case_string(kCase, "case.toml");
