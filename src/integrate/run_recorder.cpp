@@ -44,12 +44,13 @@ void write_overlap_histogram(const std::string& path, const CollisionStatistics&
 /// The case file's absolute path for the outputs' header ("" for a case not read from a file).
 std::string absolute_case_file(const std::string& source) {
   std::error_code ec;
-  // A run continued from a checkpoint into a new directory has no case file of its own.
+  // A run continued from a checkpoint into a new directory has no case file of its own; a path
+  // with a line break cannot stand in the header's comment line.
   if (std::filesystem::path(source).extension() != ".toml" ||
       !std::filesystem::is_regular_file(source, ec))
     return {};
-  const auto p = std::filesystem::absolute(source, ec);
-  return ec ? std::string() : p.lexically_normal().string();
+  const std::string p = std::filesystem::absolute(source, ec).lexically_normal().string();
+  return ec || p.find_first_of("\r\n") != std::string::npos ? std::string() : p;
 }
 
 } // namespace

@@ -156,6 +156,10 @@ void signal_stops_and_restart_continues(int sig, int expected_code, const char* 
     EXPECT_NEAR(all[i] - all[i - 1], 0.01, 1e-6) << "row " << i << ": a row is missing";
   }
   EXPECT_NEAR(all.back(), end, 1e-9);
+  // The continued run still names the case file it was started from (fluidem plot finds the
+  // case's published values through it: docs/analysis.md).
+  EXPECT_TRUE(contains(read_file(out / "case.resolved.toml"),
+                       "\n# case file: " + fs::absolute(c).lexically_normal().string() + "\n"));
 }
 
 TEST(RunSafety, SigintCheckpointsAndRestartContinues) {
