@@ -75,6 +75,19 @@ CaseSpec simulated_case(const CaseSpec& user) {
   return s;
 }
 
+double simulated_over_user(const CaseSpec& spec, std::string_view key) {
+  const CoarseGrainingSpec& cg = spec.coarse_graining;
+  if (!cg.active()) return 1.0;
+  if (key.ends_with(".diameter")) return coarse_graining::diameter_factor(cg.ratio);
+  const auto* normal = contact_models::find(contact_models::Kind::Normal, spec.contact.normal.name);
+  const bool elastic = normal != nullptr && normal->takes_elastic_constants;
+  if (elastic && (key.ends_with(".youngs_modulus") || key.ends_with(".shear_modulus")))
+    return coarse_graining::youngs_modulus_factor(cg.contact_scaling, cg.ratio);
+  if (!elastic && key == "contact.stiffness")
+    return coarse_graining::linear_stiffness_factor(cg.contact_scaling, cg.ratio);
+  return 1.0;
+}
+
 CaseSpec user_values(const CaseSpec& simulated, const CaseSpec& user) {
   if (!user.coarse_graining.active()) return simulated;
   CaseSpec c = simulated;

@@ -15,12 +15,22 @@
 // (virtual mass scales with the volume: allowed), and particles read from a file.
 // The resolved case a run writes (and a checkpoint restarts from) is the user's: user_values().
 #pragma once
+#include <string_view>
+
 #include "core/case_spec.hpp"
 
 namespace fluidem {
 
 /// The case as simulated: `user` itself when coarse_graining.ratio is 1; InputError as above.
 CaseSpec simulated_case(const CaseSpec& user);
+
+/// Simulated value / user's value of the case key `key` ("species[0].diameter",
+/// "contact.stiffness", "walls.x_lo.youngs_modulus", ...) as simulated_case() scales it: s for a
+/// diameter, the contact scaling's factor for the linear stiffness and the Hertz moduli, 1 for
+/// every other key and without coarse graining. Messages about simulated values divide by it to
+/// speak of what the user wrote.
+/// (`spec`: the user's case or the simulated one, which keep the same [coarse_graining].)
+double simulated_over_user(const CaseSpec& spec, std::string_view key);
 
 /// `simulated` with the values simulated_case() scaled put back to the user's, so that the
 /// resolved case keeps everything the set-up resolved (time step, closure name, ...) in the

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "integrate/coarse_graining.hpp"
 #include "particles/particle_store.hpp"
 
 namespace fluidem {
@@ -130,10 +131,15 @@ void check_contact_durations(const CaseSpec& spec, const ContactTable& table,
     if (off > worst) worst = off, culprit = &in;
   }
   std::vector<std::string> fixes;
+  // Values as the user wrote them: with coarse graining the inputs are the parcels'.
+  auto user_value = [&spec](const Input& in, double v) {
+    return v / simulated_over_user(spec, in.key);
+  };
   auto fix_of = [&](const Input& in) -> std::optional<std::string> {
     const auto v = value_for(in, target);
     if (!v) return std::nullopt;
-    return fmt::format("{} {} {} {}", in.key, in.longer_when_larger ? ">=" : "<=", format_value(*v),
+    return fmt::format("{} {} {} {}", in.key,
+                       in.longer_when_larger ? ">=" : "<=", format_value(user_value(in, *v)),
                        in.unit);
   };
   if (culprit)
@@ -163,9 +169,10 @@ void check_contact_durations(const CaseSpec& spec, const ContactTable& table,
       shortest->pair, culprit ? "" : "s", format_value(shown), format_value(sim.end_time), step,
       format_value(sim.end_time / (fraction * shown)), allowed);
   if (culprit)
-    throw InputError(
-        spec.where(culprit->key), culprit->key,
-        fmt::format("{} {} makes {}", format_value(culprit->value), culprit->unit, why));
+    throw InputError(spec.where(culprit->key), culprit->key,
+                     fmt::format("{} {} makes {}",
+                                 format_value(user_value(*culprit, culprit->value)), culprit->unit,
+                                 why));
   throw InputError(
       spec.where("simulation.end_time"), "simulation.end_time",
       fmt::format("{} s is too long for this case: {}", format_value(sim.end_time), why));

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <string>
+#include <vector>
 
 #include "../../common/cli_runner.hpp"
 
@@ -25,15 +26,17 @@ using fluidem::test::TempDir;
 
 const fs::path kCorpus = fs::path(FLUIDEM_SOURCE_DIR) / "tests" / "data" / "fuzz";
 
-/// `fluidem check FILE` in a fresh folder, and its wall time in seconds.
+/// `fluidem check FILE [MORE...]` in a fresh folder, and its wall time in seconds.
 struct Timed {
   Result r;
   double seconds = 0.0;
 };
-Timed check(const TempDir& dir, const fs::path& file) {
+Timed check(const TempDir& dir, const fs::path& file, const std::vector<std::string>& more = {}) {
   const auto t0 = std::chrono::steady_clock::now();
   Timed t;
-  t.r = fluidem({"check", file.string()}, dir.path);
+  std::vector<std::string> args = {"check", file.string()};
+  args.insert(args.end(), more.begin(), more.end());
+  t.r = fluidem(args, dir.path);
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return t;
 }
@@ -165,6 +168,18 @@ TEST(BadInput, TinyDiameterIsNamedNotTheTimeStep) {
   // tests/common/linear_impact.hpp, computed by hand) gives d = 4.93e-9 m.
   EXPECT_TRUE(contains(t.r.err, "species[0].diameter >= 4.93e-09 m")) << t.r.err;
   EXPECT_FALSE(contains(t.r.err, "simulation.time_step:")) << t.r.err;
+}
+
+// Coarse-grained (W = 8, chang08 scaling: parcels of 2 d, linear stiffness x 2), the message
+// speaks of the values the user wrote, not the parcels': the parcel's contact needs
+// sqrt(m2 / k2) as above, m2 ~ d2^3 and k2 = 2 k, so d2 >= 4.93e-9 m x 2^(1/3) = 6.21e-9 m and
+// the user's d1 = d2 / 2 >= 3.1e-9 m; the culprit is the written 1e-300 m (not 2e-300).
+TEST(BadInput, CoarseGrainedSuggestionsAreTheUsersValues) {
+  TempDir dir;
+  const Timed t =
+      check(dir, kCorpus / "species_diameter_1e-300.toml", {"--set", "coarse_graining.ratio=8"});
+  expect_refused(t, "species[0].diameter: 1e-300 m makes the glass-glass contact last 0 s");
+  EXPECT_TRUE(contains(t.r.err, "species[0].diameter >= 3.1e-09 m")) << t.r.err;
 }
 
 TEST(BadInput, HugeStiffnessIsNamedNotTheTimeStep) {
