@@ -20,6 +20,7 @@
 //    z face through its centre, every other face carries none, the staggered pressure
 //    gradient alternates and the particles' -V grad p reads the steep faces only. Checked: the
 //    cube's force-balance error is below a tenth of the stencil's.
+#include "../../common/bed_gradient.hpp"
 #include "core/error.hpp"
 #include "coupling/exchange.hpp"
 #include "coupling/particle_mapping.hpp"
@@ -155,7 +156,6 @@ std::array<double, 3> fine_grid_bed(PorosityMethod method, double U) {
   s.tolerance = 1e-10;
   s.velocity_tolerance = 1e-8;
   gas::GasSolver gs(s);
-  const gas::GasGrid& g = gs.grid();
   ParticleStore p;
   for (int k = 0; k < 40; ++k)
     for (int j = 0; j < 6; ++j)
@@ -178,18 +178,8 @@ std::array<double, 3> fine_grid_bed(PorosityMethod method, double U) {
     gs.step(t, dt);
   }
   // Middle of the bed: cell layers k = 21..60 (z from 10 sz to 30 sz: 20 lattice layers).
-  double grad = 0.0, eps = 0.0;
-  int m = 0;
-  for (int k = 21; k < 60; ++k)
-    for (int j = 1; j <= g.n[1]; ++j)
-      for (int i = 1; i <= g.n[0]; ++i, ++m) {
-        const auto q = static_cast<std::size_t>(g.idx(i, j, k));
-        grad +=
-            (gs.pressure()[q + static_cast<std::size_t>(g.stride[2])] - gs.pressure()[q]) / g.h[2];
-        eps += gs.porosity()[q];
-      }
-  grad /= m;
-  eps /= m;
+  const auto [drop, eps] = test::band_pressure_gradient(gs, 21, 60);
+  const double grad = -drop;
   const double ergun = 150.0 * s.viscosity * (1 - eps) * (1 - eps) * U / (eps * eps * eps * d * d) +
                        1.75 * s.density * (1 - eps) * U * U / (eps * eps * eps * d);
   compute_particle_forces(gs, p, c, f);

@@ -34,6 +34,8 @@
 #include "integrate/simulation.hpp"
 #include "io/case_reader.hpp"
 
+#include "../../common/bed_gradient.hpp"
+
 namespace fluidem {
 namespace {
 
@@ -92,21 +94,9 @@ porosity = "cell"
          extra;
 }
 
-/// -dp/dz between the centres of cells k and k+1, averaged over the columns and k = 4..15 (the
-/// middle of the bed), and the mean porosity of those cells.
+/// -dp/dz and the porosity over the middle of the bed, cell layers k = 4..15.
 std::array<double, 2> bed_gradient(const gas::GasSolver& gs) {
-  const gas::GasGrid& g = gs.grid();
-  double grad = 0.0, cell_eps = 0.0;
-  int m = 0;
-  for (int k = 4; k < 16; ++k)
-    for (int j = 1; j <= g.n[1]; ++j)
-      for (int i = 1; i <= g.n[0]; ++i, ++m) {
-        const auto q = static_cast<std::size_t>(g.idx(i, j, k));
-        const auto up = static_cast<std::size_t>(g.idx(i, j, k + 1));
-        grad += (gs.pressure()[up] - gs.pressure()[q]) / g.h[2];
-        cell_eps += gs.porosity()[q];
-      }
-  return {-grad / m, cell_eps / m};
+  return test::band_pressure_gradient(gs, 4, 16);
 }
 
 TEST(FixedBed, PressureDropIsErguns) {
