@@ -68,8 +68,11 @@ Decomposition::Decomposition(const DecompositionGrid& grid, int ranks, int verti
   };
 
   if (forced != std::array<int, 3>{0, 0, 0}) {
-    const std::int64_t product = static_cast<std::int64_t>(forced[0]) * forced[1] * forced[2];
-    if (forced[0] < 1 || forced[1] < 1 || forced[2] < 1 || product != ranks)
+    // Each factor in 1 .. ranks keeps the int64 products below 2^62 (no overflow).
+    const auto factor_ok = [&](int f) { return f >= 1 && f <= ranks; };
+    const bool factors_ok = factor_ok(forced[0]) && factor_ok(forced[1]) && factor_ok(forced[2]);
+    if (!factors_ok || static_cast<std::int64_t>(forced[0]) * forced[1] != ranks / forced[2] ||
+        ranks % forced[2] != 0)
       throw std::invalid_argument("Decomposition: the forced process grid " + cells_str(forced) +
                                   " is not a factorisation of " + std::to_string(ranks) +
                                   " ranks (each part >= 1, product == ranks)");
