@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "contact/contact_evaluate.hpp"
 #include "contact/kernels/normal_force.hpp"
 #include "contact/models/model_list.hpp"
 #include "core/parallel.hpp"
@@ -22,65 +23,12 @@ int contact_history_width(const ContactTable& t) {
 
 namespace {
 
+using contact_kernel::add_released_energy;
+using contact_kernel::adhesive;
+using contact_kernel::evaluate;
+using contact_kernel::kHistoryWidth;
 using contact_models::ContactInput;
 using contact_models::ContactOutput;
-
-/// Whether a normal model holds its contacts in tension (JKR): its entries touch while attached
-/// down to an overlap of -Normal::detach_distance, and its force is not floored.
-template <class Normal>
-constexpr bool adhesive = requires {
-  Normal::detaches_in_tension;
-};
-
-/// One contact of the models Normal x Tangential x Rolling (contact/models/): the normal model's
-/// response (with its own history when it has one), floored, then the tangential and rolling
-/// models, each on its own part of the history (normal | tangential | rolling).
-template <class Normal, class Tangential, class Rolling>
-[[gnu::always_inline]] inline ContactOutput evaluate(const ContactInput& c, const PairParams& pp,
-                                                     double* hist, double dt) {
-  ContactOutput out;
-  // Declared, then assigned (not initialised from the call): so GCC splits it into scalars and
-  // the batch loop stays vectorised (a struct initialised from a call may stay in memory).
-  kernels::NormalResponse nr;
-  // A normal model with history (history_width > 0) reads and updates its own part of it and
-  // books the energy its hysteresis moves out of the spring; the others are called as before
-  // (the same code: no history loads for them).
-  [[maybe_unused]] double normal_loss = 0.0;
-  if constexpr (Normal::history_width > 0)
-    nr = Normal::respond(pp, c.r_eff, c.m_eff, c.overlap, hist, normal_loss);
-  else
-    nr = Normal::respond(pp, c.r_eff, c.m_eff, c.overlap);
-  const double k_t = Normal::tangential_stiffness(pp, nr);
-  const double k_rolling = Normal::rolling_stiffness(pp, nr);
-  const double vn = dot(c.v_rel, c.n); // > 0 when approaching
-  // The normal force never pulls [Schwager & Poeschel 2008]: the Coulomb and rolling limits
-  // ([Deen07 eq. 28] |F_n|) scale with the same force whose impulse the normal direction gets,
-  // so gross sliding gives J_t = mu J_n (with a tensile tail counted in J_n but not in the
-  // limit, J_t/J_n was 1.034 mu at e = 0.5).
-  if constexpr (adhesive<Normal>) {
-    // An adhesive model's force is tensile by design: not floored, no dashpot; its Coulomb and
-    // rolling limits take the model's load (JKR: F_n + 2 F_c).
-    out.force = c.n * (-nr.elastic);
-    out.fn_abs = Normal::friction_load(pp, c.r_eff, nr.elastic);
-    out.elastic = nr.energy;
-    out.nc_force = Vec3{};
-  } else {
-    const kernels::NormalForce fn = kernels::floored_normal_force(nr, vn);
-    out.force = c.n * (-fn.magnitude);
-    out.fn_abs = fn.magnitude;
-    out.elastic = nr.energy;
-    out.nc_force = c.n * (-fn.nonconservative);
-  }
-  if constexpr (Normal::history_width > 0) out.spring_loss = normal_loss;
-  double* own = hist + Normal::history_width;
-  Tangential::add(out, c, pp, nr, k_t, vn, own, dt);
-  Rolling::add(out, c, pp, k_rolling, own + Tangential::history_width, dt);
-  return out;
-}
-
-template <class Normal, class Tangential, class Rolling>
-constexpr int kHistoryWidth =
-    Normal::history_width + Tangential::history_width + Rolling::history_width;
 
 /// `flag` as 0 or 1 in an integer register that the compiler cannot see through: in a loop
 /// that adds it to a counter (the contact walk's batch fill) GCC may otherwise branch on the
@@ -556,25 +504,10 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     for (int k = 0; k < hw; ++k) bits |= std::bit_cast<std::uint64_t>(hist[k]) << 1;
     return bits;
   };
-  // A contact that ends takes its spring energy with it: count it as dissipated. (Hertz springs
-  // have k_t -> 0 as the overlap closes, so only the linear springs hold energy at separation.)
+  // A contact that ends takes its spring energy with it: count it as dissipated
+  // (contact_kernel::add_released_energy).
   auto release = [&](ContactStats& acc, double* hist, const PairParams& pp, double r_eff) {
-    if constexpr (Normal::springs_hold_energy_at_separation) {
-      kernels::NormalResponse separated{}; // the stiffnesses as the overlap closes
-      if constexpr (adhesive<Normal>) {
-        // An adhesive contact breaks at -delta_c: its potential there is dissipated, and the
-        // springs scale with its contact radius there.
-        separated = Normal::at_break(pp, r_eff);
-        acc.spring_losses += separated.energy;
-      }
-      const double* own = hist + Normal::history_width;
-      if constexpr (Tangential::history_width > 0)
-        acc.spring_losses +=
-            Tangential::stored_energy(own, Normal::tangential_stiffness(pp, separated));
-      if constexpr (Rolling::history_width > 0)
-        acc.spring_losses += Rolling::stored_energy(
-            own + Tangential::history_width, pp, Normal::rolling_stiffness(pp, separated), r_eff);
-    }
+    add_released_energy<Normal, Tangential, Rolling>(acc.spring_losses, hist, pp, r_eff);
     std::fill_n(hist, hw, 0.0);
   };
   const std::size_t n = p.size();
@@ -718,17 +651,9 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
     if (deepest < n) acc.max_overlap_ratio = max_ratio, acc.max_overlap_particle = p.id[deepest];
     b.n = 0;
   };
-  // An adhesive model's pair (entry history `hist`, squared separation d2): touching when it
-  // overlaps, or when it is attached and its overlap is above -delta_c.
   [[maybe_unused]] auto attached_pair = [](bool overlapping, const double* hist,
                                            const PairParams& pp, double ri, double rj, double d2) {
-    if constexpr (adhesive<Normal>) {
-      if (overlapping || hist[0] == 0.0) return overlapping;
-      const double reach = ri + rj + Normal::detach_distance(pp, ri * rj / (ri + rj));
-      return d2 < reach * reach;
-    } else {
-      return overlapping;
-    }
+    return contact_kernel::attached_pair<Normal>(overlapping, hist, pp, ri, rj, d2);
   };
   // The end of pass 1 for an entry (pairs and walls alike). A contact that just ended: one
   // integer test, so one rarely taken branch instead of one on touching (unpredictable).

@@ -23,57 +23,15 @@
 #include <vector>
 
 #include "../../common/contact_case.hpp"
+#include "../../common/jittered_bed.hpp"
 #include "contact/contact_forces.hpp"
 
 namespace fluidem {
 namespace {
 
-constexpr double kD = 0.003;
-constexpr double kL = 0.06; // box edge along x and y
-constexpr double kH = 0.06; // box height
-
-CaseSpec make_spec(int species, const std::string& normal) {
-  CaseSpec s;
-  s.simulation.dimension = 3;
-  s.domain.lo = {0.0, 0.0, 0.0};
-  s.domain.hi = {kL, kL, kH};
-  for (int k = 0; k < species; ++k) // d = kD
-    s.species.push_back(test::glass_species_spec(k == 0 ? "glass" : "glass_b"));
-  s.contact.normal.name = normal;
-  if (normal == "jkr")
-    s.contact.normal.coefficients["adhesion_energy"] = 0.2;
-  else if (normal != "hertz")
-    s.contact.normal.coefficients["stiffness"] = 2000.0;
-  // Walton & Braun's spring (history of its own) with the Mindlin-Deresiewicz tangential force.
-  s.contact.tangential.name = normal == "walton_braun" ? "mindlin_deresiewicz" : "history";
-  s.contact.rolling.name = "spring_dashpot";
-  return s;
-}
-
-/// A jittered lattice of `layers` layers, spacing 0.97 d, random velocities and spins, the
-/// first layer on the floor and the outer columns against the side walls. Species alternate
-/// between 0 and species - 1 by particle; radii are d/2 or spread by +-1% (`spread`).
-ParticleStore make_particles(int layers, int species, bool spread) {
-  ParticleStore p;
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const double a = 0.97 * kD;
-  const int nxy = static_cast<int>((kL - kD) / a) + 1;
-  std::int64_t id = 0;
-  for (int k = 0; k < layers; ++k)
-    for (int j = 0; j < nxy; ++j)
-      for (int i = 0; i < nxy; ++i) {
-        const Vec3 x{0.49 * kD + i * a + 0.02 * kD * u(rng), 0.49 * kD + j * a + 0.02 * kD * u(rng),
-                     0.49 * kD + k * a + 0.02 * kD * u(rng)};
-        const Vec3 v{0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)};
-        const double r = 0.5 * kD * (spread ? 1.0 + 0.01 * u(rng) : 1.0);
-        p.add(x, v, r, 2500.0, static_cast<int>(id % species), id);
-        ++id;
-        const std::size_t n = p.size() - 1;
-        p.wx[n] = 50.0 * u(rng), p.wy[n] = 50.0 * u(rng), p.wz[n] = 50.0 * u(rng);
-      }
-  return p;
-}
+using test::jittered_bed;
+using test::jittered_bed_spec;
+constexpr double kD = test::kJitteredD;
 
 struct Result {
   std::vector<double> acc, history, wall_history;
@@ -81,9 +39,9 @@ struct Result {
 };
 
 Result run(int layers, int species, bool spread, const std::string& normal) {
-  const CaseSpec spec = make_spec(species, normal);
+  const CaseSpec spec = jittered_bed_spec(species, normal);
   const ContactTable table(spec);
-  const ParticleStore p = make_particles(layers, species, spread);
+  const ParticleStore p = jittered_bed(layers, species, spread);
   NeighbourList nl(test::box_of(spec), 0.1 * kD, contact_history_width(table));
   nl.build(p);
   ContactScratch nc;
