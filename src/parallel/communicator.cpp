@@ -1,6 +1,8 @@
 #include "parallel/communicator.hpp"
 
 #include <cstdlib>
+// The C interface only (Open MPI would otherwise pull in its deprecated C++ bindings).
+#define OMPI_SKIP_MPICXX 1
 #include <mpi.h>
 #include <stdexcept>
 

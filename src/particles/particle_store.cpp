@@ -6,29 +6,20 @@
 
 namespace fluidem {
 
-namespace {
-template <class F>
-void for_each_array(ParticleStore& p, F&& f) {
-  f(p.x), f(p.y), f(p.z), f(p.vx), f(p.vy), f(p.vz), f(p.wx), f(p.wy), f(p.wz);
-  f(p.radius), f(p.mass), f(p.inv_mass), f(p.inv_inertia), f(p.species), f(p.id), f(p.layer),
-      f(p.charge);
-}
-} // namespace
-
 double sphere_mass(double r, double rho) {
   return rho * 4.0 / 3.0 * std::numbers::pi * r * r * r;
 }
 
 void ParticleStore::reserve(std::size_t n) {
-  for_each_array(*this, [n](auto& a) { a.reserve(n); });
+  for_each_array([n](auto& a) { a.reserve(n); });
 }
 
 void ParticleStore::shrink_to_fit() {
-  for_each_array(*this, [](auto& a) { a.shrink_to_fit(); });
+  for_each_array([](auto& a) { a.shrink_to_fit(); });
 }
 
 void ParticleStore::resize(std::size_t n) {
-  for_each_array(*this, [n](auto& a) { a.resize(n); });
+  for_each_array([n](auto& a) { a.resize(n); });
 }
 
 void ParticleStore::add(const Vec3& p, const Vec3& v, double r, double rho, std::int32_t s,
@@ -69,7 +60,7 @@ void assign_layers(ParticleStore& p, int axis, int n_layers) {
 }
 
 void ParticleStore::permute(const std::vector<std::uint32_t>& new_to_old) {
-  for_each_array(*this, [&](auto& a) {
+  for_each_array([&](auto& a) {
     auto copy = a;
     for (std::size_t k = 0; k < new_to_old.size(); ++k) a[k] = copy[new_to_old[k]];
   });
@@ -77,8 +68,7 @@ void ParticleStore::permute(const std::vector<std::uint32_t>& new_to_old) {
 
 std::size_t ParticleStore::bytes() const {
   std::size_t b = 0;
-  for_each_array(const_cast<ParticleStore&>(*this),
-                 [&b](auto& a) { b += a.capacity() * sizeof(a[0]); });
+  for_each_array([&b](const auto& a) { b += a.capacity() * sizeof(a[0]); });
   return b;
 }
 

@@ -52,6 +52,18 @@ public:
   /// Whether particle i is fixed (fix()).
   bool fixed(std::size_t i) const { return inv_mass[i] == 0.0; }
 
+  /// f(array) for each per-particle array, always in this order (for whatever moves whole
+  /// particles: permute, the MPI exchange, so that a new array cannot be forgotten there).
+  template <class F>
+  void for_each_array(F&& f) {
+    f(x), f(y), f(z), f(vx), f(vy), f(vz), f(wx), f(wy), f(wz);
+    f(radius), f(mass), f(inv_mass), f(inv_inertia), f(species), f(id), f(layer), f(charge);
+  }
+  template <class F>
+  void for_each_array(F&& f) const {
+    const_cast<ParticleStore&>(*this).for_each_array([&](const auto& a) { f(a); });
+  }
+
   /// Reorder every array by new_to_old (new index k takes old particle new_to_old[k]).
   void permute(const std::vector<std::uint32_t>& new_to_old);
   /// Bytes held by the arrays (capacity), for memory reports.

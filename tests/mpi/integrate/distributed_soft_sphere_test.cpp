@@ -1,0 +1,137 @@
+// The soft-sphere DEM on MPI ranks gives the bits of one rank (docs/parallel.md). Run by ctest
+// under mpirun with 1, 2, 3 and 4 ranks (oversubscribed on two cores): a bed of 5200 glass
+// spheres (Hertz, tangential history, rolling springs; periodic along x, walls elsewhere)
+// released from a jittered lattice with overlaps of up to a few percent of a diameter and random
+// velocities (the particles cross the ranks' cut planes, migrate with their histories, and the
+// lists are rebuilt several times) runs 300 steps on all ranks, cut into columns, slabs and
+// 2 x 2 boxes; its particles (sorted by id: every array of the store, and each particle's
+// dissipated and elastic energy) and its totals must equal bit for bit those of the same bed
+// stepped by one rank alone (Communicator::self(), on the root) with 2 threads. A control with
+// one velocity changed by 1e-12 must differ.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <omp.h>
+
+#include "../../common/jittered_bed.hpp"
+#include "integrate/distributed_soft_sphere.hpp"
+
+namespace fluidem {
+namespace {
+
+constexpr long kSteps = 300;
+
+CaseSpec bed_spec() {
+  CaseSpec s = test::jittered_bed_spec(2, "hertz");
+  s.domain.periodic = {true, false, false};
+  return s;
+}
+
+/// FNV-1a over bytes.
+struct Hash {
+  std::uint64_t h = 1469598103934665603ull;
+  template <class T>
+  void add(const std::vector<T>& v) {
+    const auto* b = reinterpret_cast<const unsigned char*>(v.data());
+    for (std::size_t k = 0; k < v.size() * sizeof(T); ++k) h = (h ^ b[k]) * 1099511628211ull;
+  }
+};
+
+struct Outcome {
+  std::uint64_t hash = 0;
+  DistributedSoftSphere::Totals totals;
+  long builds = 0;
+};
+
+Outcome run(const Communicator& comm, std::array<int, 3> grid, double nudge = 0.0) {
+  const CaseSpec spec = bed_spec();
+  ParticleStore all = test::jittered_bed(13, 2, true);
+  all.vx[100] += nudge;
+  DistributedSoftSphere::Settings s;
+  s.dt = 1e-5;
+  s.skin = 0.1 * test::kJitteredD;
+  s.gravity = {0.0, 0.0, -9.81};
+  s.cells.cells = {20, 20, 20};
+  s.cells.lo = spec.domain.lo;
+  s.cells.hi = spec.domain.hi;
+  s.cells.periodic = spec.domain.periodic;
+  s.process_grid = grid;
+  DistributedSoftSphere dem(comm, std::make_unique<ContactTable>(spec), test::box_of(spec), s, all);
+  dem.advance(kSteps);
+  Outcome o;
+  o.totals = dem.totals();
+  o.builds = dem.builds();
+  const DistributedSoftSphere::Gathered g = dem.gather();
+  if (comm.root()) {
+    Hash h;
+    g.particles.for_each_array([&](const auto& a) { h.add(a); });
+    h.add(g.dissipated);
+    h.add(g.elastic);
+    o.hash = h.h;
+  }
+  return o;
+}
+
+void expect_same_totals(const DistributedSoftSphere::Totals& a,
+                        const DistributedSoftSphere::Totals& b) {
+  EXPECT_EQ(std::memcmp(&a.kinetic, &b.kinetic, sizeof(double)), 0);
+  EXPECT_EQ(a.rotational, b.rotational);
+  EXPECT_EQ(a.potential, b.potential);
+  EXPECT_EQ(a.elastic, b.elastic);
+  EXPECT_EQ(a.dissipated, b.dissipated);
+  EXPECT_EQ(a.contacts, b.contacts);
+  EXPECT_EQ(a.particles, b.particles);
+  EXPECT_EQ(a.max_overlap_ratio, b.max_overlap_ratio);
+}
+
+/// The reference: one rank alone, two threads (the contact loop and the kicks go threaded above
+/// 4096 particles), computed once per process on the root.
+const Outcome& one_rank() {
+  static const Outcome o = [] {
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(2);
+    Outcome r = run(Communicator::self(), {0, 0, 0});
+    omp_set_num_threads(threads);
+    return r;
+  }();
+  return o;
+}
+
+void expect_one_rank_bits(std::array<int, 3> grid) {
+  const Communicator& world = Communicator::world();
+  const Outcome many = run(world, grid);
+  if (!world.root()) return;
+  const Outcome& one = one_rank();
+  EXPECT_GT(one.builds, 2); // the lists were rebuilt (and the particles migrated) on the way
+  EXPECT_EQ(many.builds, one.builds);
+  EXPECT_EQ(many.hash, one.hash) << "ranks " << world.size();
+  expect_same_totals(many.totals, one.totals);
+}
+
+TEST(DistributedSoftSphere, ColumnsGiveTheBitsOfOneRank) {
+  expect_one_rank_bits({Communicator::world().size(), 1, 1});
+}
+
+TEST(DistributedSoftSphere, SlabsGiveTheBitsOfOneRank) {
+  expect_one_rank_bits({1, 1, Communicator::world().size()});
+}
+
+TEST(DistributedSoftSphere, TwoByTwoGivesTheBitsOfOneRank) {
+  if (Communicator::world().size() != 4) GTEST_SKIP() << "2 x 2 boxes need 4 ranks";
+  expect_one_rank_bits({2, 2, 1});
+}
+
+TEST(DistributedSoftSphere, ChosenGridGivesTheBitsOfOneRank) {
+  expect_one_rank_bits({0, 0, 0});
+}
+
+TEST(DistributedSoftSphere, AnotherStartGivesOtherBits) {
+  const Communicator& world = Communicator::world();
+  const Outcome nudged = run(world, {0, 0, 0}, 1e-12);
+  if (world.root()) {
+    EXPECT_NE(nudged.hash, one_rank().hash);
+  }
+}
+
+} // namespace
+} // namespace fluidem
