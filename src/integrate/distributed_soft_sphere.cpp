@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/nearest_integer.hpp"
 #include "core/parallel.hpp"
+#include "integrate/wall_clock.hpp"
 
 namespace fluidem {
 
@@ -29,16 +31,28 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
                                              std::unique_ptr<ContactTable> table,
                                              const BoxGeometry& box, const Settings& settings,
                                              const ParticleStore& all)
+    : DistributedSoftSphere(comm, std::move(table), box, settings, all, nullptr) {}
+
+DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
+                                             std::unique_ptr<ContactTable> table,
+                                             const BoxGeometry& box, const Settings& settings,
+                                             const DistributedState& state)
+    : DistributedSoftSphere(comm, std::move(table), box, settings, state.particles, &state) {}
+
+DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
+                                             std::unique_ptr<ContactTable> table,
+                                             const BoxGeometry& box, const Settings& settings,
+                                             const ParticleStore& all,
+                                             const DistributedState* state)
     : comm_(comm), table_(std::move(table)), box_(box), s_(settings),
       map_(settings.cells, comm.size(), gravity_axis(settings.gravity), settings.process_grid) {
   double r_max = 0.0;
   for (const double r : all.radius) r_max = std::max(r_max, r);
   // The ghosts reach as far as the list's cut-off for the largest pair.
-  const double halo = 2.0 * r_max + table_->attached_reach(r_max) + s_.skin;
-  exchange_ = std::make_unique<ParticleExchange>(comm_, map_, halo);
-  rows_ =
-      std::make_unique<OrderedRows>(box_, table_->history_width(), table_->attached_reach(r_max));
-  // Each rank keeps the particles whose centres its cells hold.
+  const double reach = table_->attached_reach(r_max);
+  exchange_ = std::make_unique<ParticleExchange>(comm_, map_, 2.0 * r_max + reach + s_.skin);
+  rows_ = std::make_unique<OrderedRows>(box_, table_->history_width(), reach);
+  // Each rank keeps the particles whose centres its cells hold, with what they carry.
   std::vector<std::uint32_t> mine;
   for (std::size_t i = 0; i < all.size(); ++i)
     if (map_.owner(all.x[i], all.y[i], all.z[i]) == comm_.rank())
@@ -47,10 +61,52 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
   p_.permute(mine);
   p_.resize(mine.size());
   owned_ = p_.size();
-  dissipated_.assign(owned_, 0.0);
   total_ = static_cast<std::int64_t>(all.size());
-  rebuild();
-  stats_ = compute_ordered_contact_forces(p_, *rows_, *table_, s_.dt, sums_);
+  KeptHistory kept;
+  kept.width = rows_->history_width();
+  kept.offset.assign(1, 0);
+  dissipated_.assign(owned_, 0.0);
+  if (state) {
+    const auto hw = static_cast<std::size_t>(kept.width);
+    const KeptHistory& h = state->history;
+    sums_.acc.resize(OrderedContactSums::kAcc * owned_);
+    sums_.elastic.resize(owned_);
+    sums_.released.assign(owned_, 0.0);
+    for (std::size_t k = 0; k < owned_; ++k) {
+      const std::size_t i = mine[k];
+      std::copy_n(state->contact.begin() + static_cast<std::ptrdiff_t>(12 * i), 12,
+                  sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * k));
+      sums_.elastic[k] = state->elastic[i];
+      dissipated_[k] = state->dissipated[i];
+      for (std::uint32_t m = h.offset[i]; m < h.offset[i + 1]; ++m) {
+        kept.key.push_back(h.key[m]);
+        kept.values.insert(kept.values.end(),
+                           h.values.begin() + static_cast<std::ptrdiff_t>(m * hw),
+                           h.values.begin() + static_cast<std::ptrdiff_t>((m + 1) * hw));
+      }
+      kept.offset.push_back(static_cast<std::uint32_t>(kept.key.size()));
+    }
+    builds_ = state->builds;
+  } else {
+    kept.offset.assign(owned_ + 1, 0);
+  }
+  // The first list (a restarted run's too: the rows' order does not depend on when they were
+  // built, and the checkpoint holds every loaded history).
+  exchange_->fill_ghosts(p_);
+  rows_->build(p_, owned_, s_.skin, kept);
+  x0_.resize(3 * owned_);
+  for (std::size_t i = 0; i < owned_; ++i)
+    x0_[3 * i] = p_.x[i], x0_[3 * i + 1] = p_.y[i], x0_[3 * i + 2] = p_.z[i];
+  if (!state) stats_ = compute_ordered_contact_forces(p_, *rows_, *table_, s_.dt, sums_);
+  observed_stats_.max_overlap_ratio = comm_.max(stats_.max_overlap_ratio);
+}
+
+std::size_t DistributedSoftSphere::bytes() const {
+  return p_.bytes() - p_.bytes() / std::max<std::size_t>(1, p_.size()) * owned_ +
+         (rows_->partner.capacity() + rows_->offset.capacity()) * sizeof(std::uint32_t) +
+         (rows_->history.capacity() + sums_.acc.capacity() + x0_.capacity() +
+          dissipated_.capacity()) *
+             sizeof(double);
 }
 
 void DistributedSoftSphere::kick() {
@@ -72,6 +128,7 @@ void DistributedSoftSphere::kick() {
 }
 
 void DistributedSoftSphere::step() {
+  auto t0 = WallClock::now();
   kick();
   // Drift; the displacement since the build decides the next build, and one beyond the halo
   // stops the run (the ghosts would no longer hold every partner).
@@ -99,11 +156,18 @@ void DistributedSoftSphere::step() {
                            std::to_string(exchange_->halo()) +
                            " m) within one neighbour list's life: the run is unstable (reduce "
                            "the time step)");
+  seconds_.integration += seconds_since(t0);
+  t0 = WallClock::now();
   if (comm_.max(moved_far) > 0.0)
     rebuild();
   else
     exchange_->update_ghosts(p_, owned_);
+  seconds_.neighbour += seconds_since(t0);
+  t0 = WallClock::now();
   stats_ = compute_ordered_contact_forces(p_, *rows_, *table_, dt, sums_);
+  observed_stats_.max_overlap_ratio = comm_.max(stats_.max_overlap_ratio);
+  seconds_.contacts += seconds_since(t0);
+  t0 = WallClock::now();
   kick();
   // The work of the non-conservative contact forces with the full-step velocities, and the
   // spring energy released by contacts that ended, per particle.
@@ -114,6 +178,7 @@ void DistributedSoftSphere::step() {
     dissipated_[i] += -w * dt;
     dissipated_[i] += sums_.released[i];
   }
+  seconds_.integration += seconds_since(t0);
 }
 
 void DistributedSoftSphere::advance(long steps) {
@@ -122,11 +187,7 @@ void DistributedSoftSphere::advance(long steps) {
 
 void DistributedSoftSphere::rebuild() {
   // The own particles' histories leave the rows keyed by partner id; the ghosts are dropped.
-  KeptHistory kept = builds_ > 0 ? rows_->keep(p_) : KeptHistory{};
-  if (builds_ == 0) {
-    kept.width = rows_->history_width();
-    kept.offset.assign(owned_ + 1, 0);
-  }
+  KeptHistory kept = rows_->keep(p_);
   p_.resize(owned_);
   const std::vector<ParticleTooFar> lost = exchange_->migrate(p_, kept, dissipated_, 1);
   const double first_lost = comm_.min(lost.empty() ? std::numeric_limits<double>::infinity()
@@ -148,32 +209,73 @@ void DistributedSoftSphere::rebuild() {
   ++builds_;
 }
 
-DistributedSoftSphere::Gathered DistributedSoftSphere::gather() const {
-  std::vector<double> extra(2 * owned_);
-  for (std::size_t i = 0; i < owned_; ++i)
-    extra[2 * i] = dissipated_[i], extra[2 * i + 1] = sums_.elastic[i];
-  const std::vector<char> mine = pack_particles(p_, owned_, extra, 2);
-  const auto parts = comm_.gather(mine);
-  Gathered g;
+DistributedState DistributedSoftSphere::gather(bool with_history) const {
+  // Per particle: dissipated, elastic, the 12 contact sums; then (with_history) its entries.
+  constexpr int kExtra = 14;
+  std::vector<double> extra(kExtra * owned_);
+  for (std::size_t i = 0; i < owned_; ++i) {
+    extra[kExtra * i] = dissipated_[i], extra[kExtra * i + 1] = sums_.elastic[i];
+    std::copy_n(sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i), 12,
+                extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 2));
+  }
+  const auto parts = comm_.gather(pack_particles(p_, owned_, extra, kExtra));
+  KeptHistory kept_mine;
+  std::vector<std::vector<char>> history_parts;
+  if (with_history) {
+    kept_mine = rows_->keep(p_);
+    history_parts = comm_.gather(pack_history(kept_mine));
+  }
+  DistributedState g;
+  g.builds = builds_;
   if (!comm_.root()) return g;
+  ParticleStore& p = g.particles;
   std::vector<double> all_extra;
-  for (const auto& b : parts) unpack_particles(b, g.particles, all_extra, 2);
-  std::vector<std::uint32_t> order(g.particles.size());
+  for (const auto& b : parts) unpack_particles(b, p, all_extra, kExtra);
+  KeptHistory all_kept;
+  all_kept.width = rows_->history_width();
+  all_kept.offset.assign(1, 0);
+  for (const auto& b : history_parts) unpack_history(b, all_kept);
+  std::vector<std::uint32_t> order(p.size());
   std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return g.particles.id[a] < g.particles.id[b];
-  });
-  g.particles.permute(order);
-  g.dissipated.resize(order.size());
-  g.elastic.resize(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k)
-    g.dissipated[k] = all_extra[2 * order[k]], g.elastic[k] = all_extra[2 * order[k] + 1];
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return p.id[a] < p.id[b]; });
+  p.permute(order);
+  const std::size_t n = order.size();
+  g.dissipated.resize(n), g.elastic.resize(n), g.contact.resize(12 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double* e = all_extra.data() + kExtra * order[k];
+    g.dissipated[k] = e[0], g.elastic[k] = e[1];
+    std::copy_n(e + 2, 12, g.contact.begin() + static_cast<std::ptrdiff_t>(12 * k));
+  }
+  if (with_history) g.history = reorder(all_kept, order);
   return g;
 }
 
+void DistributedSoftSphere::observe(ParticleStore& all) {
+  DistributedState g = gather();
+  const Totals t = totals_of(g);
+  observed_dissipated_ = t.dissipated;
+  ContactStats& st = observed_stats_;
+  st.n_contacts = t.contacts;
+  st.elastic_energy = t.elastic;
+  st.spring_losses = 0.0; // in each particle's dissipated energy already
+  st.max_overlap_ratio = t.max_overlap_ratio;
+  st.max_force2 = comm_.max(stats_.max_force2);
+  // The deepest contact's lower id: the lowest of the ranks that saw the deepest overlap.
+  const double mine = stats_.max_overlap_ratio == t.max_overlap_ratio && stats_.deepest_id >= 0
+                          ? static_cast<double>(stats_.deepest_id)
+                          : std::numeric_limits<double>::infinity();
+  const double deepest = comm_.min(mine);
+  st.max_overlap_particle = std::isfinite(deepest) ? static_cast<long>(deepest) : -1;
+  all = std::move(g.particles);
+}
+
 DistributedSoftSphere::Totals DistributedSoftSphere::totals() const {
-  const Gathered g = gather();
-  std::vector<double> t(8, 0.0);
+  return totals_of(gather());
+}
+
+DistributedSoftSphere::Totals DistributedSoftSphere::totals_of(const DistributedState& g) const {
+  std::vector<double> t(5, 0.0);
   if (comm_.root()) {
     const ParticleStore& p = g.particles;
     const auto& gr = s_.gravity;
@@ -189,7 +291,7 @@ DistributedSoftSphere::Totals DistributedSoftSphere::totals() const {
   std::vector<char> bytes(reinterpret_cast<const char*>(t.data()),
                           reinterpret_cast<const char*>(t.data() + t.size()));
   comm_.broadcast(bytes);
-  std::copy_n(reinterpret_cast<const double*>(bytes.data()), t.size(), t.data());
+  std::memcpy(t.data(), bytes.data(), t.size() * sizeof(double));
   Totals out;
   out.kinetic = t[0], out.rotational = t[1], out.potential = t[2];
   out.elastic = t[3], out.dissipated = t[4];

@@ -15,6 +15,7 @@
 
 #include "contact/contact_table.hpp"
 #include "contact/ordered_contacts.hpp"
+#include "integrate/particle_stepper.hpp"
 #include "neighbour/box_geometry.hpp"
 #include "neighbour/ordered_rows.hpp"
 #include "parallel/communicator.hpp"
@@ -24,7 +25,19 @@
 
 namespace fluidem {
 
-class DistributedSoftSphere {
+/// Every particle of a distributed run in id order, with what continues it bitwise (a checkpoint's
+/// content): the last contact sums, the per-particle energies and the contact histories keyed by
+/// partner id.
+struct DistributedState {
+  ParticleStore particles;
+  std::vector<double> contact;    ///< 12 per particle: f | t | f_nc | t_nc of the last step
+  std::vector<double> elastic;    ///< J per particle (a pair's at its lower id)
+  std::vector<double> dissipated; ///< J per particle since t = 0
+  KeptHistory history;            ///< per particle; empty when not gathered
+  std::int64_t builds = 0;        ///< neighbour-list builds so far
+};
+
+class DistributedSoftSphere final : public ParticleStepper {
 public:
   struct Settings {
     double dt = 0.0;                   ///< s
@@ -34,21 +47,36 @@ public:
     std::array<int, 3> process_grid{}; ///< {0, 0, 0}: chosen (columns first)
   };
   /// Every rank passes the same particles `all` (each keeps those it owns) and the same
-  /// settings. Collective.
+  /// settings; the first contact forces are computed. Collective.
   DistributedSoftSphere(const Communicator& comm, std::unique_ptr<ContactTable> table,
                         const BoxGeometry& box, const Settings& settings, const ParticleStore& all);
+  /// The run of a checkpoint: every rank passes the same state (its contact sums are those the
+  /// next kick uses: no force is computed). Collective.
+  DistributedSoftSphere(const Communicator& comm, std::unique_ptr<ContactTable> table,
+                        const BoxGeometry& box, const Settings& settings,
+                        const DistributedState& state);
 
   /// One time step. Collective. Throws InstabilityError (on every rank alike) when a particle
   /// moved farther than the halo or the particle count changed.
   void step();
   void advance(long steps);
 
-  /// Every particle, sorted by id, on the root (empty elsewhere), with their accumulators.
-  struct Gathered {
-    ParticleStore particles;
-    std::vector<double> dissipated, elastic; ///< J per particle (a pair's elastic: lower id)
-  };
-  Gathered gather() const;
+  // ParticleStepper (collective: every rank calls them alike).
+  void step(double, const StepNeeds&) override { step(); }
+  void finish_kick() override {}
+  /// As of the last observe().
+  double dissipated_energy() const override { return observed_dissipated_; }
+  /// As of the last observe(), but max_overlap_ratio as of the last step (every rank's).
+  const ContactStats& contact_stats() const override { return observed_stats_; }
+  Seconds seconds() const override { return seconds_; }
+  std::size_t bytes() const override;
+
+  /// Every particle, sorted by id, on the root (empty elsewhere); their contact histories too
+  /// when `with_history`. Collective.
+  DistributedState gather(bool with_history = false) const;
+  /// Gathers the particles into `all` on the root (in id order; elsewhere emptied) and the
+  /// totals of dissipated_energy() and contact_stats() on every rank. Collective.
+  void observe(ParticleStore& all);
 
   /// Totals over all particles, the same bits on every rank and for every P: sums in id order.
   struct Totals {
@@ -57,6 +85,7 @@ public:
     std::int64_t contacts = 0, particles = 0;
     double max_overlap_ratio = 0.0;
   };
+  /// Collective.
   Totals totals() const;
 
   const Decomposition& decomposition() const { return map_; }
@@ -66,8 +95,13 @@ public:
   double halo() const { return exchange_->halo(); }
 
 private:
+  DistributedSoftSphere(const Communicator& comm, std::unique_ptr<ContactTable> table,
+                        const BoxGeometry& box, const Settings& settings, const ParticleStore& all,
+                        const DistributedState* state);
   void kick();
   void rebuild();
+  /// The totals of a gathered state (sums on the root, broadcast). Collective.
+  Totals totals_of(const DistributedState& g) const;
 
   const Communicator& comm_;
   std::unique_ptr<ContactTable> table_;
@@ -84,8 +118,9 @@ private:
   OrderedContactSums sums_;
   OrderedContactStats stats_;
   long builds_ = 0;
-  bool moved_far_ = false;
-  std::int64_t too_far_ = -1; ///< a particle that moved beyond the halo since the build
+  double observed_dissipated_ = 0.0;
+  ContactStats observed_stats_;
+  Seconds seconds_;
 };
 
 } // namespace fluidem

@@ -8,6 +8,22 @@
 
 namespace fluidem {
 
+KeptHistory reorder(const KeptHistory& kept, const std::vector<std::uint32_t>& order) {
+  KeptHistory out;
+  out.width = kept.width;
+  out.offset.assign(1, 0);
+  const auto hw = static_cast<std::size_t>(kept.width);
+  for (const std::uint32_t i : order) {
+    for (std::uint32_t m = kept.offset[i]; m < kept.offset[i + 1]; ++m) {
+      out.key.push_back(kept.key[m]);
+      out.values.insert(out.values.end(), kept.values.begin() + static_cast<std::ptrdiff_t>(m * hw),
+                        kept.values.begin() + static_cast<std::ptrdiff_t>((m + 1) * hw));
+    }
+    out.offset.push_back(static_cast<std::uint32_t>(out.key.size()));
+  }
+  return out;
+}
+
 OrderedRows::OrderedRows(const BoxGeometry& box, int history_width, double reach)
     : box_(box), hw_(history_width), reach_(reach) {}
 

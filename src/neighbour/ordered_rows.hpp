@@ -25,6 +25,9 @@ struct KeptHistory {
   std::size_t particles() const { return offset.empty() ? 0 : offset.size() - 1; }
 };
 
+/// The histories of particles order[0], order[1], ... of `kept`, in that order.
+KeptHistory reorder(const KeptHistory& kept, const std::vector<std::uint32_t>& order);
+
 class OrderedRows {
 public:
   /// history_width: doubles per contact; reach: the interaction's range beyond contact, m.

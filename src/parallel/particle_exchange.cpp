@@ -40,23 +40,13 @@ void keep_only(ParticleStore& p, KeptHistory& kept, std::vector<double>& extra, 
                const std::vector<std::uint32_t>& stay) {
   p.permute(stay);
   p.resize(stay.size());
-  KeptHistory k;
-  k.width = kept.width;
-  k.offset.push_back(0);
+  if (!kept.offset.empty()) kept = reorder(kept, stay);
+  const auto w = static_cast<std::size_t>(width);
   std::vector<double> e;
-  const auto w = static_cast<std::size_t>(width), hw = static_cast<std::size_t>(kept.width);
-  for (const std::uint32_t i : stay) {
+  e.reserve(stay.size() * w);
+  for (const std::uint32_t i : stay)
     e.insert(e.end(), extra.begin() + static_cast<std::ptrdiff_t>(i * w),
              extra.begin() + static_cast<std::ptrdiff_t>((i + 1) * w));
-    if (!kept.offset.empty())
-      for (std::uint32_t m = kept.offset[i]; m < kept.offset[i + 1]; ++m) {
-        k.key.push_back(kept.key[m]);
-        k.values.insert(k.values.end(), kept.values.begin() + static_cast<std::ptrdiff_t>(m * hw),
-                        kept.values.begin() + static_cast<std::ptrdiff_t>((m + 1) * hw));
-      }
-    k.offset.push_back(static_cast<std::uint32_t>(k.key.size()));
-  }
-  kept = std::move(k);
   extra = std::move(e);
 }
 
@@ -79,6 +69,33 @@ void unpack_particles(const std::vector<char>& bytes, ParticleStore& p, std::vec
   while (at < bytes.size()) {
     take_particle(bytes, at, p);
     for (int m = 0; m < width; ++m) extra.push_back(take<double>(bytes, at));
+  }
+}
+
+std::vector<char> pack_history(const KeptHistory& kept) {
+  std::vector<char> b;
+  const auto hw = static_cast<std::size_t>(kept.width);
+  for (std::size_t i = 0; i < kept.particles(); ++i) {
+    put(b, kept.offset[i + 1] - kept.offset[i]);
+    for (std::uint32_t m = kept.offset[i]; m < kept.offset[i + 1]; ++m) {
+      put(b, kept.key[m]);
+      for (std::size_t v = 0; v < hw; ++v) put(b, kept.values[m * hw + v]);
+    }
+  }
+  return b;
+}
+
+void unpack_history(const std::vector<char>& bytes, KeptHistory& kept) {
+  const auto hw = static_cast<std::size_t>(kept.width);
+  if (kept.offset.empty()) kept.offset.push_back(0);
+  std::size_t at = 0;
+  while (at < bytes.size()) {
+    const auto count = take<std::uint32_t>(bytes, at);
+    for (std::uint32_t m = 0; m < count; ++m) {
+      kept.key.push_back(take<std::int64_t>(bytes, at));
+      for (std::size_t v = 0; v < hw; ++v) kept.values.push_back(take<double>(bytes, at));
+    }
+    kept.offset.push_back(static_cast<std::uint32_t>(kept.key.size()));
   }
 }
 

@@ -30,6 +30,10 @@ std::vector<char> pack_particles(const ParticleStore& p, std::size_t n,
 void unpack_particles(const std::vector<char>& bytes, ParticleStore& p, std::vector<double>& extra,
                       int width);
 
+/// Contact histories as bytes (and back, appended as further particles' entries to `kept`).
+std::vector<char> pack_history(const KeptHistory& kept);
+void unpack_history(const std::vector<char>& bytes, KeptHistory& kept);
+
 class ParticleExchange {
 public:
   /// halo: the ghosts' reach beyond a box, m (the list's cut-off for the largest pair).
