@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -24,6 +25,7 @@
 #include "io/case_reader.hpp"
 #include "output/checkpoint_file.hpp"
 #include "output/output_directory.hpp"
+#include "parallel/communicator.hpp"
 
 namespace fluidem {
 
@@ -187,6 +189,10 @@ struct RunArgs {
 void print_run_summary(const Simulation& sim, const RunSummary& s, const std::string& out_dir) {
   fmt::print("done: {} steps in {:.3f} s wall, {:.4g} particle-steps/s\n", s.steps, s.wall_seconds,
              s.particle_steps_per_second);
+  if (s.rank_independent)
+    fmt::print("ranks {}: {:.4g} particle-steps/s per rank; imbalance {:.3f} (the slowest rank's "
+               "contact time over the mean)\n",
+               s.ranks, s.particle_steps_per_second / s.ranks, s.imbalance);
   // Where the time went: the particles (contacts, integration and lists; the event-driven
   // engine does all three), the gas solver, the coupling (porosity, forces both ways, the
   // gas kicks) and the output.
@@ -267,11 +273,37 @@ int run_command(RunArgs& a) {
     sim_owner = std::make_unique<Simulation>(read_case_file(a.case_path, a.overrides));
   }
   Simulation& sim = *sim_owner;
-  // Locked for the run (and its analysis) before anything in it is looked at.
-  const OutputDirectory dir(a.out_dir, "this run");
-  prepare_out_dir(dir, a.force, resuming, sim);
+  // A distributed run's root writes and prints; the other ranks compute with it, silently. The
+  // root's checks of the directory decide for all of them (every rank stops alike).
+  const Communicator& ranks = sim.communicator();
+  std::optional<OutputDirectory> locked;
+  std::string refused;
+  if (ranks.root()) try {
+      // Locked for the run (and its analysis) before anything in it is looked at.
+      locked.emplace(a.out_dir, "this run");
+      prepare_out_dir(*locked, a.force, resuming, sim);
+    } catch (const InputError& e) {
+      refused = e.what();
+    }
+  refused = ranks.broadcast(refused);
+  if (!refused.empty()) throw InputError(refused);
+  if (!ranks.root()) {
+    RunOptions ro;
+    ro.write_outputs = false;
+    ro.stop = &install_stop_handlers();
+    const RunSummary s = sim.run(a.out_dir, {}, ro);
+    remove_stop_handlers();
+    return s.stopped_by_signal != 0 ? 128 + s.stopped_by_signal : 0;
+  }
+  const OutputDirectory& dir = *locked;
   print_report(sim.spec(), sim.report());
-  fmt::print("threads            {}\noutput             {}\n", omp_get_max_threads(), a.out_dir);
+  fmt::print("threads            {}{}\noutput             {}\n", omp_get_max_threads(),
+             sim.rank_independent() ? " per rank" : "", a.out_dir);
+  if (const DistributedSoftSphere* d = sim.distributed()) {
+    const auto g = d->decomposition().process_grid();
+    fmt::print("ranks              {} (process grid {} x {} x {}), rank-independent results\n",
+               ranks.size(), g[0], g[1], g[2]);
+  }
   if (omp_get_max_threads() > 1)
     if (const auto busy = busy_cores(200))
       if (const auto w = busy_machine_warning(*busy, omp_get_num_procs(), omp_get_max_threads()))
@@ -327,7 +359,19 @@ int run_command(RunArgs& a) {
 
 } // namespace
 
+namespace {
+/// The exit code of an error on this rank: an error only this rank met (an output the root could
+/// not write, an unexpected failure) ends every rank of a distributed run (MPI_Abort), which the
+/// others would wait for; errors every rank meets alike (input, instability) return it.
+int end_ranks(int code, bool every_rank) {
+  const Communicator& world = Communicator::world();
+  if (!every_rank && world.size() > 1) world.abort(code);
+  return code;
+}
+} // namespace
+
 int run_cli(int argc, char** argv) {
+  const Communicator& world = Communicator::world();
   CLI::App app{
       "fluidem: discrete particle simulation of gas-fluidised beds (CFD-DEM)\n"
       "Exit codes: 0 success, 2 invalid input, 3 run stopped because it went unstable, 4 an "
@@ -396,30 +440,32 @@ int run_cli(int argc, char** argv) {
     if (*check) {
       const CaseSpec spec = read_case_file(check_path, check_overrides);
       Simulation sim(spec);
+      if (!world.root()) return 0;
       print_report(sim.spec(), sim.report());
       fmt::print("case is valid\n");
       return 0;
     }
     return run_command(a);
   } catch (const InputError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return 2;
+    if (world.root()) fmt::print(stderr, "error: {}\n", e.what());
+    return end_ranks(2, true);
   } catch (const InstabilityError& e) {
-    fmt::print(stderr,
-               "error: {}\nthe outputs up to the last good frame are in {}; the last good "
-               "checkpoint (if one was written) is {}/checkpoint.h5\n",
-               e.what(), a.out_dir, a.out_dir);
-    return 3;
+    if (world.root())
+      fmt::print(stderr,
+                 "error: {}\nthe outputs up to the last good frame are in {}; the last good "
+                 "checkpoint (if one was written) is {}/checkpoint.h5\n",
+                 e.what(), a.out_dir, a.out_dir);
+    return end_ranks(3, true);
   } catch (const OutputError& e) {
     fmt::print(stderr,
                "error: {}\nthe run stopped; the last good checkpoint (if one was written) is "
                "{}/checkpoint.h5: continue with fluidem run --restart {}/checkpoint.h5 once "
                "there is room\n",
                e.what(), a.out_dir, a.out_dir);
-    return 4;
+    return end_ranks(4, false);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
-    return 1;
+    return end_ranks(1, false);
   }
 }
 

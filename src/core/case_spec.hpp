@@ -201,6 +201,15 @@ struct NeighbourSpec {
   int sort_interval = 20;
 };
 
+/// [parallel]: how a run is shared out between MPI ranks (docs/parallel.md).
+struct ParallelSpec {
+  /// The soft-sphere engine's rank-independent mode (full neighbour rows in partner-id order:
+  /// the same bits on any number of ranks): empty = "auto", on when mpirun started the run.
+  std::optional<bool> rank_independent;
+  /// The ranks' process grid {px, py, pz}; {0, 0, 0} = "auto" (columns first).
+  std::array<int, 3> process_grid{0, 0, 0};
+};
+
 /// The whole case, plus where each key came from (for error messages).
 struct CaseSpec {
   std::string source_file; ///< path of the case file as given
@@ -211,6 +220,7 @@ struct CaseSpec {
   std::vector<InsertSpec> inserts;
   ContactSpec contact;
   NeighbourSpec neighbour;
+  ParallelSpec parallel;
   HardSphereSpec hardsphere;
   /// The gas phase (`[gas]`); empty = a purely granular run.
   std::optional<gas::GasSettings> gas;

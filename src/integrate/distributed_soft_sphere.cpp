@@ -48,9 +48,11 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
       map_(settings.cells, comm.size(), gravity_axis(settings.gravity), settings.process_grid) {
   double r_max = 0.0;
   for (const double r : all.radius) r_max = std::max(r_max, r);
-  // The ghosts reach as far as the list's cut-off for the largest pair.
+  // The ghosts reach as far as the list's cut-off for the largest pair with two skins: the list
+  // of a restarted run is built with two (its particles may move half a skin from where the
+  // last build saw them, then half a skin from there, before the next build).
   const double reach = table_->attached_reach(r_max);
-  exchange_ = std::make_unique<ParticleExchange>(comm_, map_, 2.0 * r_max + reach + s_.skin);
+  exchange_ = std::make_unique<ParticleExchange>(comm_, map_, 2.0 * r_max + reach + 2.0 * s_.skin);
   rows_ = std::make_unique<OrderedRows>(box_, table_->history_width(), reach);
   // Each rank keeps the particles whose centres its cells hold, with what they carry.
   std::vector<std::uint32_t> mine;
@@ -89,14 +91,21 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
     builds_ = state->builds;
   } else {
     kept.offset.assign(owned_ + 1, 0);
+    builds_ = 1; // the first build, below
   }
-  // The first list (a restarted run's too: the rows' order does not depend on when they were
-  // built, and the checkpoint holds every loaded history).
+  // The first list. A restarted run's: the checkpoint holds every loaded history, and the rows'
+  // order does not depend on when they were built; its next build comes when the uninterrupted
+  // run's would (from the build positions of the checkpoint), so this list holds the pairs
+  // within two skins.
   exchange_->fill_ghosts(p_);
-  rows_->build(p_, owned_, s_.skin, kept);
+  rows_->build(p_, owned_, state ? 2.0 * s_.skin : s_.skin, kept);
   x0_.resize(3 * owned_);
-  for (std::size_t i = 0; i < owned_; ++i)
-    x0_[3 * i] = p_.x[i], x0_[3 * i + 1] = p_.y[i], x0_[3 * i + 2] = p_.z[i];
+  for (std::size_t k = 0; k < owned_; ++k)
+    if (state)
+      std::copy_n(state->x0.begin() + static_cast<std::ptrdiff_t>(3 * mine[k]), 3,
+                  x0_.begin() + static_cast<std::ptrdiff_t>(3 * k));
+    else
+      x0_[3 * k] = p_.x[k], x0_[3 * k + 1] = p_.y[k], x0_[3 * k + 2] = p_.z[k];
   if (!state) stats_ = compute_ordered_contact_forces(p_, *rows_, *table_, s_.dt, sums_);
   observed_stats_.max_overlap_ratio = comm_.max(stats_.max_overlap_ratio);
 }
@@ -133,7 +142,7 @@ void DistributedSoftSphere::step() {
   // Drift; the displacement since the build decides the next build, and one beyond the halo
   // stops the run (the ghosts would no longer hold every partner).
   const double dt = s_.dt;
-  const double far2 = 0.25 * rows_->skin() * rows_->skin();
+  const double far2 = 0.25 * s_.skin * s_.skin;
   const double halo2 = exchange_->halo() * exchange_->halo();
   double moved_far = 0.0, too_far = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < owned_; ++i) {
@@ -210,13 +219,16 @@ void DistributedSoftSphere::rebuild() {
 }
 
 DistributedState DistributedSoftSphere::gather(bool with_history) const {
-  // Per particle: dissipated, elastic, the 12 contact sums; then (with_history) its entries.
-  constexpr int kExtra = 14;
+  // Per particle: dissipated, elastic, the 12 contact sums, its build position; then
+  // (with_history) its entries.
+  constexpr int kExtra = 17;
   std::vector<double> extra(kExtra * owned_);
   for (std::size_t i = 0; i < owned_; ++i) {
     extra[kExtra * i] = dissipated_[i], extra[kExtra * i + 1] = sums_.elastic[i];
     std::copy_n(sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i), 12,
                 extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 2));
+    std::copy_n(x0_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3,
+                extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 14));
   }
   const auto parts = comm_.gather(pack_particles(p_, owned_, extra, kExtra));
   KeptHistory kept_mine;
@@ -241,11 +253,12 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
             [&](std::uint32_t a, std::uint32_t b) { return p.id[a] < p.id[b]; });
   p.permute(order);
   const std::size_t n = order.size();
-  g.dissipated.resize(n), g.elastic.resize(n), g.contact.resize(12 * n);
+  g.dissipated.resize(n), g.elastic.resize(n), g.contact.resize(12 * n), g.x0.resize(3 * n);
   for (std::size_t k = 0; k < n; ++k) {
     const double* e = all_extra.data() + kExtra * order[k];
     g.dissipated[k] = e[0], g.elastic[k] = e[1];
     std::copy_n(e + 2, 12, g.contact.begin() + static_cast<std::ptrdiff_t>(12 * k));
+    std::copy_n(e + 14, 3, g.x0.begin() + static_cast<std::ptrdiff_t>(3 * k));
   }
   if (with_history) g.history = reorder(all_kept, order);
   return g;

@@ -34,7 +34,10 @@ struct DistributedState {
   std::vector<double> elastic;    ///< J per particle (a pair's at its lower id)
   std::vector<double> dissipated; ///< J per particle since t = 0
   KeptHistory history;            ///< per particle; empty when not gathered
-  std::int64_t builds = 0;        ///< neighbour-list builds so far
+  /// 3 per particle: its position at the last neighbour-list build (the next build comes when
+  /// a particle has moved half the skin from there)
+  std::vector<double> x0;
+  std::int64_t builds = 0; ///< neighbour-list builds so far
 };
 
 class DistributedSoftSphere final : public ParticleStepper {

@@ -55,14 +55,15 @@ std::string absolute_case_file(const std::string& source) {
 
 } // namespace
 
-RunRecorder::RunRecorder(Simulation& sim, const OutputDirectory& dir, bool resume)
-    : sim_(sim), dir_(dir),
-      outputs_(resume ? RunOutputs::resume(dir, layout(sim), sim.marks_,
-                                           write_case_toml(sim.resolved_case()), kVersion)
-                      : RunOutputs::start(dir, layout(sim), write_case_toml(sim.resolved_case()),
-                                          kVersion, absolute_case_file(sim.spec().source_file))),
-      eps_(1e-9 * sim.dt_), total_(sim.total_steps()) {
-  sim_.outputs_ = &outputs_;
+RunRecorder::RunRecorder(Simulation& sim, const OutputDirectory* dir, bool resume)
+    : sim_(sim), dir_(dir), eps_(1e-9 * sim.dt_), total_(sim.total_steps()) {
+  if (dir)
+    outputs_.emplace(resume ? RunOutputs::resume(*dir, layout(sim), sim.marks_,
+                                                 write_case_toml(sim.resolved_case()), kVersion)
+                            : RunOutputs::start(*dir, layout(sim),
+                                                write_case_toml(sim.resolved_case()), kVersion,
+                                                absolute_case_file(sim.spec().source_file)));
+  sim_.outputs_ = outputs_ ? &*outputs_ : nullptr;
   OutputClock& clock = sim_.clock_;
   if (sim_.continuum_ && !clock.started)
     clock.next_continuum = sim_.time_ + sim_.continuum_interval_;
@@ -82,7 +83,7 @@ void RunRecorder::write_due() {
   const bool last = sim_.step_ == total_;
   // Nothing unstable reaches the files: check before any row or frame is written (which also
   // finishes a pending half kick: its time counted as integration, not output).
-  const bool continuum_due = outputs_.continuum() && t >= clock.next_continuum - eps_;
+  const bool continuum_due = sim_.continuum_ && t >= clock.next_continuum - eps_;
   const bool series_due = t >= clock.next_series - eps_ || last;
   const bool frame_due = t >= clock.next_frame - eps_ || last;
   if (series_due || frame_due || continuum_due) sim_.stepper_->finish_kick();
@@ -128,15 +129,16 @@ void RunRecorder::write_series_rows() {
     row.insert(row.end(), {gas->pressure_drop(), sim_.bed_height(),
                            static_cast<double>(gas->solver().last_iterations()),
                            gas->superficial_velocity(t)});
-    if (outputs_.has_csv("probes.csv")) {
+    if (outputs_ && outputs_->has_csv("probes.csv")) {
       std::vector<double> prow{t};
       const std::vector<double> pp = gas->probe_pressures();
       prow.insert(prow.end(), pp.begin(), pp.end());
-      outputs_.csv("probes.csv").write_row(prow);
+      outputs_->csv("probes.csv").write_row(prow);
     }
   }
-  outputs_.csv("series.csv").write_row(row);
-  if (outputs_.has_csv("collisions.csv")) {
+  if (!outputs_) return; // a rank that writes nothing (the values were computed with the root)
+  outputs_->csv("series.csv").write_row(row);
+  if (outputs_->has_csv("collisions.csv")) {
     const CollisionStatistics::Row c = sim_.collisions_->take_row(t, sim_.p_.size());
     std::vector<double> crow{t,
                              static_cast<double>(c.pair_collisions),
@@ -148,7 +150,7 @@ void RunRecorder::write_series_rows() {
                              c.mean_duration};
     for (const auto& r : c.regions)
       crow.insert(crow.end(), {r.frequency, r.void_fraction, r.particles});
-    outputs_.csv("collisions.csv").write_row(crow);
+    outputs_->csv("collisions.csv").write_row(crow);
   }
 }
 
@@ -172,28 +174,33 @@ void RunRecorder::write_frame() {
   OutputClock& clock = sim_.clock_;
   const double t = sim_.time_;
   while (clock.next_frame <= t + eps_) clock.next_frame += sim_.spec_.output.frame_interval;
-  H5mdWriter& h5 = outputs_.particles();
+  if (!outputs_) return;
+  H5mdWriter& h5 = outputs_->particles();
   h5.write_frame(sim_.step_, t, sim_.p_, output_order());
   h5.flush();
-  if (FieldsWriter* fields = outputs_.fields()) {
+  if (FieldsWriter* fields = outputs_->fields()) {
     sim_.gas_->cell_fields(sim_.p_, cells_);
     fields->write_frame(sim_.step_, t, {cells_.porosity.data(), cells_.pressure.data()},
                         {pointers(cells_.gas_velocity), pointers(cells_.solids_velocity)});
   }
-  outputs_.frame_written(t);
+  outputs_->frame_written(t);
 }
 
 void RunRecorder::write_continuum_frame() { // the averages over the interval that ends now
   OutputClock& clock = sim_.clock_;
   const double t = sim_.time_;
   while (clock.next_continuum <= t + eps_) clock.next_continuum += sim_.continuum_interval_;
+  if (!outputs_) {
+    sim_.continuum_->reset();
+    return;
+  }
   const ContinuumFields f = sim_.continuum_->result();
   std::vector<const double*> sc{f.solid_fraction.data(), f.granular_temperature.data()};
   for (const auto* tensor : {&f.kinetic_stress, &f.contact_stress, &f.couple_stress})
     for (const auto& component : *tensor) sc.push_back(component.data());
-  outputs_.continuum()->write_frame(sim_.step_, t, sc,
-                                    {pointers(f.velocity), pointers(f.angular_vel)});
-  outputs_.continuum_written(t);
+  outputs_->continuum()->write_frame(sim_.step_, t, sc,
+                                     {pointers(f.velocity), pointers(f.angular_vel)});
+  outputs_->continuum_written(t);
   sim_.continuum_->reset();
 }
 
@@ -210,17 +217,18 @@ void RunRecorder::checkpoint() {
   sim_.stepper_->finish_kick(); // (integration time, not output)
   const auto t0 = WallClock::now();
   sim_.check_stability();
-  outputs_.flush(); // (the CSV writers flush every row)
-  const std::string path = dir_.file("checkpoint.h5");
+  if (outputs_) outputs_->flush(); // (the CSV writers flush every row)
+  const std::string path = dir_ ? dir_->file("checkpoint.h5") : std::string();
   sim_.write_checkpoint(path);
   last_checkpoint_ = path;
   seconds_ += seconds_since(t0);
 }
 
 void RunRecorder::close() {
-  outputs_.close();
-  if (outputs_.has_csv("collisions.csv"))
-    write_overlap_histogram(dir_.file("collision_overlap.csv"), *sim_.collisions_);
+  if (!outputs_) return;
+  outputs_->close();
+  if (outputs_->has_csv("collisions.csv"))
+    write_overlap_histogram(dir_->file("collision_overlap.csv"), *sim_.collisions_);
 }
 
 OutputLayout RunRecorder::layout(const Simulation& sim) {

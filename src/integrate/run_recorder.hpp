@@ -5,6 +5,7 @@
 // steps), and the checkpoints. Nothing unstable reaches a file: the stability guard runs before
 // every row, frame and checkpoint.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,10 @@ class Simulation;
 class RunRecorder {
 public:
   /// Opens every output of sim's run in dir, or continues those of the run sim was restarted
-  /// from (resume). The recorder must not outlive sim.
-  RunRecorder(Simulation& sim, const OutputDirectory& dir, bool resume);
+  /// from (resume). The recorder must not outlive sim. dir nullptr: a rank of a distributed run
+  /// other than the root, which keeps the schedule and takes part in the gathers, and writes
+  /// nothing.
+  RunRecorder(Simulation& sim, const OutputDirectory* dir, bool resume);
   ~RunRecorder();
   RunRecorder(const RunRecorder&) = delete;
   RunRecorder& operator=(const RunRecorder&) = delete;
@@ -39,7 +42,9 @@ public:
   /// After the last step: closes the files and writes collision_overlap.csv.
   void close();
   /// On an error: what was written is flushed; the error says what went wrong.
-  void close_quietly() { outputs_.close_quietly(); }
+  void close_quietly() {
+    if (outputs_) outputs_->close_quietly();
+  }
 
   double seconds() const { return seconds_; }
   const std::string& last_checkpoint() const { return last_checkpoint_; }
@@ -52,8 +57,9 @@ private:
   const std::vector<std::uint32_t>* output_order();
 
   Simulation& sim_;
-  const OutputDirectory& dir_;
-  RunOutputs outputs_;
+  const OutputDirectory* dir_;
+  std::optional<RunOutputs> outputs_; ///< none without a directory
+
   double eps_; ///< s, the round-off allowed in the schedule
   long total_; ///< the run's last step
   CellFields cells_;

@@ -36,9 +36,11 @@ int gravity_axis(const std::array<double, 3>& g) {
 
 Simulation::Simulation(CaseSpec spec) : Simulation(std::move(spec), nullptr) {}
 
-Simulation::Simulation(CaseSpec spec, const ParticleStore* initial)
+Simulation::Simulation(CaseSpec spec, const ParticleStore* initial,
+                       const DistributedState* restart_state)
     : case_(std::move(spec)), spec_(simulated_case(case_)),
-      forces_(spec_.simulation.gravity, spec_.body_force ? &*spec_.body_force : nullptr) {
+      forces_(spec_.simulation.gravity, spec_.body_force ? &*spec_.body_force : nullptr),
+      restart_state_(restart_state) {
   const bool hard = spec_.simulation.engine == Engine::HardSphere;
   // Memory first: no table, particle or grid is allocated for a case that cannot fit.
   require_memory(spec_, case_memory_shares(spec_));
@@ -102,6 +104,7 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial)
   // A new run starts sorted in space (inserted at random or read from a file in any order); a
   // restarted one continues in the order of its checkpoint.
   set_up_stepper(std::move(table), !initial && spec_.neighbour.sort_interval > 0, skin, dmax);
+  restart_state_ = nullptr;
   if (spec_.noncontact.any()) set_up_noncontact(skin);
   if (spec_.gas) {
     gas_ = std::make_unique<GasCoupling>(spec_, p_);
@@ -170,8 +173,76 @@ void Simulation::set_up_analyses() {
   continuum_interval_ = c->interval > 0.0 ? c->interval : spec_.output.frame_interval;
 }
 
+bool Simulation::choose_rank_independent() const {
+  const Communicator& world = Communicator::world();
+  const bool hard = spec_.simulation.engine == Engine::HardSphere;
+  if (hard && world.size() > 1)
+    throw InputError(spec_.where("simulation.engine"), "simulation.engine",
+                     "\"hard_sphere\" runs on one rank (its collisions are processed one at a "
+                     "time in one global order of events, which ranks cannot share out); run it "
+                     "without mpirun, or use simulation.engine = \"soft_sphere\"");
+  const bool ri =
+      !hard && spec_.parallel.rank_independent.value_or(Communicator::launched_by_mpirun());
+  if (!ri && world.size() > 1)
+    throw InputError(spec_.where("parallel.rank_independent"), "parallel.rank_independent",
+                     "false cannot run on " + std::to_string(world.size()) +
+                         " ranks (the single-process engine does not share out); set it true "
+                         "or \"auto\", or run without mpirun");
+  if (!ri) return false;
+  // What the rank-independent engine does not take yet (docs/parallel.md).
+  const auto refuse = [&](bool present, const std::string& key, const std::string& what) {
+    if (present)
+      throw InputError(spec_.where(key), key,
+                       what + " does not run on the rank-independent engine yet (it runs under "
+                              "mpirun, or with parallel.rank_independent = true); run this case "
+                              "without mpirun and with parallel.rank_independent = false");
+  };
+  refuse(spec_.gas.has_value(), "gas", "the gas phase");
+  refuse(spec_.noncontact.van_der_waals.has_value(), "van_der_waals", "van der Waals attraction");
+  refuse(spec_.noncontact.electrostatics.has_value(), "electrostatics", "electrostatics");
+  refuse(spec_.noncontact.liquid_bridge.has_value(), "liquid_bridge", "liquid bridges");
+  refuse(spec_.body_force.has_value(), "body_force", "a body-force field");
+  refuse(spec_.output.collisions, "output.collisions", "the collision statistics");
+  refuse(spec_.output.continuum.has_value(), "output.continuum", "the continuum averages");
+  return true;
+}
+
 void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_first, double skin,
                                 double max_diameter) {
+  const bool rank_independent = choose_rank_independent(); // (refuses what ranks cannot run)
+  if (table && rank_independent) {
+    comm_ = &Communicator::world();
+    DistributedSoftSphere::Settings d;
+    d.dt = dt_;
+    d.skin = skin; // "auto" is the fixed default here (one skin for all ranks and builds)
+    d.gravity = spec_.simulation.gravity;
+    d.process_grid = spec_.parallel.process_grid;
+    // The index space the ranks share: cells about as wide as a list cell (the largest pair's
+    // reach), so that a rank's ghosts come from its neighbours.
+    d.cells.lo = spec_.domain.lo;
+    d.cells.hi = spec_.domain.hi;
+    d.cells.periodic = spec_.domain.periodic;
+    for (std::size_t a = 0; a < 3; ++a) {
+      const double n =
+          std::floor((spec_.domain.hi[a] - spec_.domain.lo[a]) / (max_diameter + skin));
+      d.cells.cells[a] = (a == 1 && spec_.simulation.dimension == 2) || n < 1.0
+                             ? 1
+                             : static_cast<int>(std::min(n, 1e6));
+    }
+    std::unique_ptr<DistributedSoftSphere> dist;
+    try {
+      dist = restart_state_ ? std::make_unique<DistributedSoftSphere>(
+                                  *comm_, std::move(table), limits_.box, d, *restart_state_)
+                            : std::make_unique<DistributedSoftSphere>(*comm_, std::move(table),
+                                                                      limits_.box, d, p_);
+    } catch (const std::invalid_argument& e) { // no process grid fits
+      throw InputError(spec_.where("parallel.process_grid"), "parallel.process_grid", e.what());
+    }
+    dist_ = dist.get();
+    stepper_ = std::move(dist);
+    report_.skin = skin;
+    return;
+  }
   if (!table) {
     auto hard = std::make_unique<HardSphereStepper>(spec_, limits_.box, dt_, p_, forces_,
                                                     collisions_ != nullptr);
@@ -222,6 +293,9 @@ void Simulation::set_up_noncontact(double skin) {
 }
 
 void Simulation::add_force_source(std::unique_ptr<ForceSource> source) {
+  if (dist_)
+    throw std::logic_error("Simulation::add_force_source: the rank-independent engine takes no "
+                           "force sources yet");
   if (hard_ && dynamic_cast<const StepForceSource*>(source.get()) != nullptr)
     throw std::logic_error("Simulation::add_force_source: hard spheres take held forces only");
   forces_.add(std::move(source));
@@ -282,7 +356,20 @@ double Simulation::bed_height() const {
 
 void Simulation::check_stability() {
   stepper_->finish_kick();
-  fluidem::check_stability(p_, contact_stats(), limits_, time_, step_);
+  if (!dist_) {
+    fluidem::check_stability(p_, contact_stats(), limits_, time_, step_);
+    return;
+  }
+  // The particles gathered on the root (in id order), checked there; every rank stops alike.
+  dist_->observe(p_);
+  std::string error;
+  if (comm_->root()) try {
+      fluidem::check_stability(p_, contact_stats(), limits_, time_, step_);
+    } catch (const InstabilityError& e) {
+      error = e.what();
+    }
+  error = comm_->broadcast(error);
+  if (!error.empty()) throw InstabilityError(error);
 }
 
 void Simulation::advance(long n) {
@@ -310,12 +397,16 @@ RunSummary Simulation::run(const std::string& out_dir,
   // The directory, locked for the run: the caller's (which checked it), or taken here (a new
   // run then replaces whatever results were there).
   std::optional<OutputDirectory> own_dir;
-  if (options.directory == nullptr) {
+  if (options.directory == nullptr && options.write_outputs) {
     own_dir.emplace(out_dir, "this run");
     own_dir->refuse_links();
     if (!options.resume) own_dir->remove_results();
   }
-  RunRecorder recorder(*this, options.directory ? *options.directory : *own_dir, options.resume);
+  RunRecorder recorder(*this,
+                       !options.write_outputs ? nullptr
+                       : options.directory    ? options.directory
+                                              : &*own_dir,
+                       options.resume);
   const long total = total_steps();
   const long check_every = 100;
   const long progress_every = std::max(1L, std::min(200L, 2000000L / std::max<long>(1, p_.size())));
@@ -337,7 +428,10 @@ RunSummary Simulation::run(const std::string& out_dir,
         check_stability();
       recorder.write_due();
       if (step_ % progress_every == 0 || step_ == total) report_progress();
-      if (options.stop && (stopped_by = options.stop->load()) != 0) break;
+      if (options.stop) stopped_by = options.stop->load();
+      if (dist_) // every rank stops at the same step
+        stopped_by = static_cast<int>(comm_->max(static_cast<double>(stopped_by)));
+      if (stopped_by != 0) break;
       if (recorder.checkpoint_due()) recorder.checkpoint();
     }
     recorder.checkpoint(); // at the end, or where a signal stopped the run
@@ -349,6 +443,17 @@ RunSummary Simulation::run(const std::string& out_dir,
   RunSummary s =
       summary(step_ - step0, seconds_since(start), recorder.seconds(), folded_steps() - folded0);
   s.stopped_by_signal = stopped_by;
+  if (dist_) {
+    s.rank_independent = true;
+    s.ranks = comm_->size();
+    const double mine = stepper_->seconds().contacts;
+    const double mean =
+        static_cast<double>(comm_->sum(static_cast<std::int64_t>(mine * 1e9))) / 1e9 / s.ranks;
+    s.imbalance = mean > 0.0 ? comm_->max(mine) / mean : 1.0;
+    s.particle_steps_per_second = static_cast<double>(s.steps) *
+                                  static_cast<double>(report_.particle_count) /
+                                  std::max(comm_->max(s.wall_seconds), 1e-9);
+  }
   s.checkpoint = recorder.last_checkpoint();
   return s;
 }
@@ -360,7 +465,9 @@ RunSummary Simulation::summary(long steps, double seconds, double seconds_output
   s.steps = steps;
   s.wall_seconds = seconds;
   s.particle_steps_per_second = static_cast<double>(steps) * n / std::max(seconds, 1e-9);
-  s.neighbour_builds = hard_ ? hard_->engine().list_builds() : neighbour_builds();
+  s.neighbour_builds = hard_   ? hard_->engine().list_builds()
+                       : dist_ ? dist_->builds()
+                               : neighbour_builds();
   s.spatial_sorts = spatial_sorts();
   s.folded_steps = folded;
   const ParticleStepper::Seconds t = stepper_->seconds();
@@ -371,7 +478,9 @@ RunSummary Simulation::summary(long steps, double seconds, double seconds_output
   s.seconds_output = seconds_output;
   s.seconds_gas = t_gas_;
   s.seconds_gas_solver = gas_ ? gas_->solver_seconds() : 0.0;
-  s.bytes_per_particle = p_.size() ? (p_.bytes() + stepper_->bytes()) / p_.size() : 0;
+  s.bytes_per_particle = dist_       ? stepper_->bytes() / std::max<std::size_t>(1, dist_->owned())
+                         : p_.size() ? (p_.bytes() + stepper_->bytes()) / p_.size()
+                                     : 0;
   if (hard_) {
     s.collisions = hard_->engine().stats().collisions;
   } else {

@@ -18,6 +18,7 @@
 #include "contact/contact_forces.hpp"
 #include "core/case_spec.hpp"
 #include "integrate/coarse_graining.hpp"
+#include "integrate/distributed_soft_sphere.hpp"
 #include "integrate/force_sources.hpp"
 #include "integrate/gas_coupling.hpp"
 #include "integrate/hard_sphere_stepper.hpp"
@@ -75,7 +76,12 @@ struct RunSummary {
   double walls_per_particle = 0.0; ///< soft spheres: neighbour-list wall entries per particle
   long contacts = 0;               ///< soft spheres: touching pairs and walls after the last step
   int stopped_by_signal = 0; ///< SIGINT/SIGTERM that stopped the run early (0: ran to the end)
-  std::string checkpoint;    ///< the last checkpoint written
+  /// Rank-independent runs (docs/parallel.md): the ranks, and the largest rank's time in the
+  /// contact loop over the mean of the ranks' (1: balanced).
+  int ranks = 1;
+  double imbalance = 1.0;
+  bool rank_independent = false;
+  std::string checkpoint; ///< the last checkpoint written
 };
 
 /// How run() starts and when it stops early.
@@ -89,6 +95,9 @@ struct RunOptions {
   /// The output directory, locked and checked by the caller (the command line: its contents,
   /// the disk space). nullptr: run() locks it itself, and a new run replaces any results there.
   const OutputDirectory* directory = nullptr;
+  /// False on the ranks of a distributed run other than the root: they compute with the root
+  /// and write nothing (no directory is touched).
+  bool write_outputs = true;
 };
 
 /// The output schedule and energy reference of a run (kept in checkpoints so that a restarted
@@ -170,6 +179,12 @@ public:
     static const std::vector<double> none;
     return soft_ ? soft_->scratch().acc : none;
   }
+  /// Whether the soft-sphere engine runs rank-independently, on this run's MPI ranks
+  /// ([parallel], docs/parallel.md); the ranks' communicator (one rank otherwise).
+  bool rank_independent() const { return dist_ != nullptr; }
+  const Communicator& communicator() const { return *comm_; }
+  /// The distributed engine (rank_independent()), or nullptr.
+  const DistributedSoftSphere* distributed() const { return dist_; }
   /// The hard-sphere engine, or nullptr for the soft-sphere DEM.
   const HardSphereEngine* hard_sphere() const { return hard_ ? &hard_->engine() : nullptr; }
   double dissipated_energy() const { return stepper_->dissipated_energy(); }
@@ -188,7 +203,9 @@ public:
   /// Spatial sorts of the store done by this process (neighbour.sort_interval).
   long spatial_sorts() const { return soft_ ? soft_->sorts() : 0; }
   /// Builds of the soft-sphere neighbour list so far (checkpointed; 0 for hard spheres).
-  long neighbour_builds() const { return soft_ ? soft_->list().builds() : 0; }
+  long neighbour_builds() const {
+    return soft_ ? soft_->list().builds() : dist_ ? dist_->builds() : 0;
+  }
   /// Particle-wall entries in the neighbour list of the last build.
   std::size_t neighbour_wall_entries() const {
     return soft_ ? soft_->list().wall_particle.size() : 0;
@@ -216,7 +233,11 @@ public:
 
 private:
   friend class RunRecorder;
-  Simulation(CaseSpec spec, const ParticleStore* initial);
+  Simulation(CaseSpec spec, const ParticleStore* initial,
+             const DistributedState* restart_state = nullptr);
+  /// Whether the case runs on the rank-independent engine (and checks what that engine takes:
+  /// InputError naming the key otherwise).
+  bool choose_rank_independent() const;
   /// The set-up of the analyses that read every step (collision statistics, continuum
   /// averages).
   void set_up_analyses();
@@ -251,10 +272,13 @@ private:
   std::unique_ptr<GasCoupling> gas_; ///< set when the case has [gas]
   LiquidBridges* bridges_ = nullptr; ///< the liquid bridges' source's (in forces_), [liquid_bridge]
   std::unique_ptr<ParticleStepper> stepper_;
-  SoftSphereStepper* soft_ = nullptr; ///< stepper_ when engine = "soft_sphere"
-  HardSphereStepper* hard_ = nullptr; ///< stepper_ when engine = "hard_sphere"
-  long steps_per_flow_ = 1;           ///< particle steps per gas step
-  double flow_dt_ = 0.0;              ///< s
+  SoftSphereStepper* soft_ = nullptr;     ///< stepper_ when engine = "soft_sphere"
+  DistributedSoftSphere* dist_ = nullptr; ///< stepper_ when rank-independent
+  const Communicator* comm_ = &Communicator::self();
+  const DistributedState* restart_state_ = nullptr; ///< during a restart's construction
+  HardSphereStepper* hard_ = nullptr;               ///< stepper_ when engine = "hard_sphere"
+  long steps_per_flow_ = 1;                         ///< particle steps per gas step
+  double flow_dt_ = 0.0;                            ///< s
   CaseReport report_;
   StabilityLimits limits_;
   double dt_ = 0.0, time_ = 0.0;

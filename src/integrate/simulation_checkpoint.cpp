@@ -16,6 +16,8 @@
 // (GasSolver::reset_solver_history), so both continue bitwise alike.
 #include <fmt/format.h>
 
+#include <optional>
+
 #include "core/error.hpp"
 #include "fluidem_version.hpp"
 #include "integrate/simulation.hpp"
@@ -90,9 +92,10 @@ const char* const kGasForce[3] = {"gas/force_x", "gas/force_y", "gas/force_z"};
 void check_restart_overrides(const std::vector<std::string>& overrides) {
   for (const std::string& o : overrides) {
     const std::string key = o.substr(0, o.find('='));
-    if (key != "simulation.end_time" && key.rfind("output.", 0) != 0)
+    if (key != "simulation.end_time" && key.rfind("output.", 0) != 0 &&
+        key.rfind("parallel.", 0) != 0)
       throw InputError(fmt::format("--set {}: a restarted run continues the checkpointed one; "
-                                   "only simulation.end_time and output.* may change",
+                                   "only simulation.end_time, output.* and parallel.* may change",
                                    o));
     if (key.rfind("output.continuum", 0) == 0) // its grid and sums are in the checkpoint
       throw InputError(fmt::format("--set {}: the continuum averaging of a restarted run is the "
@@ -214,6 +217,14 @@ GasCoupling::State read_gas(const CheckpointReader& r, const std::string& checkp
 
 void Simulation::write_checkpoint(const std::string& path) {
   stepper_->finish_kick(); // the full-step velocities (and their dissipated energy) are the state
+  // A distributed run's state, gathered on the root in id order with the contact histories
+  // keyed by partner id: the same file whatever the number of ranks (only the root writes).
+  DistributedState gathered;
+  if (dist_) {
+    gathered = dist_->gather(true);
+    if (!comm_->root()) return;
+  }
+  const ParticleStore& parts = dist_ ? gathered.particles : p_;
   const ContactStats& stats = contact_stats();
   CheckpointWriter w(path);
   w.put_string("meta/fluidem_version", kVersion);
@@ -253,22 +264,34 @@ void Simulation::write_checkpoint(const std::string& path) {
   w.put_scalar("stats/spring_losses", stats.spring_losses);
   // The particle arrays and the list's state as views (no second copy of the run's largest
   // arrays while the checkpoint is written); they stay unchanged until w.commit() below.
-  for (const auto& [name, v] : double_arrays(p_)) w.put_view(std::string("particles/") + name, *v);
+  for (const auto& [name, v] : double_arrays(parts))
+    w.put_view(std::string("particles/") + name, *v);
   // zero for the hard-sphere engine, which keeps no contact forces
-  const std::vector<double>& acc = contact_sums();
-  const bool have_forces = acc.size() == ContactScratch::kAcc * p_.size();
+  static_assert(ContactScratch::kAcc == OrderedContactSums::kAcc);
+  const std::vector<double>& acc = dist_ ? gathered.contact : contact_sums();
+  const bool have_forces = acc.size() == ContactScratch::kAcc * parts.size();
   std::array<std::vector<double>, 6> contact_force;
   for (std::size_t a = 0; a < 6; ++a) {
-    contact_force[a].assign(p_.size(), 0.0);
+    contact_force[a].assign(parts.size(), 0.0);
     if (have_forces)
-      for (std::size_t i = 0; i < p_.size(); ++i)
+      for (std::size_t i = 0; i < parts.size(); ++i)
         contact_force[a][i] = acc[ContactScratch::kAcc * i + a];
     w.put_view(std::string("particles/") + kContactForce[a], contact_force[a]);
   }
-  w.put_view("particles/species", p_.species);
-  w.put_view("particles/id", p_.id);
-  w.put_view("particles/layer", p_.layer);
-  w.put_view("particles/charge", p_.charge);
+  w.put_view("particles/species", parts.species);
+  w.put_view("particles/id", parts.id);
+  w.put_view("particles/layer", parts.layer);
+  w.put_view("particles/charge", parts.charge);
+  if (dist_) { // what continues the rank-independent engine bitwise on any number of ranks
+    w.put_view("rank_independent/contact", gathered.contact);
+    w.put_view("rank_independent/elastic", gathered.elastic);
+    w.put_view("rank_independent/dissipated", gathered.dissipated);
+    w.put_view("rank_independent/x0", gathered.x0);
+    w.put_view("rank_independent/history/offset", gathered.history.offset);
+    w.put_view("rank_independent/history/key", gathered.history.key);
+    w.put_view("rank_independent/history/values", gathered.history.values);
+    w.put_scalar("rank_independent/builds", gathered.builds);
+  }
   if (soft_) // the list's own arrays, unchanged until commit
     put_list(w, "neighbour", soft_->list().state_view());
   if (bridges_) // which pairs hold a bridge: the history of their list
@@ -333,7 +356,38 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
   CaseSpec spec = read_case_string(r.string("case/resolved"), checkpoint, overrides);
   std::array<std::vector<double>, 6> contact_force;
   const ParticleStore p = read_particles(r, checkpoint, contact_force);
-  std::unique_ptr<Simulation> sim(new Simulation(std::move(spec), &p));
+  // A rank-independent run continues from its gathered state on any number of ranks.
+  std::optional<DistributedState> state;
+  if (r.has("rank_independent/contact")) {
+    state.emplace();
+    state->particles = p;
+    state->contact = r.doubles("rank_independent/contact");
+    state->elastic = r.doubles("rank_independent/elastic");
+    state->dissipated = r.doubles("rank_independent/dissipated");
+    state->x0 = r.doubles("rank_independent/x0");
+    state->history.offset = r.uint32s("rank_independent/history/offset");
+    state->history.key = r.int64s("rank_independent/history/key");
+    state->history.values = r.doubles("rank_independent/history/values");
+    state->builds = r.integer("rank_independent/builds");
+    const std::size_t n = p.size();
+    const KeptHistory& h = state->history;
+    if (state->contact.size() != 12 * n || state->elastic.size() != n ||
+        state->dissipated.size() != n || state->x0.size() != 3 * n || h.offset.size() != n + 1 ||
+        h.offset.back() != h.key.size() ||
+        (h.key.empty() ? !h.values.empty() : h.values.size() % h.key.size() != 0))
+      throw CheckpointError("checkpoint '" + checkpoint +
+                            "': its rank-independent state does not match its particles");
+    state->history.width = h.key.empty() ? 0 : static_cast<int>(h.values.size() / h.key.size());
+  }
+  // "auto" continues on the engine that wrote the checkpoint.
+  if (!spec.parallel.rank_independent) spec.parallel.rank_independent = state.has_value();
+  std::unique_ptr<Simulation> sim(new Simulation(std::move(spec), &p, state ? &*state : nullptr));
+  if (state.has_value() != sim->rank_independent())
+    throw InputError(fmt::format(
+        "checkpoint '{}' was written by the {} engine; continue it with parallel.rank_independent "
+        "= {} (--set parallel.rank_independent={})",
+        checkpoint, state ? "rank-independent" : "single-process", state ? "true" : "false",
+        state ? "true" : "false"));
   Simulation& s = *sim;
   const double dt = r.scalar("run/dt");
   if (dt != s.dt_)

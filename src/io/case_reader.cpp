@@ -33,10 +33,10 @@ constexpr const char* kSetFile = "--set";
 
 const Keys& root_keys() {
   static const Keys k = {
-      "simulation",     "output",     "domain",        "walls",          "species",
-      "insert",         "contact",    "neighbour",     "hardsphere",     "gas",
-      "coupling",       "body_force", "van_der_waals", "electrostatics", "liquid_bridge",
-      "coarse_graining"};
+      "simulation",      "output",     "domain",        "walls",          "species",
+      "insert",          "contact",    "neighbour",     "hardsphere",     "gas",
+      "coupling",        "body_force", "van_der_waals", "electrostatics", "liquid_bridge",
+      "coarse_graining", "parallel"};
   return k;
 }
 const Keys& simulation_keys() {
@@ -129,6 +129,10 @@ const Keys& contact_keys() {
 }
 const Keys& neighbour_keys() {
   static const Keys k = {"skin", "sort_interval"};
+  return k;
+}
+const Keys& parallel_keys() {
+  static const Keys k = {"rank_independent", "process_grid"};
   return k;
 }
 const Keys& hardsphere_keys() {
@@ -248,6 +252,7 @@ const Keys& section_keys(const std::string& section) {
   if (section == "insert") return insert_keys();
   if (section == "contact") return contact_keys();
   if (section == "hardsphere") return hardsphere_keys();
+  if (section == "parallel") return parallel_keys();
   if (section == "coarse_graining") return coarse_graining_keys();
   if (section == "body_force") return body_force_keys();
   if (section == "van_der_waals") return van_der_waals_keys();
@@ -690,6 +695,7 @@ public:
     read_inserts(root);
     read_contact(section(root, "contact"));
     read_neighbour(section(root, "neighbour"));
+    read_parallel(section(root, "parallel"));
     read_hardsphere(section(root, "hardsphere"));
     read_coarse_graining(section(root, "coarse_graining"));
     read_body_force(section(root, "body_force"));
@@ -1565,6 +1571,35 @@ private:
         spec_.neighbour.sort_interval =
             int_value(*e, "neighbour.sort_interval", 0,
                       "an integer >= 0: neighbour-list rebuilds between spatial sorts, 0: never");
+  }
+
+  void read_parallel(const toml::table* t) {
+    if (t == nullptr) return;
+    ParallelSpec& par = spec_.parallel;
+    const std::string p = "parallel";
+    if (const auto e = find(*t, "rank_independent", p + ".rank_independent")) {
+      const auto b = e->node->value_exact<bool>();
+      const auto s = e->node->value_exact<std::string>();
+      if (!b && !(s && *s == "auto"))
+        throw InputError(e->where, p + ".rank_independent",
+                         "expected true, false or \"auto\", got " + describe(*e->node) +
+                             " (allowed: true: results that do not depend on the number of "
+                             "ranks, also on one; false: the single-process engine; \"auto\": "
+                             "true when mpirun started the run)");
+      if (b)
+        par.rank_independent = *b;
+      else
+        par.rank_independent.reset();
+    }
+    if (const auto e = find(*t, "process_grid", p + ".process_grid")) {
+      const auto s = e->node->value_exact<std::string>();
+      if (s && *s == "auto")
+        par.process_grid = {0, 0, 0};
+      else
+        par.process_grid = int3(*e, p + ".process_grid",
+                                "an array of 3 integers [px, py, pz] >= 1 whose product is the "
+                                "number of ranks, or \"auto\"");
+    }
   }
 
   void read_hardsphere(const toml::table* t) {

@@ -393,6 +393,18 @@ std::string write_case_toml(const CaseSpec& spec) {
   os << "characteristic_velocity = " << auto_or(c.characteristic_velocity) << "  # m/s\n"
      << "max_overlap = " << format_double(c.max_overlap) << "\n";
 
+  os << "\n[parallel]\n"
+     << "rank_independent = "
+     << (spec.parallel.rank_independent ? (*spec.parallel.rank_independent ? "true" : "false")
+                                        : "\"auto\"")
+     << "  # the same bits on any number of ranks (auto: under mpirun)\n"
+     << "process_grid = ";
+  if (spec.parallel.process_grid == std::array<int, 3>{0, 0, 0})
+    os << "\"auto\"";
+  else
+    os << "[" << spec.parallel.process_grid[0] << ", " << spec.parallel.process_grid[1] << ", "
+       << spec.parallel.process_grid[2] << "]";
+  os << "  # ranks per axis\n";
   os << "\n[neighbour]\n"
      << "skin = " << auto_or(spec.neighbour.skin) << "  # m\n"
      << "sort_interval = " << spec.neighbour.sort_interval << "  # rebuilds between sorts\n";

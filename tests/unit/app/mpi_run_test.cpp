@@ -1,0 +1,165 @@
+// `mpirun -n P fluidem run` (docs/parallel.md): a settling bed of 1500 glass spheres (Hertz,
+// tangential history; periodic along y, walls elsewhere; random start with velocities, so that
+// particles cross the ranks' cut planes and the lists are rebuilt) run by one process with
+// parallel.rank_independent = true and by mpirun on 2, 3 and 4 ranks (oversubscribed on two
+// cores) writes the same series.csv, bit for bit, and checkpoints whose every array but the
+// run's random id is the same; a checkpoint written on 4 ranks continues in place on 1, 2 and 3
+// ranks to the same files as the uninterrupted run; two skins give the same particles (only the
+// build count differs); what the distributed engine does not take is refused with exit 2.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "../../common/cli_runner.hpp"
+#include "output/checkpoint_file.hpp"
+
+namespace fluidem {
+namespace {
+
+using test::contains;
+using test::Result;
+using test::TempDir;
+
+const char* const kBed = R"(
+[simulation]
+engine = "soft_sphere"
+dimension = 3
+end_time = 0.012
+time_step = 1e-5
+gravity = [0.0, 0.0, -9.81]
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [0.03, 0.02, 0.04]
+periodic = [false, true, false]
+[[species]]
+name = "glass"
+diameter = 0.002
+density = 2500.0
+youngs_modulus = 1e7
+restitution = 0.8
+friction = 0.4
+rolling_friction = 0.05
+[[insert]]
+species = "glass"
+count = 1500
+placement = "random"
+velocity_spread = 0.5
+seed = 3
+[contact]
+normal = "hertz"
+tangential = "history"
+[output]
+frame_interval = 0.004
+series_interval = 0.001
+checkpoint_interval = 0.006
+)";
+
+Result mpirun(int ranks, const std::vector<std::string>& args, const test::fs::path& cwd) {
+  std::string cmd = "mpirun --oversubscribe --allow-run-as-root --mca btl self,vader -n " +
+                    std::to_string(ranks) + " " + test::quote(FLUIDEM_BINARY);
+  for (const auto& a : args) cmd += " " + test::quote(a);
+  cmd += " -t 1"; // one thread per rank
+  return test::run_command(cmd, cwd);
+}
+
+/// Every array of two checkpoints is the same, but the run's random id and what follows from
+/// it, and the build count when `builds` is false.
+void expect_same_checkpoints(const test::fs::path& a, const test::fs::path& b, bool builds = true) {
+  const CheckpointReader ra(a.string()), rb(b.string());
+  ASSERT_EQ(ra.names(), rb.names());
+  int compared = 0;
+  for (const std::string& name : ra.names()) {
+    if (name == "outputs/run_id" || name == "case/resolved" ||
+        (!builds && name == "rank_independent/builds"))
+      continue;
+    EXPECT_EQ(ra.stored_bytes(name), rb.stored_bytes(name)) << name;
+    ++compared;
+  }
+  EXPECT_GT(compared, 20);
+}
+
+TEST(MpiRun, RanksWriteTheFilesOfOneProcess) {
+  TempDir tmp;
+  const auto bed = tmp.write("bed.toml", kBed);
+  const Result one = test::fluidem(
+      {"run", bed.string(), "--out", "one", "-t", "2", "--set", "parallel.rank_independent=true"},
+      tmp.path);
+  ASSERT_EQ(one.code, 0) << one.err;
+  EXPECT_TRUE(contains(one.out, "ranks              1")) << one.out;
+  const std::string series = test::read_file(tmp.path / "one" / "series.csv");
+  for (int p : {2, 3, 4}) {
+    const std::string out = "p" + std::to_string(p);
+    const Result r = mpirun(p, {"run", bed.string(), "--out", out}, tmp.path);
+    ASSERT_EQ(r.code, 0) << r.err << r.out;
+    EXPECT_TRUE(contains(r.out, "ranks              " + std::to_string(p))) << r.out;
+    EXPECT_TRUE(contains(r.out, "imbalance")) << r.out;
+    EXPECT_EQ(test::read_file(tmp.path / out / "series.csv"), series) << p << " ranks";
+    expect_same_checkpoints(tmp.path / "one" / "checkpoint.h5", tmp.path / out / "checkpoint.h5");
+  }
+}
+
+TEST(MpiRun, CheckpointOfFourRanksContinuesOnOneTwoAndThree) {
+  TempDir tmp;
+  const auto bed = tmp.write("bed.toml", kBed);
+  const Result whole = mpirun(2, {"run", bed.string(), "--out", "whole"}, tmp.path);
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  const Result half = mpirun(
+      4, {"run", bed.string(), "--out", "half", "--set", "simulation.end_time=0.008"}, tmp.path);
+  ASSERT_EQ(half.code, 0) << half.err;
+  for (int q : {1, 2, 3}) {
+    const std::string dir = "cont" + std::to_string(q);
+    test::fs::copy(tmp.path / "half", tmp.path / dir, test::fs::copy_options::recursive);
+    const std::vector<std::string> args{"run", "--restart",
+                                        (tmp.path / dir / "checkpoint.h5").string(), "--set",
+                                        "simulation.end_time=0.012"};
+    const Result r = q == 1 ? test::fluidem(args, tmp.path) : mpirun(q, args, tmp.path);
+    ASSERT_EQ(r.code, 0) << r.err << r.out;
+    EXPECT_EQ(test::read_file(tmp.path / dir / "series.csv"),
+              test::read_file(tmp.path / "whole" / "series.csv"))
+        << "4 -> " << q << " ranks";
+    expect_same_checkpoints(tmp.path / "whole" / "checkpoint.h5", tmp.path / dir / "checkpoint.h5");
+  }
+}
+
+TEST(MpiRun, TwoSkinsGiveTheSameParticles) {
+  // A skin of 0.1 d rebuilds the lists more often than one of 0.4 d: the rows hold other pairs
+  // and are built at other steps, the contacts and their sums are the same.
+  TempDir tmp;
+  const auto bed = tmp.write("bed.toml", kBed);
+  const Result thin =
+      mpirun(3, {"run", bed.string(), "--out", "thin", "--set", "neighbour.skin=0.0002"}, tmp.path);
+  const Result thick = mpirun(
+      3, {"run", bed.string(), "--out", "thick", "--set", "neighbour.skin=0.0008"}, tmp.path);
+  ASSERT_EQ(thin.code, 0) << thin.err;
+  ASSERT_EQ(thick.code, 0) << thick.err;
+  const CheckpointReader a((tmp.path / "thin" / "checkpoint.h5").string()),
+      b((tmp.path / "thick" / "checkpoint.h5").string());
+  EXPECT_GT(a.integer("rank_independent/builds"), b.integer("rank_independent/builds"));
+  for (const char* name :
+       {"particles/x", "particles/vz", "particles/wy", "rank_independent/contact",
+        "rank_independent/dissipated", "rank_independent/history/values"})
+    EXPECT_EQ(a.stored_bytes(name), b.stored_bytes(name)) << name;
+}
+
+TEST(MpiRun, WhatTheRanksDoNotTakeIsRefused) {
+  TempDir tmp;
+  const auto bed = tmp.write("bed.toml", kBed);
+  const Result hard = mpirun(
+      2, {"run", bed.string(), "--out", "h", "--set", "simulation.engine=hard_sphere"}, tmp.path);
+  EXPECT_EQ(hard.code, 2);
+  EXPECT_TRUE(contains(hard.err, "simulation.engine")) << hard.err;
+  const Result off = mpirun(
+      2, {"run", bed.string(), "--out", "o", "--set", "parallel.rank_independent=false"}, tmp.path);
+  EXPECT_EQ(off.code, 2);
+  EXPECT_TRUE(contains(off.err, "parallel.rank_independent")) << off.err;
+  const Result grid = mpirun(
+      2, {"run", bed.string(), "--out", "g", "--set", "parallel.process_grid=[3, 1, 1]"}, tmp.path);
+  EXPECT_EQ(grid.code, 2);
+  EXPECT_TRUE(contains(grid.err, "parallel.process_grid")) << grid.err;
+  // The message is printed once (by the root), not once per rank.
+  EXPECT_EQ(grid.err.find("error:"), grid.err.rfind("error:")) << grid.err;
+}
+
+} // namespace
+} // namespace fluidem
