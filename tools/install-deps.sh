@@ -2,7 +2,7 @@
 # Install the Debian 12 packages fluidem needs, only those missing (needs root or sudo).
 set -euo pipefail
 packages=(cmake ninja-build g++ libomp-dev libtomlplusplus-dev libcli11-dev libfmt-dev
-          libhdf5-dev hdf5-tools libhypre-dev libfftw3-dev libgtest-dev libgmock-dev libbenchmark-dev
+          libhdf5-dev hdf5-tools libhypre-dev libopenmpi-dev openmpi-bin libfftw3-dev libgtest-dev libgmock-dev libbenchmark-dev
           python3-matplotlib python3-h5py python3-numpy
           # tools/ci-fuzz.sh: clang 14, libFuzzer + sanitizer runtimes, llvm-symbolizer
           clang libclang-rt-14-dev llvm)

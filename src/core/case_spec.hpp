@@ -208,6 +208,8 @@ struct ParallelSpec {
   std::optional<bool> rank_independent;
   /// The ranks' process grid {px, py, pz}; {0, 0, 0} = "auto" (columns first).
   std::array<int, 3> process_grid{0, 0, 0};
+  /// Neighbour-list builds between moves of the cut planes to the measured cost; 0: never.
+  int balance_interval = 20;
 };
 
 /// The whole case, plus where each key came from (for error messages).

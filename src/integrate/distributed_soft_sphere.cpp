@@ -194,11 +194,95 @@ void DistributedSoftSphere::advance(long steps) {
   for (long k = 0; k < steps; ++k) step();
 }
 
+void DistributedSoftSphere::rebalance(bool measured) {
+  // Each rank's own particles' cost per cell layer of each axis, summed on the root in rank
+  // order; the root places the cuts and every rank takes them.
+  const auto& g = map_.grid();
+  const double seconds = seconds_.contacts - balance_seconds0_;
+  balance_seconds0_ = seconds_.contacts;
+  double work = 0.0;
+  for (std::size_t i = 0; i < owned_; ++i)
+    work += 1.0 + static_cast<double>(rows_->offset[i + 1] - rows_->offset[i]);
+  const double scale = measured && work > 0.0 && seconds > 0.0 ? seconds / work : 1.0;
+  std::vector<double> cost;
+  for (int a = 0; a < 3; ++a) {
+    if (map_.process_grid()[static_cast<std::size_t>(a)] < 2) continue;
+    const std::size_t at = cost.size();
+    cost.resize(at + static_cast<std::size_t>(g.cells[static_cast<std::size_t>(a)]), 0.0);
+    const std::vector<double>* x = a == 0 ? &p_.x : a == 1 ? &p_.y : &p_.z;
+    for (std::size_t i = 0; i < owned_; ++i)
+      cost[at + static_cast<std::size_t>(map_.cell_of(a, (*x)[i]))] +=
+          scale * (1.0 + static_cast<double>(rows_->offset[i + 1] - rows_->offset[i]));
+  }
+  const auto parts = comm_.gather(std::span<const char>(reinterpret_cast<const char*>(cost.data()),
+                                                        cost.size() * sizeof(double)));
+  std::vector<int> cuts;
+  if (comm_.root()) {
+    std::vector<double> total(cost.size(), 0.0);
+    for (const auto& b : parts)
+      for (std::size_t k = 0; k < total.size(); ++k) {
+        double v;
+        std::memcpy(&v, b.data() + k * sizeof(double), sizeof(double));
+        total[k] += v;
+      }
+    std::size_t at = 0;
+    for (int a = 0; a < 3; ++a) {
+      const int n = map_.process_grid()[static_cast<std::size_t>(a)];
+      if (n < 2) continue;
+      const auto cells = static_cast<std::size_t>(g.cells[static_cast<std::size_t>(a)]);
+      const std::vector<double> layer(total.begin() + static_cast<std::ptrdiff_t>(at),
+                                      total.begin() + static_cast<std::ptrdiff_t>(at + cells));
+      const std::vector<int> c = Decomposition::balanced_cuts(layer, n, 1);
+      cuts.insert(cuts.end(), c.begin(), c.end());
+      at += cells;
+    }
+  }
+  std::vector<char> bytes(reinterpret_cast<const char*>(cuts.data()),
+                          reinterpret_cast<const char*>(cuts.data() + cuts.size()));
+  comm_.broadcast(bytes);
+  cuts.resize(bytes.size() / sizeof(int));
+  std::memcpy(cuts.data(), bytes.data(), bytes.size());
+  std::size_t at = 0;
+  for (int a = 0; a < 3; ++a) {
+    const int n = map_.process_grid()[static_cast<std::size_t>(a)];
+    if (n < 2) continue;
+    map_.set_cuts(a, std::vector<int>(cuts.begin() + static_cast<std::ptrdiff_t>(at),
+                                      cuts.begin() + static_cast<std::ptrdiff_t>(at) + n + 1));
+    at += static_cast<std::size_t>(n) + 1;
+  }
+  exchange_ = std::make_unique<ParticleExchange>(comm_, map_, exchange_->halo());
+  ++rebalances_;
+  rebuild(); // the particles to their new owners
+}
+
 void DistributedSoftSphere::rebuild() {
+  // The cut planes move to balance the measured cost every balance_interval builds, before the
+  // particles move to their owners (rebalance() calls this again with the new cuts).
+  if (s_.balance_interval > 0 && builds_ > 0 && builds_ % s_.balance_interval == 0 &&
+      comm_.size() > 1 && rebalances_ < builds_ / s_.balance_interval) {
+    rebalance(true);
+    return;
+  }
   // The own particles' histories leave the rows keyed by partner id; the ghosts are dropped.
   KeptHistory kept = rows_->keep(p_);
   p_.resize(owned_);
-  const std::vector<ParticleTooFar> lost = exchange_->migrate(p_, kept, dissipated_, 1);
+  // With each particle: its dissipated energy, and its last contact sums and elastic energy (a
+  // build between steps, by rebalance(), keeps them for the next kick).
+  constexpr int kCarried = 14;
+  std::vector<double> carried(kCarried * owned_);
+  for (std::size_t i = 0; i < owned_; ++i) {
+    double* c = carried.data() + kCarried * i;
+    c[0] = dissipated_[i], c[1] = sums_.elastic[i];
+    std::copy_n(sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i), 12, c + 2);
+  }
+  const std::vector<ParticleTooFar> lost = exchange_->migrate(p_, kept, carried, kCarried);
+  const std::size_t n = p_.size();
+  dissipated_.resize(n), sums_.elastic.resize(n), sums_.acc.resize(12 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* c = carried.data() + kCarried * i;
+    dissipated_[i] = c[0], sums_.elastic[i] = c[1];
+    std::copy_n(c + 2, 12, sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i));
+  }
   const double first_lost = comm_.min(lost.empty() ? std::numeric_limits<double>::infinity()
                                                    : static_cast<double>(lost.front().id));
   if (std::isfinite(first_lost))

@@ -48,6 +48,9 @@ public:
     std::array<double, 3> gravity{};   ///< m/s^2
     DecompositionGrid cells;           ///< the index space the ranks share out
     std::array<int, 3> process_grid{}; ///< {0, 0, 0}: chosen (columns first)
+    /// Load balancing: every this many list builds the cut planes move so that the ranks'
+    /// measured contact-loop times even out (0: never).
+    int balance_interval = 0;
   };
   /// Every rank passes the same particles `all` (each keeps those it owns) and the same
   /// settings; the first contact forces are computed. Collective.
@@ -80,6 +83,15 @@ public:
   /// Gathers the particles into `all` on the root (in id order; elsewhere emptied) and the
   /// totals of dissipated_energy() and contact_stats() on every rank. Collective.
   void observe(ParticleStore& all);
+
+  /// Moves the cut planes of every cut axis so that each rank's part of the cost is as near the
+  /// mean as the cells allow, and migrates the particles to their new owners; the cost of a
+  /// particle is 1 + its row's length, times its rank's measured contact time per unit of that
+  /// (`measured`), or not (a deterministic balance, for tests). Collective. The results do not
+  /// depend on it.
+  void rebalance(bool measured);
+  /// Rebalances done so far.
+  long rebalances() const { return rebalances_; }
 
   /// Totals over all particles, the same bits on every rank and for every P: sums in id order.
   struct Totals {
@@ -122,6 +134,8 @@ private:
   OrderedContactStats stats_;
   long builds_ = 0;
   double observed_dissipated_ = 0.0;
+  long rebalances_ = 0;
+  double balance_seconds0_ = 0.0; ///< seconds_.contacts at the last balance
   ContactStats observed_stats_;
   Seconds seconds_;
 };

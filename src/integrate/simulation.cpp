@@ -217,6 +217,7 @@ void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_f
     d.skin = skin; // "auto" is the fixed default here (one skin for all ranks and builds)
     d.gravity = spec_.simulation.gravity;
     d.process_grid = spec_.parallel.process_grid;
+    d.balance_interval = spec_.parallel.balance_interval;
     // The index space the ranks share: cells about as wide as a list cell (the largest pair's
     // reach), so that a rank's ghosts come from its neighbours.
     d.cells.lo = spec_.domain.lo;

@@ -132,7 +132,7 @@ const Keys& neighbour_keys() {
   return k;
 }
 const Keys& parallel_keys() {
-  static const Keys k = {"rank_independent", "process_grid"};
+  static const Keys k = {"rank_independent", "process_grid", "balance_interval"};
   return k;
 }
 const Keys& hardsphere_keys() {
@@ -1600,6 +1600,11 @@ private:
                                 "an array of 3 integers [px, py, pz] >= 1 whose product is the "
                                 "number of ranks, or \"auto\"");
     }
+    if (const auto e = find(*t, "balance_interval", p + ".balance_interval"))
+      par.balance_interval = static_cast<int>(
+          int_value(*e, p + ".balance_interval", 0,
+                    "an integer >= 0: neighbour-list builds between moves of the ranks' cut "
+                    "planes to the measured cost, 0: never"));
   }
 
   void read_hardsphere(const toml::table* t) {

@@ -404,7 +404,9 @@ std::string write_case_toml(const CaseSpec& spec) {
   else
     os << "[" << spec.parallel.process_grid[0] << ", " << spec.parallel.process_grid[1] << ", "
        << spec.parallel.process_grid[2] << "]";
-  os << "  # ranks per axis\n";
+  os << "  # ranks per axis\n"
+     << "balance_interval = " << spec.parallel.balance_interval
+     << "  # list builds between moves of the cut planes (0: never)\n";
   os << "\n[neighbour]\n"
      << "skin = " << auto_or(spec.neighbour.skin) << "  # m\n"
      << "sort_interval = " << spec.neighbour.sort_interval << "  # rebuilds between sorts\n";

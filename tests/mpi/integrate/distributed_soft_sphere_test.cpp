@@ -156,6 +156,31 @@ TEST(DistributedSoftSphere, StateGatheredHalfwayContinuesOnOneRank) {
   EXPECT_EQ(outcome(Communicator::self(), rest).hash, one_rank().hash);
 }
 
+TEST(DistributedSoftSphere, RebalancedSlabsGiveTheBitsOfOneRank) {
+  // Slabs along gravity over a bed in the lower two thirds of the box: the even cuts leave the
+  // top ranks few particles. A balance by each particle's work (1 + its row's length) at step
+  // 100 moves the cut planes down through the bed while contacts straddle them and particles
+  // cross them; a measured one (timings) at step 200 moves them again. The particles must
+  // reach their new owners with their histories: the bits of one rank.
+  const Communicator& world = Communicator::world();
+  const CaseSpec spec = bed_spec();
+  DistributedSoftSphere dem(world, std::make_unique<ContactTable>(spec), test::box_of(spec),
+                            settings({1, 1, world.size()}), test::jittered_bed(13, 2, true));
+  const std::vector<int> before = dem.decomposition().cuts(2);
+  dem.advance(100);
+  dem.rebalance(false);
+  if (world.size() > 1) {
+    EXPECT_NE(dem.decomposition().cuts(2), before);
+  }
+  dem.advance(100);
+  dem.rebalance(true);
+  dem.advance(kSteps - 200);
+  const Outcome o = outcome(world, dem);
+  if (world.root()) {
+    EXPECT_EQ(o.hash, one_rank().hash);
+  }
+}
+
 TEST(DistributedSoftSphere, AnotherStartGivesOtherBits) {
   const Communicator& world = Communicator::world();
   const Outcome nudged = run(world, {0, 0, 0}, 1e-12);
