@@ -193,6 +193,10 @@ void print_run_summary(const Simulation& sim, const RunSummary& s, const std::st
     fmt::print("ranks {}: {:.4g} particle-steps/s per rank; imbalance {:.3f} (the slowest rank's "
                "contact time over the mean)\n",
                s.ranks, s.particle_steps_per_second / s.ranks, s.imbalance);
+  if (s.rank_independent && s.ranks > 1)
+    fmt::print("exchange: {:.4g} bytes and {:.3g} messages per rank and step (ghosts, particles "
+               "changing rank); {} moves of the cut planes\n",
+               s.bytes_per_rank_step, s.messages_per_rank_step, s.rebalances);
   // Where the time went: the particles (contacts, integration and lists; the event-driven
   // engine does all three), the gas solver, the coupling (porosity, forces both ways, the
   // gas kicks) and the output.

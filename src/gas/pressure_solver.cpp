@@ -183,7 +183,7 @@ struct StructLinearSolver::Impl {
 
   void make_hypre() {
     ensure_mpi_initialised();
-    HYPRE_StructGridCreate(MPI_COMM_WORLD, ndim, &grid);
+    HYPRE_StructGridCreate(MPI_COMM_SELF, ndim, &grid);
     HYPRE_StructGridSetExtents(grid, hlo.data(), hhi.data());
     HYPRE_StructGridSetPeriodic(grid, hperiod.data());
     HYPRE_StructGridAssemble(grid);
@@ -193,11 +193,11 @@ struct StructLinearSolver::Impl {
       if (e > 0) offset[(e - 1) / 2] = e % 2 == 1 ? -1 : 1; // m, p along hypre axis (e-1)/2
       HYPRE_StructStencilSetElement(stencil, e, offset.data());
     }
-    HYPRE_StructMatrixCreate(MPI_COMM_WORLD, grid, stencil, &A);
+    HYPRE_StructMatrixCreate(MPI_COMM_SELF, grid, stencil, &A);
     HYPRE_StructMatrixInitialize(A);
-    HYPRE_StructVectorCreate(MPI_COMM_WORLD, grid, &b);
+    HYPRE_StructVectorCreate(MPI_COMM_SELF, grid, &b);
     HYPRE_StructVectorInitialize(b);
-    HYPRE_StructVectorCreate(MPI_COMM_WORLD, grid, &x);
+    HYPRE_StructVectorCreate(MPI_COMM_SELF, grid, &x);
     HYPRE_StructVectorInitialize(x);
     const auto n = static_cast<std::size_t>(cells);
     values.resize(static_cast<std::size_t>(nentries) * n);
@@ -218,7 +218,7 @@ struct StructLinearSolver::Impl {
   void setup_mg() {
     destroy_mg();
     if (opt.multigrid == StructSolverOptions::Multigrid::smg) {
-      HYPRE_StructSMGCreate(MPI_COMM_WORLD, &mg);
+      HYPRE_StructSMGCreate(MPI_COMM_SELF, &mg);
       HYPRE_StructSMGSetMemoryUse(mg, 0);
       HYPRE_StructSMGSetMaxIter(mg, 1);
       HYPRE_StructSMGSetTol(mg, 0.0);
@@ -227,7 +227,7 @@ struct StructLinearSolver::Impl {
       HYPRE_StructSMGSetNumPostRelax(mg, opt.post_relax);
       HYPRE_StructSMGSetup(mg, A, b, x);
     } else {
-      HYPRE_StructPFMGCreate(MPI_COMM_WORLD, &mg);
+      HYPRE_StructPFMGCreate(MPI_COMM_SELF, &mg);
       HYPRE_StructPFMGSetMaxIter(mg, 1);
       HYPRE_StructPFMGSetTol(mg, 0.0);
       HYPRE_StructPFMGSetZeroGuess(mg);
@@ -249,12 +249,12 @@ struct StructLinearSolver::Impl {
     const HYPRE_PtrToStructSolverFcn solve_fn = smg ? HYPRE_StructSMGSolve : HYPRE_StructPFMGSolve;
     if (!krylov) {
       if (symmetric) {
-        HYPRE_StructPCGCreate(MPI_COMM_WORLD, &krylov);
+        HYPRE_StructPCGCreate(MPI_COMM_SELF, &krylov);
         HYPRE_StructPCGSetTwoNorm(krylov, 1);
         HYPRE_StructPCGSetPrecond(krylov, solve_fn, no_setup, mg);
         HYPRE_StructPCGSetup(krylov, A, b, x);
       } else {
-        HYPRE_StructGMRESCreate(MPI_COMM_WORLD, &krylov);
+        HYPRE_StructGMRESCreate(MPI_COMM_SELF, &krylov);
         HYPRE_StructGMRESSetKDim(krylov, 30);
         HYPRE_StructGMRESSetPrecond(krylov, solve_fn, no_setup, mg);
         HYPRE_StructGMRESSetup(krylov, A, b, x);

@@ -68,6 +68,7 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
   kept.width = rows_->history_width();
   kept.offset.assign(1, 0);
   dissipated_.assign(owned_, 0.0);
+  held_.assign(3 * owned_, 0.0);
   if (state) {
     const auto hw = static_cast<std::size_t>(kept.width);
     const KeptHistory& h = state->history;
@@ -80,6 +81,9 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
                   sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * k));
       sums_.elastic[k] = state->elastic[i];
       dissipated_[k] = state->dissipated[i];
+      if (!state->held.empty())
+        std::copy_n(state->held.begin() + static_cast<std::ptrdiff_t>(3 * i), 3,
+                    held_.begin() + static_cast<std::ptrdiff_t>(3 * k));
       for (std::uint32_t m = h.offset[i]; m < h.offset[i + 1]; ++m) {
         kept.key.push_back(h.key[m]);
         kept.values.insert(kept.values.end(),
@@ -125,11 +129,12 @@ void DistributedSoftSphere::kick() {
   const auto& g = s_.gravity;
   parallel_for(owned_, threaded_particles(owned_), [&](std::size_t i) {
     const double* f = sums_.acc.data() + OrderedContactSums::kAcc * i;
+    const double* fh = held_.data() + 3 * i;
     const double im = p_.inv_mass[i], ii = p_.inv_inertia[i];
     const std::array<double, 3> a = im == 0.0 ? std::array<double, 3>{} : g;
-    p_.vx[i] += h * (f[0] * im + a[0]);
-    p_.vy[i] += h * (f[1] * im + a[1]);
-    p_.vz[i] += h * (f[2] * im + a[2]);
+    p_.vx[i] += h * ((f[0] + fh[0]) * im + a[0]);
+    p_.vy[i] += h * ((f[1] + fh[1]) * im + a[1]);
+    p_.vz[i] += h * ((f[2] + fh[2]) * im + a[2]);
     p_.wx[i] += h * f[3] * ii;
     p_.wy[i] += h * f[4] * ii;
     p_.wz[i] += h * f[5] * ii;
@@ -250,6 +255,7 @@ void DistributedSoftSphere::rebalance(bool measured) {
                                       cuts.begin() + static_cast<std::ptrdiff_t>(at) + n + 1));
     at += static_cast<std::size_t>(n) + 1;
   }
+  sent_before_[0] += exchange_->bytes_sent(), sent_before_[1] += exchange_->messages_sent();
   exchange_ = std::make_unique<ParticleExchange>(comm_, map_, exchange_->halo());
   ++rebalances_;
   rebuild(); // the particles to their new owners
@@ -268,20 +274,22 @@ void DistributedSoftSphere::rebuild() {
   p_.resize(owned_);
   // With each particle: its dissipated energy, and its last contact sums and elastic energy (a
   // build between steps, by rebalance(), keeps them for the next kick).
-  constexpr int kCarried = 14;
+  constexpr int kCarried = 17;
   std::vector<double> carried(kCarried * owned_);
   for (std::size_t i = 0; i < owned_; ++i) {
     double* c = carried.data() + kCarried * i;
     c[0] = dissipated_[i], c[1] = sums_.elastic[i];
     std::copy_n(sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i), 12, c + 2);
+    std::copy_n(held_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3, c + 14);
   }
   const std::vector<ParticleTooFar> lost = exchange_->migrate(p_, kept, carried, kCarried);
   const std::size_t n = p_.size();
-  dissipated_.resize(n), sums_.elastic.resize(n), sums_.acc.resize(12 * n);
+  dissipated_.resize(n), sums_.elastic.resize(n), sums_.acc.resize(12 * n), held_.resize(3 * n);
   for (std::size_t i = 0; i < n; ++i) {
     const double* c = carried.data() + kCarried * i;
     dissipated_[i] = c[0], sums_.elastic[i] = c[1];
     std::copy_n(c + 2, 12, sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i));
+    std::copy_n(c + 14, 3, held_.begin() + static_cast<std::ptrdiff_t>(3 * i));
   }
   const double first_lost = comm_.min(lost.empty() ? std::numeric_limits<double>::infinity()
                                                    : static_cast<double>(lost.front().id));
@@ -305,7 +313,7 @@ void DistributedSoftSphere::rebuild() {
 DistributedState DistributedSoftSphere::gather(bool with_history) const {
   // Per particle: dissipated, elastic, the 12 contact sums, its build position; then
   // (with_history) its entries.
-  constexpr int kExtra = 17;
+  constexpr int kExtra = 20;
   std::vector<double> extra(kExtra * owned_);
   for (std::size_t i = 0; i < owned_; ++i) {
     extra[kExtra * i] = dissipated_[i], extra[kExtra * i + 1] = sums_.elastic[i];
@@ -313,6 +321,8 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
                 extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 2));
     std::copy_n(x0_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3,
                 extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 14));
+    std::copy_n(held_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3,
+                extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 17));
   }
   const auto parts = comm_.gather(pack_particles(p_, owned_, extra, kExtra));
   KeptHistory kept_mine;
@@ -338,14 +348,47 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
   p.permute(order);
   const std::size_t n = order.size();
   g.dissipated.resize(n), g.elastic.resize(n), g.contact.resize(12 * n), g.x0.resize(3 * n);
+  g.held.resize(3 * n);
   for (std::size_t k = 0; k < n; ++k) {
     const double* e = all_extra.data() + kExtra * order[k];
     g.dissipated[k] = e[0], g.elastic[k] = e[1];
     std::copy_n(e + 2, 12, g.contact.begin() + static_cast<std::ptrdiff_t>(12 * k));
     std::copy_n(e + 14, 3, g.x0.begin() + static_cast<std::ptrdiff_t>(3 * k));
+    std::copy_n(e + 17, 3, g.held.begin() + static_cast<std::ptrdiff_t>(3 * k));
   }
   if (with_history) g.history = reorder(all_kept, order);
   return g;
+}
+
+void DistributedSoftSphere::gather_all(ParticleStore& all) const {
+  std::vector<char> bytes;
+  {
+    const std::vector<double> none;
+    const auto parts = comm_.gather(pack_particles(p_, owned_, none, 0));
+    for (const auto& b : parts) bytes.insert(bytes.end(), b.begin(), b.end());
+  }
+  comm_.broadcast(bytes);
+  all.resize(0);
+  all.reserve(static_cast<std::size_t>(total_));
+  std::vector<double> none;
+  unpack_particles(bytes, all, none, 0);
+  std::vector<std::uint32_t> order(all.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return all.id[a] < all.id[b]; });
+  all.permute(order);
+}
+
+void DistributedSoftSphere::hold_forces(const ParticleStore& all,
+                                        const std::array<const double*, 3>& f) {
+  for (std::size_t i = 0; i < owned_; ++i) {
+    const auto it = std::lower_bound(all.id.begin(), all.id.end(), p_.id[i]);
+    if (it == all.id.end() || *it != p_.id[i])
+      throw std::logic_error("DistributedSoftSphere::hold_forces: particle " +
+                             std::to_string(p_.id[i]) + " is not among all particles");
+    const auto k = static_cast<std::size_t>(it - all.id.begin());
+    for (std::size_t a = 0; a < 3; ++a) held_[3 * i + a] = f[a][k];
+  }
 }
 
 void DistributedSoftSphere::observe(ParticleStore& all) {

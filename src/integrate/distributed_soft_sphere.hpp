@@ -37,7 +37,8 @@ struct DistributedState {
   /// 3 per particle: its position at the last neighbour-list build (the next build comes when
   /// a particle has moved half the skin from there)
   std::vector<double> x0;
-  std::int64_t builds = 0; ///< neighbour-list builds so far
+  std::vector<double> held; ///< 3 per particle: the gas force held over the flow step, N
+  std::int64_t builds = 0;  ///< neighbour-list builds so far
 };
 
 class DistributedSoftSphere final : public ParticleStepper {
@@ -84,6 +85,13 @@ public:
   /// totals of dissipated_energy() and contact_stats() on every rank. Collective.
   void observe(ParticleStore& all);
 
+  /// Every particle in id order on every rank (the gas and its coupling are computed by each
+  /// rank on all particles, docs/parallel.md). Collective.
+  void gather_all(ParticleStore& all) const;
+  /// The force on each own particle held over the coming flow step (the gas's), from the
+  /// forces f[axis][k] on the particles `all` (in id order, gather_all()), N.
+  void hold_forces(const ParticleStore& all, const std::array<const double*, 3>& f);
+
   /// Moves the cut planes of every cut axis so that each rank's part of the cost is as near the
   /// mean as the cells allow, and migrates the particles to their new owners; the cost of a
   /// particle is 1 + its row's length, times its rank's measured contact time per unit of that
@@ -92,6 +100,10 @@ public:
   void rebalance(bool measured);
   /// Rebalances done so far.
   long rebalances() const { return rebalances_; }
+  /// Bytes and messages this rank sent to the others since the run (or its restart) started:
+  /// particles that changed rank, ghosts, the ghosts' updates (not the gathers for the outputs).
+  double bytes_sent() const { return exchange_->bytes_sent() + sent_before_[0]; }
+  double messages_sent() const { return exchange_->messages_sent() + sent_before_[1]; }
 
   /// Totals over all particles, the same bits on every rank and for every P: sums in id order.
   struct Totals {
@@ -129,13 +141,15 @@ private:
   std::size_t owned_ = 0;
   std::int64_t total_ = 0;         ///< particles on all ranks
   std::vector<double> dissipated_; ///< per own particle, J
+  std::vector<double> held_;       ///< 3 per own particle: the held (gas) force, N
   std::vector<double> x0_;         ///< own particles' positions at the last build (x y z)
   OrderedContactSums sums_;
   OrderedContactStats stats_;
   long builds_ = 0;
   double observed_dissipated_ = 0.0;
   long rebalances_ = 0;
-  double balance_seconds0_ = 0.0; ///< seconds_.contacts at the last balance
+  std::array<double, 2> sent_before_{}; ///< by the exchanges a rebalance replaced
+  double balance_seconds0_ = 0.0;       ///< seconds_.contacts at the last balance
   ContactStats observed_stats_;
   Seconds seconds_;
 };

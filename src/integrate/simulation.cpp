@@ -197,7 +197,8 @@ bool Simulation::choose_rank_independent() const {
                               "mpirun, or with parallel.rank_independent = true); run this case "
                               "without mpirun and with parallel.rank_independent = false");
   };
-  refuse(spec_.gas.has_value(), "gas", "the gas phase");
+  refuse(spec_.coupling.forces.any(), "coupling.forces",
+         "the fluid forces beyond drag and pressure (virtual mass, Basset, lift, torque)");
   refuse(spec_.noncontact.van_der_waals.has_value(), "van_der_waals", "van der Waals attraction");
   refuse(spec_.noncontact.electrostatics.has_value(), "electrostatics", "electrostatics");
   refuse(spec_.noncontact.liquid_bridge.has_value(), "liquid_bridge", "liquid bridges");
@@ -315,6 +316,17 @@ void Simulation::step(bool defer_second_kick) {
 }
 
 void Simulation::flow_step() {
+  if (dist_) {
+    // Every rank steps the gas on all particles (in id order, as on one rank), and each holds
+    // the forces of its own over the flow step.
+    const auto t0 = WallClock::now();
+    dist_->gather_all(coupled_);
+    gas_->step(coupled_, time_, dt_ * static_cast<double>(steps_per_flow_));
+    dist_->hold_forces(coupled_,
+                       {gas_->force(0).data(), gas_->force(1).data(), gas_->force(2).data()});
+    t_gas_ += seconds_since(t0);
+    return;
+  }
   stepper_->finish_kick(); // the gas step reads the particles' full-step velocities
   const auto t0 = WallClock::now();
   gas_->step(p_, time_, dt_ * static_cast<double>(steps_per_flow_));
@@ -454,6 +466,13 @@ RunSummary Simulation::run(const std::string& out_dir,
     s.particle_steps_per_second = static_cast<double>(s.steps) *
                                   static_cast<double>(report_.particle_count) /
                                   std::max(comm_->max(s.wall_seconds), 1e-9);
+    const double steps = std::max(1.0, static_cast<double>(s.steps));
+    const auto mean_of = [&](double v) {
+      return static_cast<double>(comm_->sum(static_cast<std::int64_t>(v))) / s.ranks / steps;
+    };
+    s.bytes_per_rank_step = mean_of(dist_->bytes_sent());
+    s.messages_per_rank_step = mean_of(dist_->messages_sent());
+    s.rebalances = dist_->rebalances();
   }
   s.checkpoint = recorder.last_checkpoint();
   return s;

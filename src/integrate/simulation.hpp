@@ -80,6 +80,10 @@ struct RunSummary {
   /// contact loop over the mean of the ranks' (1: balanced).
   int ranks = 1;
   double imbalance = 1.0;
+  /// What a rank sent per step, mean over the ranks: bytes, messages (docs/parallel.md); the
+  /// rebalances of the cut planes.
+  double bytes_per_rank_step = 0.0, messages_per_rank_step = 0.0;
+  long rebalances = 0;
   bool rank_independent = false;
   std::string checkpoint; ///< the last checkpoint written
 };
@@ -276,9 +280,12 @@ private:
   DistributedSoftSphere* dist_ = nullptr; ///< stepper_ when rank-independent
   const Communicator* comm_ = &Communicator::self();
   const DistributedState* restart_state_ = nullptr; ///< during a restart's construction
-  HardSphereStepper* hard_ = nullptr;               ///< stepper_ when engine = "hard_sphere"
-  long steps_per_flow_ = 1;                         ///< particle steps per gas step
-  double flow_dt_ = 0.0;                            ///< s
+  /// Rank-independent coupled runs: every particle in id order, gathered on every rank for
+  /// the flow step (the gas and the coupling are computed by each rank on all of them).
+  ParticleStore coupled_;
+  HardSphereStepper* hard_ = nullptr; ///< stepper_ when engine = "hard_sphere"
+  long steps_per_flow_ = 1;           ///< particle steps per gas step
+  double flow_dt_ = 0.0;              ///< s
   CaseReport report_;
   StabilityLimits limits_;
   double dt_ = 0.0, time_ = 0.0;

@@ -222,7 +222,10 @@ void Simulation::write_checkpoint(const std::string& path) {
   DistributedState gathered;
   if (dist_) {
     gathered = dist_->gather(true);
-    if (!comm_->root()) return;
+    if (!comm_->root()) {
+      if (gas_) gas_->reset_solver_history(); // as the root does after writing (below)
+      return;
+    }
   }
   const ParticleStore& parts = dist_ ? gathered.particles : p_;
   const ContactStats& stats = contact_stats();
@@ -457,6 +460,9 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
     else if (s.collisions_)
       s.collisions_ = std::make_unique<CollisionStatistics>(s.collisions_->settings(), s.time_);
     if (s.gas_) s.gas_->restore(read_gas(r, checkpoint, *s.gas_));
+    if (s.gas_ && s.dist_) // the forces held over the flow step, from the gas's (id order)
+      s.dist_->hold_forces(
+          s.p_, {s.gas_->force(0).data(), s.gas_->force(1).data(), s.gas_->force(2).data()});
   } catch (const CheckpointError&) {
     throw;
   } catch (const std::exception& e) {

@@ -141,11 +141,14 @@ void CheckpointWriter::commit() const {
       b.scalar_attr(file.get(), "checksum", H5T_STD_U64LE, H5T_NATIVE_UINT64, &sum);
       Handle lcpl{check_id(H5Pcreate(H5P_LINK_CREATE), tmp, "create property list"), H5Pclose};
       check(H5Pset_create_intermediate_group(lcpl.get(), 1), tmp, "set property");
+      // No modification times in the objects: the same state gives the same bytes.
+      Handle dcpl{check_id(H5Pcreate(H5P_DATASET_CREATE), tmp, "create property list"), H5Pclose};
+      check(H5Pset_obj_track_times(dcpl.get(), 0), tmp, "set property");
       for (const auto& [name, a] : arrays_) {
         const hsize_t dims[1] = {a.count};
         Handle space = b.simple_space(1, dims);
         Handle dset{check_id(H5Dcreate2(file.get(), name.c_str(), file_type(a.type), space.get(),
-                                        lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
+                                        lcpl.get(), dcpl.get(), H5P_DEFAULT),
                              tmp, "create dataset", name),
                     H5Dclose};
         if (a.count > 0)

@@ -99,6 +99,11 @@ void unpack_history(const std::vector<char>& bytes, KeptHistory& kept) {
   }
 }
 
+void ParticleExchange::count_sent() {
+  for (const auto& b : out_) bytes_total_ += static_cast<double>(b.size());
+  messages_total_ += static_cast<double>(out_.size());
+}
+
 ParticleExchange::ParticleExchange(const Communicator& comm, const Decomposition& map, double halo)
     : comm_(comm), map_(map), halo_(halo), neighbours_(map.neighbours(comm.rank(), halo)) {
   if (map.ranks() != comm.size())
@@ -138,9 +143,7 @@ std::vector<ParticleTooFar> ParticleExchange::migrate(ParticleStore& p, KeptHist
     }
   }
   keep_only(p, kept, extra, width, stay);
-  bytes_sent_ = 0;
-  for (const auto& b : out_) bytes_sent_ += b.size();
-  messages_sent_ = out_.size();
+  count_sent();
   const auto in = comm_.exchange(neighbours_, out_, neighbours_);
   for (const std::vector<char>& b : in) {
     std::size_t at = 0;
@@ -169,9 +172,7 @@ void ParticleExchange::fill_ghosts(ParticleStore& p) {
         sent_[k].push_back(static_cast<std::uint32_t>(i));
         put_particle(out_[k], p, i);
       }
-  bytes_sent_ = 0;
-  for (const auto& b : out_) bytes_sent_ += b.size();
-  messages_sent_ = out_.size();
+  count_sent();
   const auto in = comm_.exchange(neighbours_, out_, neighbours_);
   received_.assign(in.size(), 0);
   for (std::size_t k = 0; k < in.size(); ++k) {
@@ -191,9 +192,7 @@ void ParticleExchange::update_ghosts(ParticleStore& p, std::size_t owned) {
            {p.x[i], p.y[i], p.z[i], p.vx[i], p.vy[i], p.vz[i], p.wx[i], p.wy[i], p.wz[i]})
         put(out_[k], v);
   }
-  bytes_sent_ = 0;
-  for (const auto& b : out_) bytes_sent_ += b.size();
-  messages_sent_ = out_.size();
+  count_sent();
   const auto in = comm_.exchange(neighbours_, out_, neighbours_);
   std::size_t g = owned;
   for (std::size_t k = 0; k < in.size(); ++k) {

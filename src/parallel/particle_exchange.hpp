@@ -53,9 +53,9 @@ public:
   /// the last fill_ghosts).
   void update_ghosts(ParticleStore& p, std::size_t owned);
 
-  /// Bytes sent by this rank in the last migrate/fill_ghosts/update_ghosts, messages sent.
-  std::size_t bytes_sent() const { return bytes_sent_; }
-  std::size_t messages_sent() const { return messages_sent_; }
+  /// Bytes and messages this rank sent since it was made (migrations, ghost fills and updates).
+  double bytes_sent() const { return bytes_total_; }
+  double messages_sent() const { return messages_total_; }
   const std::vector<int>& neighbours() const { return neighbours_; }
   double halo() const { return halo_; }
 
@@ -68,7 +68,9 @@ private:
   std::vector<std::vector<std::uint32_t>> sent_;
   /// Per neighbour: how many ghosts came from it (in neighbour order after the own particles).
   std::vector<std::size_t> received_;
-  std::size_t bytes_sent_ = 0, messages_sent_ = 0;
+  double bytes_total_ = 0.0, messages_total_ = 0.0;
+  /// Counts what out_ holds (the payloads of one exchange) as sent.
+  void count_sent();
   std::vector<std::vector<char>> out_;
 };
 

@@ -55,6 +55,48 @@ series_interval = 0.001
 checkpoint_interval = 0.006
 )";
 
+/// A coupled bed: 1200 glass spheres of 2 mm in a column periodic across, air from below at
+/// 1.5 m/s through 4 x 2 x 12 gas cells (Model A, porosity by cell, Ergun/Wen-Yu drag).
+const char* const kCoupled = R"(
+[simulation]
+engine = "soft_sphere"
+dimension = 3
+end_time = 0.012
+gravity = [0.0, 0.0, -9.81]
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [0.04, 0.02, 0.12]
+periodic = [true, true, false]
+[[species]]
+name = "glass"
+diameter = 0.002
+density = 2500.0
+youngs_modulus = 1e7
+restitution = 0.9
+friction = 0.3
+[[insert]]
+species = "glass"
+count = 1200
+placement = "random"
+region = { lo = [0.0, 0.0, 0.0], hi = [0.04, 0.02, 0.06] }
+seed = 4
+[contact]
+normal = "hertz"
+tangential = "history"
+[gas]
+cells = [4, 2, 12]
+time_step = 1e-4
+[gas.boundary.bottom]
+type = "inflow"
+velocity = 1.5
+[gas.boundary.top]
+type = "pressure"
+[output]
+frame_interval = 0.004
+series_interval = 0.001
+checkpoint_interval = 0.004
+)";
+
 Result mpirun(int ranks, const std::vector<std::string>& args, const test::fs::path& cwd) {
   std::string cmd = "mpirun --oversubscribe --allow-run-as-root --mca btl self,vader -n " +
                     std::to_string(ranks) + " " + test::quote(FLUIDEM_BINARY);
@@ -97,6 +139,37 @@ TEST(MpiRun, RanksWriteTheFilesOfOneProcess) {
     EXPECT_EQ(test::read_file(tmp.path / out / "series.csv"), series) << p << " ranks";
     expect_same_checkpoints(tmp.path / "one" / "checkpoint.h5", tmp.path / out / "checkpoint.h5");
   }
+}
+
+TEST(MpiRun, CoupledBedOnRanksWritesTheFilesOfOneProcess) {
+  // Every rank steps the gas on all particles gathered in id order; each rank's own particles
+  // take their drag from it: series.csv (with the pressure drop and bed height), the gas fields
+  // and the checkpoints are those of one process, and a checkpoint of 3 ranks continues on 2.
+  TempDir tmp;
+  const auto bed = tmp.write("coupled.toml", kCoupled);
+  const Result one = test::fluidem(
+      {"run", bed.string(), "--out", "one", "-t", "2", "--set", "parallel.rank_independent=true"},
+      tmp.path);
+  ASSERT_EQ(one.code, 0) << one.err;
+  const std::string series = test::read_file(tmp.path / "one" / "series.csv");
+  EXPECT_TRUE(contains(series, "pressure_drop")) << series;
+  for (int p : {2, 4}) {
+    const std::string out = "p" + std::to_string(p);
+    const Result r = mpirun(p, {"run", bed.string(), "--out", out}, tmp.path);
+    ASSERT_EQ(r.code, 0) << r.err << r.out;
+    EXPECT_EQ(test::read_file(tmp.path / out / "series.csv"), series) << p << " ranks";
+    expect_same_checkpoints(tmp.path / "one" / "checkpoint.h5", tmp.path / out / "checkpoint.h5");
+  }
+  const Result half = mpirun(
+      3, {"run", bed.string(), "--out", "half", "--set", "simulation.end_time=0.004"}, tmp.path);
+  ASSERT_EQ(half.code, 0) << half.err;
+  const Result cont = mpirun(2,
+                             {"run", "--restart", (tmp.path / "half" / "checkpoint.h5").string(),
+                              "--set", "simulation.end_time=0.012"},
+                             tmp.path);
+  ASSERT_EQ(cont.code, 0) << cont.err;
+  EXPECT_EQ(test::read_file(tmp.path / "half" / "series.csv"), series);
+  expect_same_checkpoints(tmp.path / "one" / "checkpoint.h5", tmp.path / "half" / "checkpoint.h5");
 }
 
 TEST(MpiRun, CheckpointOfFourRanksContinuesOnOneTwoAndThree) {
