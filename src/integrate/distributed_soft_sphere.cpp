@@ -9,23 +9,12 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/gravity_axis.hpp"
 #include "core/nearest_integer.hpp"
 #include "core/parallel.hpp"
 #include "integrate/wall_clock.hpp"
 
 namespace fluidem {
-
-namespace {
-
-int gravity_axis(const std::array<double, 3>& g) {
-  int axis = 2;
-  for (int a = 0; a < 3; ++a)
-    if (std::abs(g[static_cast<std::size_t>(a)]) > std::abs(g[static_cast<std::size_t>(axis)]))
-      axis = a;
-  return axis;
-}
-
-} // namespace
 
 DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
                                              std::unique_ptr<ContactTable> table,

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "analysis/bed_height.hpp"
+#include "core/gravity_axis.hpp"
 #include "integrate/contact_time_limit.hpp"
 #include "integrate/liquid_bridge_source.hpp"
 #include "integrate/memory_estimate.hpp"
@@ -22,15 +23,6 @@ namespace {
 /// The automatic skin (neighbour.skin = "auto") lets a neighbour list last at least this many
 /// steps at the largest particle speed of its build, within its bounds (NeighbourList::AutoSkin).
 constexpr double kAutoSkinSteps = 10.0;
-
-/// The axis gravity points along (z without gravity).
-int gravity_axis(const std::array<double, 3>& g) {
-  int axis = 2;
-  for (int a = 0; a < 3; ++a)
-    if (std::abs(g[static_cast<std::size_t>(a)]) > std::abs(g[static_cast<std::size_t>(axis)]))
-      axis = a;
-  return axis;
-}
 
 } // namespace
 

@@ -57,15 +57,6 @@ public:
   /// std::runtime_error naming the file (the previous checkpoint is then untouched).
   void commit() const;
   const std::string& path() const { return path_; }
-  /// The names of every array and scalar the file holds, sorted; the stored bytes of one.
-  std::vector<std::string> names() const {
-    std::vector<std::string> n;
-    for (const auto& [name, a] : arrays_) n.push_back(name);
-    return n;
-  }
-  const std::vector<unsigned char>& stored_bytes(const std::string& name) const {
-    return arrays_.at(name).bytes;
-  }
 
 private:
   struct Array {
