@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Strong scaling of the rank-independent soft-sphere engine over MPI ranks (docs/parallel.md),
 # and the cost of its determinism: the settled beds of ../shared/bench/dem (bench/cases/bed10k.toml,
-# bed100k.toml; 500 or 2000 steps of Hertz with tangential history) run
+# bed100k.toml; 2000 or 500 steps of Hertz with tangential history) and the coupled bed
+# bed100k_gas.toml (bed100k with air through it: 500 steps, 50 flow steps) run
 #   - by the single-process engine on one thread (pinned to core 0): the reference speed;
 #   - by the rank-independent engine on one process, one thread: its price against that;
 #   - by mpirun on 2 and 4 ranks of one thread each (4 ranks oversubscribe this machine's two
@@ -12,13 +13,13 @@
 # "exchange" line: ghosts every step, migration and new ghosts at list builds), which
 # bench/RESULTS.md uses for the projection to more ranks.
 #
-# usage: bench/mpi_scaling.sh [SIZE ...]     SIZE: 10k, 100k (default: both)
+# usage: bench/mpi_scaling.sh [CASE ...]     CASE: 10k, 100k, 100k_gas (default: all three)
 # env:   FLUIDEM, WORK (default: ${TMPDIR:-/tmp}/fluidem-mpi), DEM as in bench_lib.sh
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 WORK=${WORK:-${TMPDIR:-/tmp}/fluidem-mpi}
 SIZES=("$@")
-[ ${#SIZES[@]} -gt 0 ] || SIZES=(10k 100k)
+[ ${#SIZES[@]} -gt 0 ] || SIZES=(10k 100k 100k_gas)
 # shellcheck source=bench/bench_lib.sh
 source "$ROOT/bench/bench_lib.sh"
 mkdir -p "$WORK"
@@ -37,7 +38,7 @@ bytes_of() { sed -nE 's/^exchange: ([0-9.e+]+) bytes and ([0-9.e+]+) messages pe
 msgs_of() { sed -nE 's/^exchange: ([0-9.e+]+) bytes and ([0-9.e+]+) messages per rank and step.*/\2/p' "$1"; }
 
 for n in "${SIZES[@]}"; do
-  data=$(bed_data "$n" "$WORK")
+  data=$(bed_data "${n%_gas}" "$WORK")
   common=("$ROOT/bench/cases/bed$n.toml" --set "insert[0].file=$data" -t 1 --force)
   echo "== bed$n: single-process engine, 1 thread" >&2
   "${PIN1[@]}" "$FLUIDEM" run "${common[@]}" --out "$WORK/fast_$n" >"$WORK/fast_$n.log" 2>&1

@@ -37,14 +37,22 @@ void join(OrderedContactStats& st, const OrderedContactStats& o) {
 
 /// A contact's share of particle i's twelve sums: sign +1 when i is the contact's first body
 /// (the pair's lower id, or the particle of a wall contact), -1 when it is the second; r its
-/// radius (the torque arm).
-void add_share(double* a, const ContactOutput& out, double r, double sign) {
-  const Vec3 f = out.force * sign, fnc = out.nc_force * sign;
-  Vec3 t = out.torque_unit * r, tnc = out.nc_torque_unit * r;
-  t = sign > 0.0 ? t + out.torque_roll : t - out.torque_roll;
-  tnc = sign > 0.0 ? tnc + out.nc_torque_roll : tnc - out.nc_torque_roll;
-  const double v[12] = {f.x, f.y, f.z, t.x, t.y, t.z, fnc.x, fnc.y, fnc.z, tnc.x, tnc.y, tnc.z};
-  for (int m = 0; m < 12; ++m) a[m] += v[m];
+/// radius (the torque arm). The torques of a model without them are not added (adding their
+/// zeros would leave the sums as they are: they start at +0).
+template <bool Tangential, bool Rolling>
+[[gnu::always_inline]] inline void add_share(double* a, const ContactOutput& out, double r,
+                                             double sign) {
+  a[0] += out.force.x * sign, a[1] += out.force.y * sign, a[2] += out.force.z * sign;
+  a[6] += out.nc_force.x * sign, a[7] += out.nc_force.y * sign, a[8] += out.nc_force.z * sign;
+  if constexpr (Tangential || Rolling) {
+    Vec3 t = out.torque_unit * r, tnc = out.nc_torque_unit * r;
+    if constexpr (Rolling) {
+      t = sign > 0.0 ? t + out.torque_roll : t - out.torque_roll;
+      tnc = sign > 0.0 ? tnc + out.nc_torque_roll : tnc - out.nc_torque_roll;
+    }
+    a[3] += t.x, a[4] += t.y, a[5] += t.z;
+    a[9] += tnc.x, a[10] += tnc.y, a[11] += tnc.z;
+  }
 }
 
 template <class Normal, class Tangential, class Rolling>
@@ -69,8 +77,31 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
     double* a = sums.acc.data() + OrderedContactSums::kAcc * i;
     double elastic = 0.0, released = 0.0;
     const std::int64_t id_i = p.id[i];
+    const double xi = p.x[i], yi = p.y[i], zi = p.z[i], r_own = p.radius[i];
     for (std::uint32_t e = rows.offset[i]; e < rows.offset[i + 1]; ++e) {
       const std::uint32_t j = rows.partner[e];
+      // Most entries do not touch: tested from i's side first (the same bits as from the lower
+      // id's: a - b = -(b - a) exactly, min_image is odd, and the squares and sums do not see
+      // the sign or the order of the radii).
+      if constexpr (!contact_kernel::adhesive<Normal>) {
+        const double dx = rows.min_image(p.x[j] - xi, 0), dy = rows.min_image(p.y[j] - yi, 1),
+                     dz = rows.min_image(p.z[j] - zi, 2);
+        const double rs = r_own + p.radius[j];
+        if (!(dx * dx + dy * dy + dz * dz < rs * rs)) {
+          double* hist = rows.history.data() + static_cast<std::size_t>(e) * hw;
+          if (hw > 0 && loaded(hist)) {
+            const bool lower = id_i < p.id[j];
+            const std::size_t ia = lower ? i : j, ib = lower ? j : i;
+            double loss = 0.0;
+            contact_kernel::add_released_energy<Normal, Tangential, Rolling>(
+                loss, hist, table.pair(p.species[ia], p.species[ib]),
+                p.radius[ia] * p.radius[ib] / (p.radius[ia] + p.radius[ib]));
+            if (lower) released += loss;
+            std::fill_n(hist, hw, 0.0);
+          }
+          continue;
+        }
+      }
       const bool first = id_i < p.id[j]; // i is the pair's lower id
       // The pair from its lower id's side: body a, partner b.
       const std::size_t ia = first ? i : j, ib = first ? j : i;
@@ -112,7 +143,8 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
       c.d_prev = dvec + dv * dt;
       const ContactOutput out =
           contact_kernel::evaluate<Normal, Tangential, Rolling>(c, pp, hist, dt);
-      add_share(a, out, p.radius[i], first ? 1.0 : -1.0);
+      add_share<Tangential::has_force, Rolling::has_torque>(a, out, p.radius[i],
+                                                            first ? 1.0 : -1.0);
       if (first) {
         elastic += out.elastic;
         released += out.spring_loss;
@@ -124,9 +156,9 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
       const int f = rows.wall_face[e];
       const int ax = f / 2;
       const bool lo_face = (f % 2 == 0);
-      const double xi[3] = {p.x[i], p.y[i], p.z[i]};
+      const double xw[3] = {p.x[i], p.y[i], p.z[i]};
       const double ri = p.radius[i];
-      const double gap = lo_face ? xi[ax] - box.lo[ax] : box.hi[ax] - xi[ax];
+      const double gap = lo_face ? xw[ax] - box.lo[ax] : box.hi[ax] - xw[ax];
       double* hist = rows.wall_history.data() + static_cast<std::size_t>(e) * hw;
       const PairParams& pp = table.wall(p.species[i], f);
       bool touching = gap < ri;
@@ -152,7 +184,7 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
       c.inv_inertia_sum = Rolling::has_torque ? p.inv_inertia[i] : 0.0;
       const ContactOutput out =
           contact_kernel::evaluate<Normal, Tangential, Rolling>(c, pp, hist, dt);
-      add_share(a, out, ri, 1.0);
+      add_share<Tangential::has_force, Rolling::has_torque>(a, out, ri, 1.0);
       elastic += out.elastic;
       released += out.spring_loss;
       add_contact(st, c.overlap / (2.0 * ri), id_i, out.force);

@@ -27,12 +27,6 @@ KeptHistory reorder(const KeptHistory& kept, const std::vector<std::uint32_t>& o
 OrderedRows::OrderedRows(const BoxGeometry& box, int history_width, double reach)
     : box_(box), hw_(history_width), reach_(reach) {}
 
-double OrderedRows::min_image(double d, int a) const {
-  if (!box_.periodic[a]) return d;
-  const double l = box_.length(a);
-  return d - l * nearest_integer(d / l);
-}
-
 void OrderedRows::build(const ParticleStore& p, std::size_t owned, double skin,
                         const KeptHistory& kept) {
   if (!kept.offset.empty() && kept.particles() != owned)

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/nearest_integer.hpp"
 #include "neighbour/box_geometry.hpp"
 #include "neighbour/cell_grid.hpp"
 #include "particles/particle_store.hpp"
@@ -41,8 +42,12 @@ public:
   /// The loaded histories of the rows, per own particle (p: the store the rows were built on).
   KeptHistory keep(const ParticleStore& p) const;
 
-  /// Minimum-image separation component along axis a (the same formula everywhere).
-  double min_image(double d, int a) const;
+  /// Minimum-image separation component along axis a (the same formula everywhere; odd in d).
+  double min_image(double d, int a) const {
+    if (!box_.periodic[a]) return d;
+    const double l = box_.length(a);
+    return d - l * nearest_integer(d / l);
+  }
   const BoxGeometry& box() const { return box_; }
   int history_width() const { return hw_; }
   double reach() const { return reach_; }
