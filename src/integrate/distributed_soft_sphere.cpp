@@ -104,10 +104,13 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
 }
 
 std::size_t DistributedSoftSphere::bytes() const {
-  return p_.bytes() - p_.bytes() / std::max<std::size_t>(1, p_.size()) * owned_ +
-         (rows_->partner.capacity() + rows_->offset.capacity()) * sizeof(std::uint32_t) +
-         (rows_->history.capacity() + sums_.acc.capacity() + x0_.capacity() +
-          dissipated_.capacity()) *
+  // The rank's store (own particles and ghosts), rows, histories and per-particle sums.
+  return p_.bytes() +
+         (rows_->partner.capacity() + rows_->offset.capacity() + rows_->wall_offset.capacity()) *
+             sizeof(std::uint32_t) +
+         (rows_->history.capacity() + rows_->wall_history.capacity() + sums_.acc.capacity() +
+          sums_.elastic.capacity() + sums_.released.capacity() + x0_.capacity() +
+          dissipated_.capacity() + held_.capacity()) *
              sizeof(double);
 }
 

@@ -81,6 +81,16 @@ public:
   /// Every particle, sorted by id, on the root (empty elsewhere); their contact histories too
   /// when `with_history`. Collective.
   DistributedState gather(bool with_history = false) const;
+  /// This rank's contacts of the last step: its deepest overlap (and the lower id of that
+  /// contact), its largest force.
+  ContactStats local_stats() const {
+    ContactStats s;
+    s.n_contacts = stats_.contacts;
+    s.max_overlap_ratio = stats_.max_overlap_ratio;
+    s.max_overlap_particle = stats_.deepest_id;
+    s.max_force2 = stats_.max_force2;
+    return s;
+  }
   /// Gathers the particles into `all` on the root (in id order; elsewhere emptied) and the
   /// totals of dissipated_energy() and contact_stats() on every rank. Collective.
   void observe(ParticleStore& all);

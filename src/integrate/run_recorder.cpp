@@ -88,7 +88,10 @@ void RunRecorder::write_due() {
   const bool frame_due = t >= clock.next_frame - eps_ || last;
   if (series_due || frame_due || continuum_due) sim_.stepper_->finish_kick();
   const auto t0 = WallClock::now();
-  if (series_due || frame_due || continuum_due) sim_.check_stability();
+  if (series_due || frame_due || continuum_due) {
+    sim_.check_stability();
+    sim_.observe(); // a distributed run's particles and totals, gathered for the writers
+  }
   if (series_due) write_series_rows();
   if (frame_due) write_frame();
   if (continuum_due) write_continuum_frame();
@@ -217,6 +220,7 @@ void RunRecorder::checkpoint() {
   sim_.stepper_->finish_kick(); // (integration time, not output)
   const auto t0 = WallClock::now();
   sim_.check_stability();
+  sim_.observe();                  // the totals the checkpoint keeps (a distributed run)
   if (outputs_) outputs_->flush(); // (the CSV writers flush every row)
   const std::string path = dir_ ? dir_->file("checkpoint.h5") : std::string();
   sim_.write_checkpoint(path);

@@ -365,16 +365,21 @@ void Simulation::check_stability() {
     fluidem::check_stability(p_, contact_stats(), limits_, time_, step_);
     return;
   }
-  // The particles gathered on the root (in id order), checked there; every rank stops alike.
-  dist_->observe(p_);
+  // Each rank checks its own particles and contacts; the first rank's message (in rank order)
+  // stops every rank alike.
   std::string error;
-  if (comm_->root()) try {
-      fluidem::check_stability(p_, contact_stats(), limits_, time_, step_);
-    } catch (const InstabilityError& e) {
-      error = e.what();
-    }
-  error = comm_->broadcast(error);
-  if (!error.empty()) throw InstabilityError(error);
+  try {
+    fluidem::check_stability(dist_->local(), dist_->local_stats(), limits_, time_, step_,
+                             dist_->owned());
+  } catch (const InstabilityError& e) {
+    error = e.what();
+  }
+  if (comm_->any(!error.empty())) {
+    std::string first;
+    for (const auto& m : comm_->gather(std::span<const char>(error.data(), error.size())))
+      if (first.empty()) first.assign(m.begin(), m.end());
+    throw InstabilityError(comm_->broadcast(first));
+  }
 }
 
 void Simulation::advance(long n) {

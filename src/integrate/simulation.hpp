@@ -187,6 +187,12 @@ public:
   /// ([parallel], docs/parallel.md); the ranks' communicator (one rank otherwise).
   bool rank_independent() const { return dist_ != nullptr; }
   const Communicator& communicator() const { return *comm_; }
+  /// A rank-independent run: gathers the particles (in id order) into particles() on the root
+  /// and the totals behind energies(), contact_stats() and dissipated_energy(), for the outputs.
+  /// Collective; nothing to do otherwise.
+  void observe() {
+    if (dist_) dist_->observe(p_);
+  }
   /// The distributed engine (rank_independent()), or nullptr.
   const DistributedSoftSphere* distributed() const { return dist_; }
   /// The hard-sphere engine, or nullptr for the soft-sphere DEM.

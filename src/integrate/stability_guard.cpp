@@ -9,10 +9,10 @@
 namespace fluidem {
 
 void check_stability(const ParticleStore& p, const ContactStats& contacts,
-                     const StabilityLimits& limits, double time, long step) {
+                     const StabilityLimits& limits, double time, long step, std::size_t count) {
   const auto where = fmt::format("at t = {:.6g} s (step {})", time, step);
   const BoxGeometry& box = limits.box;
-  for (std::size_t i = 0; i < p.size(); ++i) {
+  for (std::size_t i = 0; i < count; ++i) {
     const double q[9] = {p.x[i],  p.y[i],  p.z[i],  p.vx[i], p.vy[i],
                          p.vz[i], p.wx[i], p.wy[i], p.wz[i]};
     for (double v : q) {

@@ -16,8 +16,13 @@ struct StabilityLimits {
 };
 
 /// Throws InstabilityError naming the particle, what went wrong and the time and step, for the
-/// particles p (full-step state) and the last contacts.
+/// first `count` particles of p (full-step state; all of them when count is p.size()) and the
+/// last contacts.
 void check_stability(const ParticleStore& p, const ContactStats& contacts,
-                     const StabilityLimits& limits, double time, long step);
+                     const StabilityLimits& limits, double time, long step, std::size_t count);
+inline void check_stability(const ParticleStore& p, const ContactStats& contacts,
+                            const StabilityLimits& limits, double time, long step) {
+  check_stability(p, contacts, limits, time, step, p.size());
+}
 
 } // namespace fluidem

@@ -215,6 +215,21 @@ TEST(MpiRun, TwoSkinsGiveTheSameParticles) {
     EXPECT_EQ(a.stored_bytes(name), b.stored_bytes(name)) << name;
 }
 
+TEST(MpiRun, UnstableRunStopsEveryRankWithExit3) {
+  // A time step 20 times the contacts' limit (forced): the first contacts overlap beyond
+  // contact.max_overlap; the rank that holds the deepest says so, every rank stops with exit 3,
+  // and the message is printed once.
+  TempDir tmp;
+  const auto bed = tmp.write("bed.toml", kBed);
+  const Result r = mpirun(3,
+                          {"run", bed.string(), "--out", "u", "--set", "simulation.time_step=2e-4",
+                           "--set", "simulation.force_time_step=true"},
+                          tmp.path);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_TRUE(contains(r.err, "contact.max_overlap")) << r.err;
+  EXPECT_EQ(r.err.find("error:"), r.err.rfind("error:")) << r.err;
+}
+
 TEST(MpiRun, WhatTheRanksDoNotTakeIsRefused) {
   TempDir tmp;
   const auto bed = tmp.write("bed.toml", kBed);
