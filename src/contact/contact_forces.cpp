@@ -1047,16 +1047,9 @@ ContactStats compute_contact_forces(const ParticleStore& p, NeighbourList& nl,
   // model (declared with a refusal) is never instantiated: the ContactTable refused it.
   using namespace contact_models;
   const Chosen& m = t.models();
-  return with_model(NormalModels{}, m.normal->index, [&]<class N>(N) {
-    return with_model(TangentialModels{}, m.tangential->index, [&]<class T>(T) {
-      return with_model(RollingModels{}, m.rolling->index, [&]<class R>(R) {
-        if constexpr (is_refused<N>() || is_refused<T>() || is_refused<R>())
-          return ContactStats{};
-        else
-          return compute<N, T, R>(p, nl, t, dt, nc, rec, hook);
-      });
-    });
-  });
+  return with_chosen_models<ContactStats>(
+      m.normal->index, m.tangential->index, m.rolling->index,
+      [&]<class N, class T, class R>() { return compute<N, T, R>(p, nl, t, dt, nc, rec, hook); });
 }
 
 } // namespace fluidem

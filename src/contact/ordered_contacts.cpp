@@ -217,16 +217,9 @@ OrderedContactStats compute_ordered_contact_forces(const ParticleStore& p, Order
                                                    OrderedContactSums& sums) {
   using namespace contact_models;
   const Chosen& m = table.models();
-  return with_model(NormalModels{}, m.normal->index, [&]<class N>(N) {
-    return with_model(TangentialModels{}, m.tangential->index, [&]<class T>(T) {
-      return with_model(RollingModels{}, m.rolling->index, [&]<class R>(R) {
-        if constexpr (is_refused<N>() || is_refused<T>() || is_refused<R>())
-          return OrderedContactStats{};
-        else
-          return compute<N, T, R>(p, rows, table, dt, sums);
-      });
-    });
-  });
+  return with_chosen_models<OrderedContactStats>(
+      m.normal->index, m.tangential->index, m.rolling->index,
+      [&]<class N, class T, class R>() { return compute<N, T, R>(p, rows, table, dt, sums); });
 }
 
 } // namespace fluidem

@@ -69,4 +69,21 @@ decltype(auto) with_model(ModelList<M...>, int index, F&& f) {
   }
 }
 
+/// f.template operator()<N, T, R>() with the types of the models at these indices of their
+/// lists, and what it returns; a combination with a refused model is never instantiated (Result{}
+/// is returned: the ContactTable refuses such a case). The choice runs once per call.
+template <class Result, class F>
+Result with_chosen_models(int normal, int tangential, int rolling, F&& f) {
+  return with_model(NormalModels{}, normal, [&]<class N>(N) {
+    return with_model(TangentialModels{}, tangential, [&]<class T>(T) {
+      return with_model(RollingModels{}, rolling, [&]<class R>(R) {
+        if constexpr (is_refused<N>() || is_refused<T>() || is_refused<R>())
+          return Result{};
+        else
+          return f.template operator()<N, T, R>();
+      });
+    });
+  });
+}
+
 } // namespace fluidem::contact_models
