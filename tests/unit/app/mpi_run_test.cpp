@@ -215,6 +215,29 @@ TEST(MpiRun, TwoSkinsGiveTheSameParticles) {
     EXPECT_EQ(a.stored_bytes(name), b.stored_bytes(name)) << name;
 }
 
+TEST(MpiRun, DiscsInTheirPlaneOnRanks) {
+  // 2-D: discs in the x-z plane of cases/hoomans96/pouring_soft.toml (the y axis is never cut),
+  // 0.05 s of pouring on 1 (rank-independent) and 3 ranks: the same series.csv and checkpoint.
+  TempDir tmp;
+  const std::string pour =
+      (test::fs::path(FLUIDEM_SOURCE_DIR) / "cases" / "hoomans96" / "pouring_soft.toml").string();
+  const std::vector<std::string> set{"--set", "simulation.end_time=0.05", "--set",
+                                     "output.frame_interval=0.025"};
+  std::vector<std::string> one_args{"run", pour,    "--out",
+                                    "one", "--set", "parallel.rank_independent=true"};
+  one_args.insert(one_args.end(), set.begin(), set.end());
+  const Result one = test::fluidem(one_args, tmp.path);
+  ASSERT_EQ(one.code, 0) << one.err;
+  std::vector<std::string> three_args{"run", pour, "--out", "three"};
+  three_args.insert(three_args.end(), set.begin(), set.end());
+  const Result three = mpirun(3, three_args, tmp.path);
+  ASSERT_EQ(three.code, 0) << three.err;
+  EXPECT_TRUE(contains(three.out, "process grid 3 x 1 x 1")) << three.out;
+  EXPECT_EQ(test::read_file(tmp.path / "three" / "series.csv"),
+            test::read_file(tmp.path / "one" / "series.csv"));
+  expect_same_checkpoints(tmp.path / "one" / "checkpoint.h5", tmp.path / "three" / "checkpoint.h5");
+}
+
 TEST(MpiRun, UnstableRunStopsEveryRankWithExit3) {
   // A time step 20 times the contacts' limit (forced): the first contacts overlap beyond
   // contact.max_overlap; the rank that holds the deepest says so, every rank stops with exit 3,
