@@ -412,11 +412,22 @@ RunSummary Simulation::run(const std::string& out_dir,
     own_dir->refuse_links();
     if (!options.resume) own_dir->remove_results();
   }
-  RunRecorder recorder(*this,
-                       !options.write_outputs ? nullptr
-                       : options.directory    ? options.directory
-                                              : &*own_dir,
-                       options.resume);
+  // The outputs are opened (or checked for a continued run) by the root alone: a refusal
+  // there stops every rank alike.
+  std::optional<RunRecorder> opened;
+  std::string refused;
+  try {
+    opened.emplace(*this,
+                   !options.write_outputs ? nullptr
+                   : options.directory    ? options.directory
+                                          : &*own_dir,
+                   options.resume);
+  } catch (const InputError& e) {
+    if (!dist_) throw;
+    refused = e.what();
+  }
+  if (dist_ && comm_->any(!refused.empty())) throw InputError(comm_->broadcast(refused));
+  RunRecorder& recorder = *opened;
   const long total = total_steps();
   const long check_every = 100;
   const long progress_every = std::max(1L, std::min(200L, 2000000L / std::max<long>(1, p_.size())));
@@ -482,9 +493,7 @@ RunSummary Simulation::summary(long steps, double seconds, double seconds_output
   s.steps = steps;
   s.wall_seconds = seconds;
   s.particle_steps_per_second = static_cast<double>(steps) * n / std::max(seconds, 1e-9);
-  s.neighbour_builds = hard_   ? hard_->engine().list_builds()
-                       : dist_ ? dist_->builds()
-                               : neighbour_builds();
+  s.neighbour_builds = hard_ ? hard_->engine().list_builds() : neighbour_builds();
   s.spatial_sorts = spatial_sorts();
   s.folded_steps = folded;
   const ParticleStepper::Seconds t = stepper_->seconds();

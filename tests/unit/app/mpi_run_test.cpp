@@ -238,6 +238,28 @@ TEST(MpiRun, DiscsInTheirPlaneOnRanks) {
   expect_same_checkpoints(tmp.path / "one" / "checkpoint.h5", tmp.path / "three" / "checkpoint.h5");
 }
 
+TEST(MpiRun, RefusedResumeStopsEveryRank) {
+  // Only the root opens the outputs: a continued run whose series.csv was cut short is refused
+  // there (exit 2, once), and the other ranks stop with it instead of waiting (timeout 120 s).
+  TempDir tmp;
+  const auto bed = tmp.write("bed.toml", kBed);
+  const Result first = mpirun(
+      2, {"run", bed.string(), "--out", "r", "--set", "simulation.end_time=0.004"}, tmp.path);
+  ASSERT_EQ(first.code, 0) << first.err;
+  const auto series = tmp.path / "r" / "series.csv";
+  const std::string text = test::read_file(series);
+  std::ofstream(series, std::ios::trunc) << text.substr(0, text.size() / 2);
+  const Result again = test::run_command(
+      "timeout 120 mpirun --oversubscribe --allow-run-as-root --mca btl self,vader -n 2 " +
+          test::quote(FLUIDEM_BINARY) + " run --restart " +
+          test::quote((tmp.path / "r" / "checkpoint.h5").string()) +
+          " --set simulation.end_time=0.008 -t 1",
+      tmp.path);
+  EXPECT_EQ(again.code, 2) << again.err;
+  EXPECT_TRUE(contains(again.err, "series.csv")) << again.err;
+  EXPECT_EQ(again.err.find("error:"), again.err.rfind("error:")) << again.err;
+}
+
 TEST(MpiRun, UnstableRunStopsEveryRankWithExit3) {
   // A time step 20 times the contacts' limit (forced): the first contacts overlap beyond
   // contact.max_overlap; the rank that holds the deepest says so, every rank stops with exit 3,
