@@ -97,8 +97,12 @@ series_interval = 0.001
 checkpoint_interval = 0.004
 )";
 
-Result mpirun(int ranks, const std::vector<std::string>& args, const test::fs::path& cwd) {
-  std::string cmd = "mpirun --oversubscribe --allow-run-as-root --mca btl self,vader -n " +
+/// `mpirun -n RANKS fluidem ARGS... -t 1` in cwd; stopped after timeout_s seconds when given
+/// (exit code 124: the ranks did not end).
+Result mpirun(int ranks, const std::vector<std::string>& args, const test::fs::path& cwd,
+              int timeout_s = 0) {
+  std::string cmd = (timeout_s > 0 ? "timeout " + std::to_string(timeout_s) + " " : "") +
+                    "mpirun --oversubscribe --allow-run-as-root --mca btl self,vader -n " +
                     std::to_string(ranks) + " " + test::quote(FLUIDEM_BINARY);
   for (const auto& a : args) cmd += " " + test::quote(a);
   cmd += " -t 1"; // one thread per rank
@@ -249,12 +253,10 @@ TEST(MpiRun, RefusedResumeStopsEveryRank) {
   const auto series = tmp.path / "r" / "series.csv";
   const std::string text = test::read_file(series);
   std::ofstream(series, std::ios::trunc) << text.substr(0, text.size() / 2);
-  const Result again = test::run_command(
-      "timeout 120 mpirun --oversubscribe --allow-run-as-root --mca btl self,vader -n 2 " +
-          test::quote(FLUIDEM_BINARY) + " run --restart " +
-          test::quote((tmp.path / "r" / "checkpoint.h5").string()) +
-          " --set simulation.end_time=0.008 -t 1",
-      tmp.path);
+  const Result again = mpirun(2,
+                              {"run", "--restart", (tmp.path / "r" / "checkpoint.h5").string(),
+                               "--set", "simulation.end_time=0.008"},
+                              tmp.path, 120);
   EXPECT_EQ(again.code, 2) << again.err;
   EXPECT_TRUE(contains(again.err, "series.csv")) << again.err;
   EXPECT_EQ(again.err.find("error:"), again.err.rfind("error:")) << again.err;
