@@ -4,6 +4,7 @@
 #include "coupling/interpolation.hpp"
 #include "coupling/particle_mapping.hpp"
 #include <cmath>
+#include <limits>
 
 namespace fluidem::coupling {
 
@@ -21,6 +22,11 @@ void ParticleGasForces::resize(std::size_t n) {
 
 namespace {
 
+/// The larger of a and b, NaN if either is (a bound of the fixed-point sums, rank_sum.hpp).
+double nan_or_max(double a, double b) {
+  return std::isnan(a) || std::isnan(b) ? std::numeric_limits<double>::quiet_NaN() : std::max(a, b);
+}
+
 /// u_c: mean of the two faces of cell q (grid index) along d (the face at q is the HIGH one).
 double cell_gas_velocity(const gas::GasSolver& gs, long q, int d) {
   const std::vector<double>& u = gs.velocity(d);
@@ -32,7 +38,7 @@ double cell_gas_velocity(const gas::GasSolver& gs, long q, int d) {
 /// scheme 2 also overwrites the per-particle drag, coeff, u, eps with the shares of F_c.
 template <class Closure>
 void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
-                         const CouplingSettings& c, ParticleGasForces& out) {
+                         const CouplingSettings& c, ParticleGasForces& out, const RankSum* ranks) {
   const gas::GasGrid& g = gs.grid();
   const std::size_t n = p.size(), nc = g.size();
   out.cell.assign(n, 0);
@@ -45,20 +51,38 @@ void compute_cell_forces(const gas::GasSolver& gs, const ParticleStore& p,
   std::vector<double>& sd2 = out.cell_d2;
   std::vector<double>& sd3 = out.cell_d3;
   for (std::vector<double>* a : {&vs, &mass, &sd2, &sd3}) a->assign(nc, 0.0);
+  // The sums over the particles of each cell: solid volume, d^2, d^3, mass, momentum.
+  std::array<std::vector<double>*, 7> sums{&vs,          &sd2,         &sd3,        &mass,
+                                           &out.cell_vx, &out.cell_vy, &out.cell_vz};
+  const auto parts_of = [&](std::size_t i) {
+    const double d = 2.0 * p.radius[i], m = p.mass[i];
+    return std::array<double, 7>{pi * d * d * d / 6.0, d * d,       d * d * d,  m,
+                                 m * p.vx[i],          m * p.vy[i], m * p.vz[i]};
+  };
   for (std::size_t i = 0; i < n; ++i) {
     const auto cc = g.cell_of(p.position(i));
-    const long q = g.idx(cc[0], cc[1], cc[2]);
-    const auto uq = static_cast<std::size_t>(q);
-    out.cell[i] = q;
-    const double d = 2.0 * p.radius[i];
-    vs[uq] += pi * d * d * d / 6.0;
-    sd2[uq] += d * d;
-    sd3[uq] += d * d * d;
-    const double m = p.mass[i];
-    mass[uq] += m;
-    out.cell_vx[uq] += m * p.vx[i];
-    out.cell_vy[uq] += m * p.vy[i];
-    out.cell_vz[uq] += m * p.vz[i];
+    out.cell[i] = g.idx(cc[0], cc[1], cc[2]);
+  }
+  if (ranks) { // fixed point over the ranks (rank_sum.hpp): the largest part of each sum
+    std::array<double, 7> largest{};
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::array<double, 7> v = parts_of(i);
+      for (std::size_t f = 0; f < 7; ++f) largest[f] = nan_or_max(largest[f], std::abs(v[f]));
+    }
+    out.fixed.start(nc, largest, static_cast<std::int64_t>(n), *ranks);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::array<double, 7> v = parts_of(i);
+      for (std::size_t f = 0; f < 7; ++f)
+        out.fixed.add(f, static_cast<std::size_t>(out.cell[i]), v[f]);
+    }
+    out.fixed.reduce(*ranks);
+    for (std::size_t f = 0; f < 7; ++f) out.fixed.result(f, *sums[f]);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto uq = static_cast<std::size_t>(out.cell[i]);
+      const std::array<double, 7> v = parts_of(i);
+      for (std::size_t f = 0; f < 7; ++f) (*sums[f])[uq] += v[f];
+    }
   }
   const double mu = gs.settings().viscosity;
   const bool divide_by_eps = particle_force_form(c, gs.settings()) == ParticleForceForm::buoyancy;
@@ -143,12 +167,13 @@ void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingS
 }
 
 void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingSettings& c,
-                     PorosityScratch& scratch) {
-  compute_porosity(gs.grid(), p, c.porosity, gs.porosity(), periodic_axes(gs), scratch);
+                     PorosityScratch& scratch, const RankSum* ranks) {
+  compute_porosity(gs.grid(), p, c.porosity, gs.porosity(), periodic_axes(gs), scratch, ranks);
 }
 
 void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
-                             const CouplingSettings& c, ParticleGasForces& out) {
+                             const CouplingSettings& c, ParticleGasForces& out,
+                             const RankSum* ranks) {
   const std::size_t n = p.size();
   for (auto* v : out.per_particle()) v->resize(n); // not zeroed: the loop below writes them all
   out.scheme = c.scheme;
@@ -222,18 +247,36 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
           }
         });
     // Schemes 1, 2: the cell averages (scheme 2 replaces the per-particle drag above).
-    if (c.scheme != ExchangeScheme::scheme3) compute_cell_forces<C>(gs, p, c, out);
+    if (c.scheme != ExchangeScheme::scheme3) compute_cell_forces<C>(gs, p, c, out, ranks);
   });
 }
 
-void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
-                             const ParticleGasForces& f) {
+void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p, ParticleGasForces& f,
+                             const RankSum* ranks) {
   const gas::GasGrid& g = gs.grid();
   const double inv_v = 1.0 / g.cell_volume();
   const std::array<bool, 3> periodic = periodic_axes(gs);
   const bool model_b = gs.settings().model == gas::PressureModel::B;
   ParticleMapping map(gs, f.porosity);
+  // With ranks: fields 3 d + (0: K, 1: K u_s, 2: src) in fixed point (rank_sum.hpp), each part
+  // below its particle's c_i / V_cell, c_i |v_i| / V_cell and |pres_i| / V_cell (the weights
+  // over a particle's nodes sum to 1).
+  FixedPointSum* fixed = ranks ? &f.fixed : nullptr;
+  if (fixed) {
+    std::array<double, 9> largest{};
+    for (std::size_t i = 0; i < p.size(); ++i)
+      for (std::size_t d = 0; d < 3; ++d) {
+        const double v = d == 0 ? p.vx[i] : (d == 1 ? p.vy[i] : p.vz[i]);
+        const double pr = d == 0 ? f.pres_x[i] : (d == 1 ? f.pres_y[i] : f.pres_z[i]);
+        const double c = f.scheme == ExchangeScheme::scheme3 ? std::abs(f.coeff[i]) * inv_v : 0.0;
+        largest[3 * d] = nan_or_max(largest[3 * d], c);
+        largest[3 * d + 1] = nan_or_max(largest[3 * d + 1], c * std::abs(v));
+        largest[3 * d + 2] = nan_or_max(largest[3 * d + 2], model_b ? std::abs(pr) * inv_v : 0.0);
+      }
+    fixed->start(g.size(), largest, static_cast<std::int64_t>(p.size()), *ranks);
+  }
   for (int d = 0; d < 3; ++d) {
+    const auto fd = static_cast<std::size_t>(3 * d);
     std::vector<double>& K = gs.drag_coefficient(d);
     std::vector<double>& Kus = gs.drag_velocity_term(d);
     std::vector<double>& src = gs.explicit_source(d);
@@ -275,7 +318,12 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
           if (ns == 0) continue;
           const double w = -pr[i] * inv_v / ns;
           for (std::size_t fq : faces)
-            if (takes_particle_source(role[fq])) src[fq] += w;
+            if (takes_particle_source(role[fq])) {
+              if (fixed)
+                fixed->add(fd + 2, fq, w);
+              else
+                src[fq] += w;
+            }
         }
       continue;
     }
@@ -298,6 +346,12 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
         const auto q = static_cast<std::size_t>(qs[m]);
         if (!(m < 8 ? solved[m] : takes_particle_source(role[q]))) continue;
         const double w = wt[m] * ci;
+        if (fixed) {
+          fixed->add(fd, q, w);
+          fixed->add(fd + 1, q, w * v[i]);
+          if (model_b) fixed->add(fd + 2, q, -(wt[m] * pr[i] * inv_v / wsum));
+          continue;
+        }
         K[q] += w;
         Kus[q] += w * v[i];
         if (model_b) src[q] -= wt[m] * pr[i] * inv_v / wsum;
@@ -325,6 +379,16 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
         deposit.template operator()<0>(i, s.q.data(), s.w.data(), s.size());
       }
     }
+  }
+  if (!fixed) return;
+  fixed->reduce(*ranks);
+  for (int d = 0; d < 3; ++d) {
+    const auto fd = static_cast<std::size_t>(3 * d);
+    if (f.scheme == ExchangeScheme::scheme3) { // (schemes 1, 2: from the cells, above)
+      fixed->result(fd, gs.drag_coefficient(d));
+      fixed->result(fd + 1, gs.drag_velocity_term(d));
+    }
+    if (model_b) fixed->result(fd + 2, gs.explicit_source(d));
   }
 }
 

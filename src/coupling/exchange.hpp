@@ -85,6 +85,8 @@ struct ParticleGasForces {
   /// With the stencils: the face pressure differences of the gas pressure the last loop over
   /// the particles read (face_pressure_differences), grid-sized per component.
   std::array<std::vector<double>, 3> face_dp;
+  /// Distributed runs: the fixed-point sums (rank_sum.hpp), kept between flow steps.
+  FixedPointSum fixed;
   void resize(std::size_t n); ///< every per-particle array n long, zeroed
   /// The per-particle arrays drag_x .. eps.
   std::array<std::vector<double>*, 11> per_particle();
@@ -92,15 +94,18 @@ struct ParticleGasForces {
 
 /// Sets gs.porosity() (interior cells) from the particles (porosity.hpp).
 void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingSettings& c);
-/// The same with caller-kept work space (no allocation once warmed up).
+/// The same with caller-kept work space (no allocation once warmed up). With `ranks` (here and
+/// below): `p` is this rank's particles, and every sum over particles into the grid is taken
+/// over all ranks' in fixed point (rank_sum.hpp), the same bits on every rank.
 void update_porosity(gas::GasSolver& gs, const ParticleStore& p, const CouplingSettings& c,
-                     PorosityScratch& scratch);
+                     PorosityScratch& scratch, const RankSum* ranks = nullptr);
 
 /// Gas -> particles: reads gs velocity, pressure, porosity, density and p.x/y/z, vx/vy/vz,
 /// radius, mass; writes `out` (and out.scheme = c.scheme; the cell averages for schemes 1, 2).
 /// The store is not modified (the integrator adds the forces in its kicks).
 void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
-                             const CouplingSettings& c, ParticleGasForces& out);
+                             const CouplingSettings& c, ParticleGasForces& out,
+                             const RankSum* ranks = nullptr);
 
 /// The particle loops of compute_particle_forces and update_particle_forces (and those of the
 /// porosity) run on the OpenMP threads above core/parallel.hpp's kThreadedParticles, as the
@@ -116,8 +121,8 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
 /// Model B). Scheme 3: from f.coeff and the CURRENT particle velocities p.vx/vy/vz
 /// (semi-implicit: use the velocities the drag acted with). Schemes 1, 2: from the cell
 /// averages f.cell_coeff, f.cell_v* of compute_particle_forces (half to each face).
-void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p,
-                             const ParticleGasForces& f);
+void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p, ParticleGasForces& f,
+                             const RankSum* ranks = nullptr);
 
 /// After the gas step: drag_i = c_i (u_i - v_i) with the coefficients c_i that
 /// deposit_momentum_source gave the gas, the NEW gas velocity u_i and the same particle

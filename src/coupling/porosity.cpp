@@ -349,6 +349,25 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
         part[e] = v / measure;
       }
 }
+/// Fixed-point solid fraction: a particle's part of a cell is at most its measure (volume, 2-D:
+/// area) over the cell's.
+void start_fixed_sum(const gas::GasGrid& g, const ParticleStore& p, bool two_d, double cell_measure,
+                     const RankSum& ranks, FixedPointSum& fixed) {
+  double largest = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double R = p.radius[i];
+    const double measure = two_d ? pi * R * R : 4.0 / 3.0 * pi * R * R * R;
+    largest = std::isnan(measure) ? measure : std::max(largest, measure / cell_measure);
+    if (std::isnan(largest)) break;
+  }
+  const double bounds[1] = {largest};
+  fixed.start(g.size(), bounds, static_cast<std::int64_t>(p.size()), ranks);
+}
+
+void finish_fixed_sum(const RankSum& ranks, FixedPointSum& fixed, std::vector<double>& out) {
+  fixed.reduce(ranks);
+  fixed.result(0, out);
+}
 } // namespace
 
 void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
@@ -359,7 +378,7 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
 
 void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
                     std::vector<double>& out, const std::array<bool, 3>& periodic,
-                    PorosityScratch& scratch) {
+                    PorosityScratch& scratch, const RankSum* ranks) {
   out.assign(g.size(), 0.0);
   const bool two_d = g.dimension == 2;
   const std::array<int, 3> axes_3d{0, 1, 2};
@@ -377,13 +396,20 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
     // spread uniformly; the cell gets the fraction of the cube inside it, the weights of
     // cube_mapping.hpp (shifted into the domain at walls, wrapped at periodic axes).
     CubeWeights& w = scratch.cube;
+    if (ranks) start_fixed_sum(g, p, two_d, cell_measure, *ranks, scratch.fixed);
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double R = p.radius[i];
       const double measure = two_d ? pi * R * R : 4.0 / 3.0 * pi * R * R * R;
       cube_weights(g, cell_component, p.position(i), s.cube_factor * R, wrap, w);
-      for (std::size_t m = 0; m < w.size(); ++m)
-        out[static_cast<std::size_t>(w.q[m])] += measure * w.w[m] / cell_measure;
+      for (std::size_t m = 0; m < w.size(); ++m) {
+        const double part = measure * w.w[m] / cell_measure;
+        if (ranks)
+          scratch.fixed.add(0, static_cast<std::size_t>(w.q[m]), part);
+        else
+          out[static_cast<std::size_t>(w.q[m])] += part;
+      }
     }
+    if (ranks) finish_fixed_sum(*ranks, scratch.fixed, out);
     return;
   }
   // Cell method: each particle's parts are computed independently (threaded), then added to
@@ -413,6 +439,13 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
     sphere_cell_parts(g, x, R, range[i], two_d, wrap, cell_measure, cell + offset[i],
                       part + offset[i]);
   });
+  if (ranks) {
+    start_fixed_sum(g, p, two_d, cell_measure, *ranks, scratch.fixed);
+    for (std::size_t e = 0; e < total; ++e)
+      scratch.fixed.add(0, static_cast<std::size_t>(cell[e]), part[e]);
+    finish_fixed_sum(*ranks, scratch.fixed, out);
+    return;
+  }
   for (std::size_t e = 0; e < total; ++e) out[static_cast<std::size_t>(cell[e])] += part[e];
 }
 
@@ -424,9 +457,9 @@ void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const Poros
 
 void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
                       std::vector<double>& eps, const std::array<bool, 3>& periodic,
-                      PorosityScratch& scratch) {
+                      PorosityScratch& scratch, const RankSum* ranks) {
   std::vector<double>& solid = scratch.solid;
-  solid_fraction(g, p, s, solid, periodic, scratch);
+  solid_fraction(g, p, s, solid, periodic, scratch, ranks);
   eps.resize(g.size(), 1.0);
   for (int k = 1; k <= g.n[2]; ++k)
     for (int j = 1; j <= g.n[1]; ++j)

@@ -18,6 +18,7 @@
 #include "core/coupling_settings.hpp"
 #include "core/vec3.hpp"
 #include "coupling/cube_mapping.hpp"
+#include "coupling/rank_sum.hpp"
 #include "gas/gas_grid.hpp"
 #include "particles/particle_store.hpp"
 #include <array>
@@ -68,6 +69,7 @@ struct PorosityScratch {
   std::vector<double> part; ///< cell method: solid fraction of the entry's cell from its particle
   std::vector<double> solid;
   CubeWeights cube;
+  FixedPointSum fixed; ///< with ranks: the fixed-point sums
 };
 
 /// Solid volume fraction (1 - eps) per cell (padded layout of the grid; ghosts set to 0):
@@ -78,10 +80,11 @@ struct PorosityScratch {
 /// does not depend on the number of threads (bitwise).
 void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
                     std::vector<double>& out, const std::array<bool, 3>& periodic = {});
-/// The same with caller-kept work space (no allocation once warmed up).
+/// The same with caller-kept work space (no allocation once warmed up). With `ranks`: `p` is
+/// this rank's particles, and `out` the sum over all ranks' in fixed point (rank_sum.hpp).
 void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
                     std::vector<double>& out, const std::array<bool, 3>& periodic,
-                    PorosityScratch& scratch);
+                    PorosityScratch& scratch, const RankSum* ranks = nullptr);
 
 /// Porosity of every interior cell into eps (size = g.size()); ghosts along periodic axes get
 /// the images, other ghosts are untouched. 2-D grids use [Hoomans96 eq. 49]. Throws
@@ -90,6 +93,6 @@ void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const Poros
                       std::vector<double>& eps, const std::array<bool, 3>& periodic);
 void compute_porosity(const gas::GasGrid& g, const ParticleStore& p, const PorositySettings& s,
                       std::vector<double>& eps, const std::array<bool, 3>& periodic,
-                      PorosityScratch& scratch);
+                      PorosityScratch& scratch, const RankSum* ranks = nullptr);
 
 } // namespace fluidem::coupling
