@@ -371,6 +371,23 @@ void DistributedSoftSphere::gather_all(ParticleStore& all) const {
   all.permute(order);
 }
 
+void DistributedSoftSphere::own_particles(ParticleStore& out) const {
+  out.resize(owned_);
+  std::vector<const void*> from;
+  p_.for_each_array([&](const auto& a) { from.push_back(&a); });
+  std::size_t k = 0;
+  out.for_each_array([&](auto& a) {
+    using A = std::remove_reference_t<decltype(a)>;
+    const A& src = *static_cast<const A*>(from[k++]);
+    std::copy_n(src.begin(), owned_, a.begin());
+  });
+}
+
+void DistributedSoftSphere::hold_own_forces(const std::array<const double*, 3>& f) {
+  for (std::size_t i = 0; i < owned_; ++i)
+    for (std::size_t a = 0; a < 3; ++a) held_[3 * i + a] = f[a][i];
+}
+
 void DistributedSoftSphere::hold_forces(const ParticleStore& all,
                                         const std::array<const double*, 3>& f) {
   for (std::size_t i = 0; i < owned_; ++i) {

@@ -85,13 +85,14 @@ GasCoupling::~GasCoupling() = default;
 
 void GasCoupling::step(const ParticleStore& p, double time, double dt) {
   using coupling::CouplingMode;
-  coupling::update_porosity(*gas_, p, settings_, porosity_scratch_);
+  const coupling::RankSum* ranks = ranks_ ? &*ranks_ : nullptr;
+  coupling::update_porosity(*gas_, p, settings_, porosity_scratch_, ranks);
   smoother_.smooth_porosity(gas_->porosity(), coupling::min_porosity); // (off: returns)
   smoother_.with_smoothed_velocity(                                    // (off: the call alone)
-      *gas_, [&] { coupling::compute_particle_forces(*gas_, p, settings_, f_); });
+      *gas_, [&] { coupling::compute_particle_forces(*gas_, p, settings_, f_, ranks); });
   if (fluid_) fluid_->begin_step(p, f_);
   if (settings_.mode == CouplingMode::two_way) {
-    coupling::deposit_momentum_source(*gas_, p, f_);
+    coupling::deposit_momentum_source(*gas_, p, f_, ranks);
     if (fluid_) fluid_->deposit_reaction(*gas_, p);
     smoother_.smooth_momentum_source(*gas_);
     if (settings_.hold_gas_at_rest) hold_at_rest(dt);

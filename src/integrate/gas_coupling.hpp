@@ -17,11 +17,13 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/case_spec.hpp"
 #include "coupling/exchange.hpp"
+#include "coupling/rank_sum.hpp"
 #include "coupling/smoothing.hpp"
 #include "gas/gas_solver.hpp"
 #include "integrate/fluid_forces.hpp"
@@ -53,6 +55,11 @@ public:
   /// With [coupling.forces]: their held forces are added to force() (fluid_forces.hpp), and
   /// their reaction of the step before goes to the gas (two-way).
   void step(const ParticleStore& p, double time, double dt);
+
+  /// A distributed run: step() is then given this rank's own particles, and the sums over the
+  /// particles into the gas are taken over all ranks in fixed point (coupling/rank_sum.hpp), so
+  /// that every rank steps the same gas, bit for bit, on any rank count.
+  void distribute(coupling::RankSum ranks) { ranks_ = std::move(ranks); }
 
   /// [coupling.forces], for n particles and the flow step flow_dt (every step() must be that
   /// long: the Basset history's samples are uniform in time).
@@ -126,6 +133,7 @@ private:
   std::unique_ptr<gas::GasSolver> gas_;
   coupling::CouplingSettings settings_;
   coupling::ParticleGasForces f_;
+  std::optional<coupling::RankSum> ranks_;     ///< distribute()
   coupling::PorosityScratch porosity_scratch_; ///< kept between flow steps: no allocation
   coupling::CouplingSmoother smoother_;        ///< coupling.smoothing_length (off: unused)
   std::array<std::vector<double>, 3> force_;

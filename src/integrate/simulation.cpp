@@ -1,4 +1,5 @@
 #include "integrate/simulation.hpp"
+#include "integrate/rank_sum_of.hpp"
 #include "integrate/wall_clock.hpp"
 
 #include <algorithm>
@@ -100,7 +101,8 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial,
   if (spec_.noncontact.any()) set_up_noncontact(skin);
   if (spec_.gas) {
     gas_ = std::make_unique<GasCoupling>(spec_, p_);
-    spec_.coupling.drag = gas_->drag_name(); // the resolved case names the closure used
+    if (dist_) gas_->distribute(rank_sum_of(*comm_)); // own particles, a copy of the gas each
+    spec_.coupling.drag = gas_->drag_name();          // the resolved case names the closure used
     set_up_fluid_forces();
     forces_.add(std::make_unique<GasForceSource>(*gas_));
   }
@@ -309,13 +311,13 @@ void Simulation::step(bool defer_second_kick) {
 
 void Simulation::flow_step() {
   if (dist_) {
-    // Every rank steps the gas on all particles (in id order, as on one rank), and each holds
-    // the forces of its own over the flow step.
+    // Every rank steps its copy of the gas from the sums over all ranks' particles (fixed
+    // point: the same bits on every rank count, GasCoupling::distribute), and holds the forces
+    // on its own particles over the flow step.
     const auto t0 = WallClock::now();
-    dist_->gather_all(coupled_);
+    dist_->own_particles(coupled_);
     gas_->step(coupled_, time_, dt_ * static_cast<double>(steps_per_flow_));
-    dist_->hold_forces(coupled_,
-                       {gas_->force(0).data(), gas_->force(1).data(), gas_->force(2).data()});
+    dist_->hold_own_forces({gas_->force(0).data(), gas_->force(1).data(), gas_->force(2).data()});
     t_gas_ += seconds_since(t0);
     return;
   }

@@ -334,7 +334,15 @@ void Simulation::write_checkpoint(const std::string& path) {
     const GasCoupling::State g = gas_->state();
     for (int d = 0; d < 3; ++d) {
       w.put(kGasVelocity[d], g.gas.u[static_cast<std::size_t>(d)]);
-      w.put(kGasForce[d], g.force[static_cast<std::size_t>(d)]);
+      if (!dist_) {
+        w.put(kGasForce[d], g.force[static_cast<std::size_t>(d)]);
+        continue;
+      }
+      // Ranks: each holds its own particles' forces; the gathered ones, in id order.
+      std::vector<double> f(parts.size());
+      for (std::size_t i = 0; i < f.size(); ++i)
+        f[i] = gathered.held[3 * i + static_cast<std::size_t>(d)];
+      w.put(kGasForce[d], f);
     }
     w.put("gas/p", g.gas.p);
     w.put("gas/eps", g.gas.eps);
