@@ -197,6 +197,10 @@ void print_run_summary(const Simulation& sim, const RunSummary& s, const std::st
     fmt::print("exchange: {:.4g} bytes and {:.3g} messages per rank and step (ghosts, particles "
                "changing rank); {} moves of the cut planes\n",
                s.bytes_per_rank_step, s.messages_per_rank_step, s.rebalances);
+  if (s.rank_independent && s.ranks > 1 && s.gas_sums_per_flow_step > 0.0)
+    fmt::print("gas sums: {:.4g} bytes in {:.3g} reductions per rank and flow step (fixed-point "
+               "deposition summed over the ranks)\n",
+               s.gas_sum_bytes_per_flow_step, s.gas_sums_per_flow_step);
   // Where the time went: the particles (contacts, integration and lists; the event-driven
   // engine does all three), the gas solver, the coupling (porosity, forces both ways, the
   // gas kicks) and the output.

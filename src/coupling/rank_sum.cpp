@@ -49,6 +49,8 @@ void FixedPointSum::reduce(const RankSum& ranks) {
     std::copy_n(acc_.begin() + static_cast<long>(f * size_) + lo, width,
                 buffer_.begin() + static_cast<long>(f * width));
   ranks.sum_fields(buffer_);
+  bytes_reduced_ += static_cast<double>(buffer_.size() * sizeof(std::int64_t));
+  ++reductions_;
   for (std::size_t f = 0; f < scale_.size(); ++f)
     std::copy_n(buffer_.begin() + static_cast<long>(f * width), width,
                 acc_.begin() + static_cast<long>(f * size_) + lo);

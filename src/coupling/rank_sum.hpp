@@ -48,12 +48,18 @@ public:
   void result(std::size_t f, std::vector<double>& out) const;
   /// The value one unit of field f stands for, 2^-s.
   double resolution(std::size_t f) const { return 1.0 / scale_[f]; }
+  /// The integers' bytes summed over the ranks by reduce() so far, and its reductions (each
+  /// reduce() also reduces the range: two more, of one number each).
+  double bytes_reduced() const { return bytes_reduced_; }
+  long reductions() const { return reductions_; }
 
 private:
   std::size_t size_ = 0;
   std::vector<double> scale_;
   std::vector<std::int64_t> acc_;
   std::vector<std::int64_t> buffer_;
+  double bytes_reduced_ = 0.0;
+  long reductions_ = 0;
 };
 
 } // namespace fluidem::coupling

@@ -60,6 +60,14 @@ public:
   /// particles into the gas are taken over all ranks in fixed point (coupling/rank_sum.hpp), so
   /// that every rank steps the same gas, bit for bit, on any rank count.
   void distribute(coupling::RankSum ranks) { ranks_ = std::move(ranks); }
+  /// Distributed runs: the bytes of the fixed-point sums reduced over the ranks so far, and
+  /// their reductions (the grid-sized ones).
+  double bytes_summed_over_ranks() const {
+    return porosity_scratch_.fixed.bytes_reduced() + f_.fixed.bytes_reduced();
+  }
+  long sums_over_ranks() const {
+    return porosity_scratch_.fixed.reductions() + f_.fixed.reductions();
+  }
 
   /// [coupling.forces], for n particles and the flow step flow_dt (every step() must be that
   /// long: the Basset history's samples are uniform in time).

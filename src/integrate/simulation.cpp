@@ -315,6 +315,7 @@ void Simulation::flow_step() {
     // point: the same bits on every rank count, GasCoupling::distribute), and holds the forces
     // on its own particles over the flow step.
     const auto t0 = WallClock::now();
+    ++flow_steps_;
     dist_->own_particles(coupled_);
     gas_->step(coupled_, time_, dt_ * static_cast<double>(steps_per_flow_));
     dist_->hold_own_forces({gas_->force(0).data(), gas_->force(1).data(), gas_->force(2).data()});
@@ -483,6 +484,12 @@ RunSummary Simulation::run(const std::string& out_dir,
     s.bytes_per_rank_step = mean_of(dist_->bytes_sent());
     s.messages_per_rank_step = mean_of(dist_->messages_sent());
     s.rebalances = dist_->rebalances();
+    if (gas_ && flow_steps_ > 0) {
+      s.gas_sum_bytes_per_flow_step =
+          gas_->bytes_summed_over_ranks() / static_cast<double>(flow_steps_);
+      s.gas_sums_per_flow_step =
+          static_cast<double>(gas_->sums_over_ranks()) / static_cast<double>(flow_steps_);
+    }
   }
   s.checkpoint = recorder.last_checkpoint();
   return s;

@@ -83,6 +83,8 @@ struct RunSummary {
   /// What a rank sent per step, mean over the ranks: bytes, messages (docs/parallel.md); the
   /// rebalances of the cut planes.
   double bytes_per_rank_step = 0.0, messages_per_rank_step = 0.0;
+  /// Coupled: the fixed-point gas sums each rank reduced per flow step, bytes and reductions.
+  double gas_sum_bytes_per_flow_step = 0.0, gas_sums_per_flow_step = 0.0;
   long rebalances = 0;
   bool rank_independent = false;
   std::string checkpoint; ///< the last checkpoint written
@@ -309,6 +311,7 @@ private:
   std::unique_ptr<ContinuumAverager> continuum_; ///< set with [output.continuum]
   double continuum_interval_ = 0.0;              ///< s
   double t_gas_ = 0.0;
+  long flow_steps_ = 0; ///< flow steps of this process (the log's gas sums per flow step)
 };
 
 } // namespace fluidem
