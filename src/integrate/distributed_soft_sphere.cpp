@@ -115,15 +115,20 @@ std::size_t DistributedSoftSphere::bytes() const {
 }
 
 void DistributedSoftSphere::kick() {
-  // Velocity Verlet's half kick with the last forces: dv = (F/m + g) dt/2, dw = T/I dt/2; a fixed
-  // particle (1/m = 0) gets no acceleration at all.
+  // Velocity Verlet's half kick with the last forces: dv = (F/m + g + a_body(x)) dt/2,
+  // dw = T/I dt/2; a fixed particle (1/m = 0) gets no acceleration at all.
   const double h = 0.5 * s_.dt;
   const auto& g = s_.gravity;
   parallel_for(owned_, threaded_particles(owned_), [&](std::size_t i) {
     const double* f = sums_.acc.data() + OrderedContactSums::kAcc * i;
     const double* fh = held_.data() + 3 * i;
     const double im = p_.inv_mass[i], ii = p_.inv_inertia[i];
-    const std::array<double, 3> a = im == 0.0 ? std::array<double, 3>{} : g;
+    std::array<double, 3> a = g;
+    if (s_.body) { // at the particle's position now: x^n in the first kick, x^{n+1} in the second
+      const auto b = body_acceleration(*s_.body, p_.x[i], p_.y[i], p_.z[i]);
+      a[0] += b[0], a[1] += b[1], a[2] += b[2];
+    }
+    if (im == 0.0) a = {0.0, 0.0, 0.0};
     p_.vx[i] += h * ((f[0] + fh[0]) * im + a[0]);
     p_.vy[i] += h * ((f[1] + fh[1]) * im + a[1]);
     p_.vz[i] += h * ((f[2] + fh[2]) * im + a[2]);

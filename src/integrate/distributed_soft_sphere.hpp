@@ -15,6 +15,7 @@
 
 #include "contact/contact_table.hpp"
 #include "contact/ordered_contacts.hpp"
+#include "core/body_force.hpp"
 #include "integrate/particle_stepper.hpp"
 #include "neighbour/box_geometry.hpp"
 #include "neighbour/ordered_rows.hpp"
@@ -52,6 +53,9 @@ public:
     /// Load balancing: every this many list builds the cut planes move so that the ranks'
     /// measured contact-loop times even out (0: never).
     int balance_interval = 0;
+    /// `[body_force]`: the field's acceleration at each particle's position, beside gravity
+    /// (core/body_force.hpp); null: none. Must outlive the engine.
+    const BodyForceSpec* body = nullptr;
   };
   /// Every rank passes the same particles `all` (each keeps those it owns) and the same
   /// settings; the first contact forces are computed. Collective.

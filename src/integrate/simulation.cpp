@@ -196,7 +196,6 @@ bool Simulation::choose_rank_independent() const {
   refuse(spec_.noncontact.van_der_waals.has_value(), "van_der_waals", "van der Waals attraction");
   refuse(spec_.noncontact.electrostatics.has_value(), "electrostatics", "electrostatics");
   refuse(spec_.noncontact.liquid_bridge.has_value(), "liquid_bridge", "liquid bridges");
-  refuse(spec_.body_force.has_value(), "body_force", "a body-force field");
   refuse(spec_.output.collisions, "output.collisions", "the collision statistics");
   refuse(spec_.output.continuum.has_value(), "output.continuum", "the continuum averages");
   return true;
@@ -213,6 +212,7 @@ void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_f
     d.gravity = spec_.simulation.gravity;
     d.process_grid = spec_.parallel.process_grid;
     d.balance_interval = spec_.parallel.balance_interval;
+    d.body = spec_.body_force ? &*spec_.body_force : nullptr;
     // The index space the ranks share: cells about as wide as a list cell (the largest pair's
     // reach), so that a rank's ghosts come from its neighbours.
     d.cells.lo = spec_.domain.lo;
