@@ -1,4 +1,6 @@
 #include "integrate/distributed_soft_sphere.hpp"
+#include "noncontact/ordered_noncontact.hpp"
+#include "noncontact/pair_forces.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -40,9 +42,13 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
   // The ghosts reach as far as the list's cut-off for the largest pair with two skins: the list
   // of a restarted run is built with two (its particles may move half a skin from where the
   // last build saw them, then half a skin from there, before the next build).
+  // The non-contact forces' own rows reach farther (their range); the ghosts cover both.
   const double reach = table_->attached_reach(r_max);
-  exchange_ = std::make_unique<ParticleExchange>(comm_, map_, 2.0 * r_max + reach + 2.0 * s_.skin);
+  const double nc_reach = s_.noncontact ? noncontact_reach(*s_.noncontact, all) : 0.0;
+  exchange_ = std::make_unique<ParticleExchange>(
+      comm_, map_, 2.0 * r_max + std::max(reach, nc_reach) + 2.0 * s_.skin);
   rows_ = std::make_unique<OrderedRows>(box_, table_->history_width(), reach);
+  if (s_.noncontact) nc_rows_ = std::make_unique<OrderedRows>(box_, 0, nc_reach);
   // Each rank keeps the particles whose centres its cells hold, with what they carry.
   std::vector<std::uint32_t> mine;
   for (std::size_t i = 0; i < all.size(); ++i)
@@ -92,6 +98,10 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
   // within two skins.
   exchange_->fill_ghosts(p_);
   rows_->build(p_, owned_, state ? 2.0 * s_.skin : s_.skin, kept);
+  if (nc_rows_) { // (a restarted run's: recomputed from the positions, the same bits)
+    nc_rows_->build(p_, owned_, state ? 2.0 * s_.skin : s_.skin, {});
+    compute_noncontact();
+  }
   x0_.resize(3 * owned_);
   for (std::size_t k = 0; k < owned_; ++k)
     if (state)
@@ -114,6 +124,14 @@ std::size_t DistributedSoftSphere::bytes() const {
              sizeof(double);
 }
 
+namespace {
+constexpr std::array<double, 3> kNoForce{};
+} // namespace
+
+void DistributedSoftSphere::compute_noncontact() {
+  ordered_noncontact_forces(*s_.noncontact, *nc_rows_, p_, nc_force_, nc_potential_);
+}
+
 void DistributedSoftSphere::kick() {
   // Velocity Verlet's half kick with the last forces: dv = (F/m + g + a_body(x)) dt/2,
   // dw = T/I dt/2; a fixed particle (1/m = 0) gets no acceleration at all.
@@ -122,6 +140,7 @@ void DistributedSoftSphere::kick() {
   parallel_for(owned_, threaded_particles(owned_), [&](std::size_t i) {
     const double* f = sums_.acc.data() + OrderedContactSums::kAcc * i;
     const double* fh = held_.data() + 3 * i;
+    const double* fn = nc_rows_ ? nc_force_.data() + 3 * i : kNoForce.data();
     const double im = p_.inv_mass[i], ii = p_.inv_inertia[i];
     std::array<double, 3> a = g;
     if (s_.body) { // at the particle's position now: x^n in the first kick, x^{n+1} in the second
@@ -129,9 +148,9 @@ void DistributedSoftSphere::kick() {
       a[0] += b[0], a[1] += b[1], a[2] += b[2];
     }
     if (im == 0.0) a = {0.0, 0.0, 0.0};
-    p_.vx[i] += h * ((f[0] + fh[0]) * im + a[0]);
-    p_.vy[i] += h * ((f[1] + fh[1]) * im + a[1]);
-    p_.vz[i] += h * ((f[2] + fh[2]) * im + a[2]);
+    p_.vx[i] += h * ((f[0] + fh[0] + fn[0]) * im + a[0]);
+    p_.vy[i] += h * ((f[1] + fh[1] + fn[1]) * im + a[1]);
+    p_.vz[i] += h * ((f[2] + fh[2] + fn[2]) * im + a[2]);
     p_.wx[i] += h * f[3] * ii;
     p_.wy[i] += h * f[4] * ii;
     p_.wz[i] += h * f[5] * ii;
@@ -176,6 +195,7 @@ void DistributedSoftSphere::step() {
   seconds_.neighbour += seconds_since(t0);
   t0 = WallClock::now();
   stats_ = compute_ordered_contact_forces(p_, *rows_, *table_, dt, sums_);
+  if (nc_rows_) compute_noncontact();
   observed_stats_.max_overlap_ratio = comm_.max(stats_.max_overlap_ratio);
   seconds_.contacts += seconds_since(t0);
   t0 = WallClock::now();
@@ -271,22 +291,32 @@ void DistributedSoftSphere::rebuild() {
   p_.resize(owned_);
   // With each particle: its dissipated energy, and its last contact sums and elastic energy (a
   // build between steps, by rebalance(), keeps them for the next kick).
-  constexpr int kCarried = 17;
+  // And its non-contact force and potential share.
+  constexpr int kCarried = 21;
   std::vector<double> carried(kCarried * owned_);
   for (std::size_t i = 0; i < owned_; ++i) {
     double* c = carried.data() + kCarried * i;
     c[0] = dissipated_[i], c[1] = sums_.elastic[i];
     std::copy_n(sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i), 12, c + 2);
     std::copy_n(held_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3, c + 14);
+    if (nc_rows_) {
+      std::copy_n(nc_force_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3, c + 17);
+      c[20] = nc_potential_[i];
+    }
   }
   const std::vector<ParticleTooFar> lost = exchange_->migrate(p_, kept, carried, kCarried);
   const std::size_t n = p_.size();
   dissipated_.resize(n), sums_.elastic.resize(n), sums_.acc.resize(12 * n), held_.resize(3 * n);
+  if (nc_rows_) nc_force_.resize(3 * n), nc_potential_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double* c = carried.data() + kCarried * i;
     dissipated_[i] = c[0], sums_.elastic[i] = c[1];
     std::copy_n(c + 2, 12, sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i));
     std::copy_n(c + 14, 3, held_.begin() + static_cast<std::ptrdiff_t>(3 * i));
+    if (nc_rows_) {
+      std::copy_n(c + 17, 3, nc_force_.begin() + static_cast<std::ptrdiff_t>(3 * i));
+      nc_potential_[i] = c[20];
+    }
   }
   const double first_lost = comm_.min(lost.empty() ? std::numeric_limits<double>::infinity()
                                                    : static_cast<double>(lost.front().id));
@@ -301,6 +331,7 @@ void DistributedSoftSphere::rebuild() {
                            std::to_string(total_) + ": a particle was lost or duplicated");
   exchange_->fill_ghosts(p_);
   rows_->build(p_, owned_, s_.skin, kept);
+  if (nc_rows_) nc_rows_->build(p_, owned_, s_.skin, {});
   x0_.resize(3 * owned_);
   for (std::size_t i = 0; i < owned_; ++i)
     x0_[3 * i] = p_.x[i], x0_[3 * i + 1] = p_.y[i], x0_[3 * i + 2] = p_.z[i];
@@ -310,9 +341,10 @@ void DistributedSoftSphere::rebuild() {
 DistributedState DistributedSoftSphere::gather(bool with_history) const {
   // Per particle: dissipated, elastic, the 12 contact sums, its build position; then
   // (with_history) its entries.
-  constexpr int kExtra = 20;
+  constexpr int kExtra = 21;
   std::vector<double> extra(kExtra * owned_);
   for (std::size_t i = 0; i < owned_; ++i) {
+    extra[kExtra * i + 20] = nc_rows_ ? nc_potential_[i] : 0.0;
     extra[kExtra * i] = dissipated_[i], extra[kExtra * i + 1] = sums_.elastic[i];
     std::copy_n(sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i), 12,
                 extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 2));
@@ -346,12 +378,14 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
   const std::size_t n = order.size();
   g.dissipated.resize(n), g.elastic.resize(n), g.contact.resize(12 * n), g.x0.resize(3 * n);
   g.held.resize(3 * n);
+  g.noncontact.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const double* e = all_extra.data() + kExtra * order[k];
     g.dissipated[k] = e[0], g.elastic[k] = e[1];
     std::copy_n(e + 2, 12, g.contact.begin() + static_cast<std::ptrdiff_t>(12 * k));
     std::copy_n(e + 14, 3, g.x0.begin() + static_cast<std::ptrdiff_t>(3 * k));
     std::copy_n(e + 17, 3, g.held.begin() + static_cast<std::ptrdiff_t>(3 * k));
+    g.noncontact[k] = e[20];
   }
   if (with_history) g.history = reorder(all_kept, order);
   return g;
@@ -409,6 +443,7 @@ void DistributedSoftSphere::observe(ParticleStore& all) {
   DistributedState g = gather();
   const Totals t = totals_of(g);
   observed_dissipated_ = t.dissipated;
+  observed_noncontact_ = t.noncontact;
   ContactStats& st = observed_stats_;
   st.n_contacts = t.contacts;
   st.elastic_energy = t.elastic;
@@ -429,7 +464,7 @@ DistributedSoftSphere::Totals DistributedSoftSphere::totals() const {
 }
 
 DistributedSoftSphere::Totals DistributedSoftSphere::totals_of(const DistributedState& g) const {
-  std::vector<double> t(5, 0.0);
+  std::vector<double> t(6, 0.0);
   if (comm_.root()) {
     const ParticleStore& p = g.particles;
     const auto& gr = s_.gravity;
@@ -440,6 +475,7 @@ DistributedSoftSphere::Totals DistributedSoftSphere::totals_of(const Distributed
       t[2] += -p.mass[i] * (gr[0] * p.x[i] + gr[1] * p.y[i] + gr[2] * p.z[i]);
       t[3] += g.elastic[i];
       t[4] += g.dissipated[i];
+      t[5] += g.noncontact[i];
     }
   }
   std::vector<char> bytes(reinterpret_cast<const char*>(t.data()),
@@ -448,7 +484,7 @@ DistributedSoftSphere::Totals DistributedSoftSphere::totals_of(const Distributed
   std::memcpy(t.data(), bytes.data(), t.size() * sizeof(double));
   Totals out;
   out.kinetic = t[0], out.rotational = t[1], out.potential = t[2];
-  out.elastic = t[3], out.dissipated = t[4];
+  out.elastic = t[3], out.dissipated = t[4], out.noncontact = t[5];
   out.contacts = comm_.sum(stats_.contacts);
   out.particles = comm_.sum(static_cast<std::int64_t>(owned_));
   out.max_overlap_ratio = comm_.max(stats_.max_overlap_ratio);

@@ -16,6 +16,7 @@
 #include "contact/contact_table.hpp"
 #include "contact/ordered_contacts.hpp"
 #include "core/body_force.hpp"
+#include "core/noncontact_settings.hpp"
 #include "integrate/particle_stepper.hpp"
 #include "neighbour/box_geometry.hpp"
 #include "neighbour/ordered_rows.hpp"
@@ -39,7 +40,9 @@ struct DistributedState {
   /// a particle has moved half the skin from there)
   std::vector<double> x0;
   std::vector<double> held; ///< 3 per particle: the gas force held over the flow step, N
-  std::int64_t builds = 0;  ///< neighbour-list builds so far
+  /// Per particle: its share of the non-contact forces' potential energy, J (0 without them)
+  std::vector<double> noncontact;
+  std::int64_t builds = 0; ///< neighbour-list builds so far
 };
 
 class DistributedSoftSphere final : public ParticleStepper {
@@ -56,6 +59,10 @@ public:
     /// `[body_force]`: the field's acceleration at each particle's position, beside gravity
     /// (core/body_force.hpp); null: none. Must outlive the engine.
     const BodyForceSpec* body = nullptr;
+    /// The conservative non-contact forces (van der Waals, electrostatics), evaluated every step
+    /// over rows of their own reach (noncontact/ordered_noncontact.hpp); null: none. Must
+    /// outlive the engine.
+    const NonContactSpec* noncontact = nullptr;
   };
   /// Every rank passes the same particles `all` (each keeps those it owns) and the same
   /// settings; the first contact forces are computed. Collective.
@@ -77,6 +84,8 @@ public:
   void finish_kick() override {}
   /// As of the last observe().
   double dissipated_energy() const override { return observed_dissipated_; }
+  /// The non-contact forces' potential energy at the last observe(), J (root).
+  double noncontact_potential() const { return observed_noncontact_; }
   /// As of the last observe(), but max_overlap_ratio as of the last step (every rank's).
   const ContactStats& contact_stats() const override { return observed_stats_; }
   Seconds seconds() const override { return seconds_; }
@@ -128,6 +137,7 @@ public:
   struct Totals {
     double kinetic = 0.0, rotational = 0.0, potential = 0.0; ///< J (potential: gravity's)
     double elastic = 0.0, dissipated = 0.0;                  ///< J
+    double noncontact = 0.0; ///< J: the non-contact forces' potential energy
     std::int64_t contacts = 0, particles = 0;
     double max_overlap_ratio = 0.0;
   };
@@ -156,6 +166,11 @@ private:
   Decomposition map_;
   std::unique_ptr<ParticleExchange> exchange_;
   std::unique_ptr<OrderedRows> rows_;
+  std::unique_ptr<OrderedRows> nc_rows_; ///< Settings::noncontact: rows of their reach
+  std::vector<double> nc_force_;         ///< 3 per own particle: the non-contact force, N
+  std::vector<double> nc_potential_;     ///< per own particle: its share of their potential, J
+  /// The non-contact forces of the own particles at their current positions.
+  void compute_noncontact();
   ParticleStore p_; ///< own particles [0, owned_), then ghosts
   std::size_t owned_ = 0;
   std::int64_t total_ = 0;         ///< particles on all ranks
@@ -166,6 +181,7 @@ private:
   OrderedContactStats stats_;
   long builds_ = 0;
   double observed_dissipated_ = 0.0;
+  double observed_noncontact_ = 0.0;
   long rebalances_ = 0;
   std::array<double, 2> sent_before_{}; ///< by the exchanges a rebalance replaced
   double balance_seconds0_ = 0.0;       ///< seconds_.contacts at the last balance

@@ -15,6 +15,7 @@
 #include "integrate/noncontact_source.hpp"
 #include "integrate/run_recorder.hpp"
 #include "integrate/time_step_rule.hpp"
+#include "noncontact/pair_forces.hpp"
 #include "particles/insertion.hpp"
 
 namespace fluidem {
@@ -193,8 +194,6 @@ bool Simulation::choose_rank_independent() const {
   };
   refuse(spec_.coupling.forces.any(), "coupling.forces",
          "the fluid forces beyond drag and pressure (virtual mass, Basset, lift, torque)");
-  refuse(spec_.noncontact.van_der_waals.has_value(), "van_der_waals", "van der Waals attraction");
-  refuse(spec_.noncontact.electrostatics.has_value(), "electrostatics", "electrostatics");
   refuse(spec_.noncontact.liquid_bridge.has_value(), "liquid_bridge", "liquid bridges");
   refuse(spec_.output.collisions, "output.collisions", "the collision statistics");
   refuse(spec_.output.continuum.has_value(), "output.continuum", "the continuum averages");
@@ -213,6 +212,12 @@ void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_f
     d.process_grid = spec_.parallel.process_grid;
     d.balance_interval = spec_.parallel.balance_interval;
     d.body = spec_.body_force ? &*spec_.body_force : nullptr;
+    d.noncontact = spec_.noncontact.any_conservative() ? &spec_.noncontact : nullptr;
+    if (d.noncontact) try { // (the cut-off checked before the engine is built)
+        noncontact_reach(*d.noncontact, restart_state_ ? restart_state_->particles : p_);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(spec_.where("electrostatics"), "electrostatics", e.what());
+      }
     // The index space the ranks share: cells about as wide as a list cell (the largest pair's
     // reach), so that a rank's ghosts come from its neighbours.
     d.cells.lo = spec_.domain.lo;
@@ -275,7 +280,7 @@ void Simulation::set_up_noncontact(double skin) {
                      "in instantaneous collisions, so a force across a gap cannot act); use "
                      "simulation.engine = \"soft_sphere\"");
   try {
-    if (nc.any_conservative())
+    if (nc.any_conservative() && !dist_) // (the rank-independent engine evaluates them itself)
       add_force_source(std::make_unique<NonContactForceSource>(limits_.box, nc, p_, skin));
   } catch (const std::invalid_argument& e) {
     throw InputError(spec_.where(key), key, e.what());
@@ -350,6 +355,7 @@ bool Simulation::continuum_samples_next_step() const {
 Energies Simulation::energies() const {
   Energies e = particle_energies(p_, spec_.simulation.gravity);
   if (forces_.any_particle_forces()) e.potential += forces_.potential_energy(p_);
+  if (dist_) e.potential += dist_->noncontact_potential();
   return e;
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/nearest_integer.hpp"
 #include "core/parallel.hpp"
 #include "noncontact/kernels/coulomb.hpp"
 #include "noncontact/kernels/van_der_waals.hpp"
@@ -15,9 +16,16 @@ namespace fluidem {
 
 namespace {
 
-/// The range beyond contact the list must cover: van der Waals to its range; Coulomb (centre
-/// distance r_c) to r_c - 2 r_min, which also covers a particle's own image (2 z < r_c).
-double reach_of(const NonContactSpec& spec, const ParticleStore& p) {
+/// Minimum-image separation along axis a (the neighbour lists' formula).
+double min_image(const BoxGeometry& box, double d, int a) {
+  if (!box.periodic[a]) return d;
+  const double l = box.length(a);
+  return d - l * nearest_integer(d / l);
+}
+
+} // namespace
+
+double noncontact_reach(const NonContactSpec& spec, const ParticleStore& p) {
   double r_min = std::numeric_limits<double>::infinity(), r_max = 0.0;
   for (const double r : p.radius) r_min = std::min(r_min, r), r_max = std::max(r_max, r);
   double reach = 0.0;
@@ -34,11 +42,9 @@ double reach_of(const NonContactSpec& spec, const ParticleStore& p) {
   return reach;
 }
 
-} // namespace
-
 ConservativePairForces::ConservativePairForces(const BoxGeometry& box, const NonContactSpec& spec,
                                                const ParticleStore& p, double skin)
-    : spec_(spec), box_(box), nl_(box, skin, 0, reach_of(spec, p)) {}
+    : spec_(spec), box_(box), nl_(box, skin, 0, noncontact_reach(spec, p)) {}
 
 void ConservativePairForces::permute(const std::vector<std::uint32_t>& new_to_old) {
   order_.add(new_to_old);
@@ -49,20 +55,21 @@ void ConservativePairForces::update(const ParticleStore& p) {
   if (!rows_.current(nl_)) rows_.build(nl_, p.size());
 }
 
-ConservativePairForces::PairTerm ConservativePairForces::pair(const ParticleStore& p, std::size_t i,
-                                                              std::size_t j) const {
-  const Vec3 d = centre_to_centre(nl_, p, i, j);
+NonContactTerm noncontact_pair(const NonContactSpec& spec, const BoxGeometry& box,
+                               const ParticleStore& p, std::size_t i, std::size_t j) {
+  const Vec3 d{min_image(box, p.x[j] - p.x[i], 0), min_image(box, p.y[j] - p.y[i], 1),
+               min_image(box, p.z[j] - p.z[i], 2)};
   const double r = std::sqrt(norm2(d));
   const double ri = p.radius[i], rj = p.radius[j];
   const double gap = r - ri - rj;
   double f = 0.0; // > 0 repels
-  PairTerm t;
-  if (const auto& v = spec_.van_der_waals; v && gap < v->range) {
+  NonContactTerm t;
+  if (const auto& v = spec.van_der_waals; v && gap < v->range) {
     const auto pf =
         kernels::van_der_waals(v->hamaker, ri * rj / (ri + rj), v->min_separation, v->range, gap);
     f += pf.force, t.potential += pf.potential, t.in_range = true;
   }
-  if (const auto& e = spec_.electrostatics) {
+  if (const auto& e = spec.electrostatics) {
     const double qi = p.charge[i], qj = p.charge[j];
     if (qi != 0.0 && qj != 0.0 && r < e->cutoff) {
       const auto pf = kernels::coulomb_shifted(
@@ -75,12 +82,12 @@ ConservativePairForces::PairTerm ConservativePairForces::pair(const ParticleStor
       for (int face = 0; face < 6; ++face) {
         if (!e->conducting[face]) continue;
         const int a = face / 2;
-        const double plane = face % 2 == 0 ? box_.lo[a] : box_.hi[a];
+        const double plane = face % 2 == 0 ? box.lo[a] : box.hi[a];
         const std::array<double, 3> xj{p.x[j], p.y[j], p.z[j]}, xi{p.x[i], p.y[i], p.z[i]};
         Vec3 di;
         for (int b = 0; b < 3; ++b) {
           const double image = b == a ? 2.0 * plane - xj[b] : xj[b];
-          di[b] = nl_.min_image(image - xi[b], b);
+          di[b] = min_image(box, image - xi[b], b);
         }
         const double ri2 = std::sqrt(norm2(di));
         if (!(ri2 < e->cutoff)) continue;
@@ -95,13 +102,13 @@ ConservativePairForces::PairTerm ConservativePairForces::pair(const ParticleStor
   return t;
 }
 
-ConservativePairForces::PairTerm ConservativePairForces::wall(const ParticleStore& p, std::size_t i,
-                                                              int face) const {
-  const WallDistance w = wall_distance(box_, p, i, face);
+NonContactTerm noncontact_wall(const NonContactSpec& spec, const BoxGeometry& box,
+                               const ParticleStore& p, std::size_t i, int face) {
+  const WallDistance w = wall_distance(box, p, i, face);
   const double z = w.centre;
-  PairTerm t;
+  NonContactTerm t;
   double pull = 0.0; // towards the wall, N
-  if (const auto& v = spec_.van_der_waals; v && v->wall_hamaker) {
+  if (const auto& v = spec.van_der_waals; v && v->wall_hamaker) {
     const double gap = z - p.radius[i];
     if (gap < v->range) {
       const auto pf =
@@ -109,7 +116,7 @@ ConservativePairForces::PairTerm ConservativePairForces::wall(const ParticleStor
       pull -= pf.force, t.potential += pf.potential, t.in_range = true;
     }
   }
-  if (const auto& e = spec_.electrostatics; e && e->conducting[face] && p.charge[i] != 0.0) {
+  if (const auto& e = spec.electrostatics; e && e->conducting[face] && p.charge[i] != 0.0) {
     const double q = p.charge[i];
     if (2.0 * z < e->cutoff) {
       const auto pf = kernels::coulomb_shifted(
@@ -123,21 +130,12 @@ ConservativePairForces::PairTerm ConservativePairForces::wall(const ParticleStor
   return t;
 }
 
-ConservativePairForces::PairTerm ConservativePairForces::particle(const ParticleStore& p,
-                                                                  std::size_t i) const {
-  PairTerm sum;
-  for (std::uint32_t k = rows_.begin(i); k < rows_.end(i); ++k) {
-    const PairTerm t = pair(p, i, rows_.partner(k));
-    if (!t.in_range) continue;
-    sum.force += t.force;
-    sum.potential += 0.5 * t.potential;
-  }
-  for (std::uint32_t k = rows_.wall_begin(i); k < rows_.wall_end(i); ++k) {
-    const PairTerm t = wall(p, i, nl_.wall_face[k]);
-    if (!t.in_range) continue;
-    sum.force += t.force;
-    sum.potential += t.potential;
-  }
+NonContactTerm ConservativePairForces::particle(const ParticleStore& p, std::size_t i) const {
+  NonContactTerm sum;
+  for (std::uint32_t k = rows_.begin(i); k < rows_.end(i); ++k)
+    add_pair_term(sum, noncontact_pair(spec_, box_, p, i, rows_.partner(k)));
+  for (std::uint32_t k = rows_.wall_begin(i); k < rows_.wall_end(i); ++k)
+    add_wall_term(sum, noncontact_wall(spec_, box_, p, i, nl_.wall_face[k]));
   return sum;
 }
 
@@ -148,7 +146,7 @@ void ConservativePairForces::compute(const ParticleStore& p, std::array<std::vec
   for (auto& a : f) a.resize(n);
   u.resize(n);
   parallel_for(n, threaded_particles(n), [&](std::size_t i) {
-    const PairTerm t = particle(p, i);
+    const NonContactTerm t = particle(p, i);
     f[0][i] = t.force.x, f[1][i] = t.force.y, f[2][i] = t.force.z;
     u[i] = t.potential;
   });

@@ -21,6 +21,36 @@
 
 namespace fluidem {
 
+/// What particle i feels from a partner or a wall: the force on i, N, and the pair's potential,
+/// J (a wall's: all of it is i's).
+struct NonContactTerm {
+  Vec3 force;
+  double potential = 0.0;
+  bool in_range = false;
+};
+/// Particle i and particle j of p (minimum image along the box's periodic axes, as the neighbour
+/// lists compute it): the two of a pair get the same magnitude along opposite directions.
+NonContactTerm noncontact_pair(const NonContactSpec& spec, const BoxGeometry& box,
+                               const ParticleStore& p, std::size_t i, std::size_t j);
+/// Particle i and the wall of face f (0..5).
+NonContactTerm noncontact_wall(const NonContactSpec& spec, const BoxGeometry& box,
+                               const ParticleStore& p, std::size_t i, int face);
+/// A particle's sum: the pairs in range (half the potential each), then the walls in range.
+inline void add_pair_term(NonContactTerm& sum, const NonContactTerm& t) {
+  if (!t.in_range) return;
+  sum.force += t.force;
+  sum.potential += 0.5 * t.potential;
+}
+inline void add_wall_term(NonContactTerm& sum, const NonContactTerm& t) {
+  if (!t.in_range) return;
+  sum.force += t.force;
+  sum.potential += t.potential;
+}
+/// The range beyond contact a list must cover for `spec` among p: van der Waals to its range;
+/// Coulomb (centre distance r_c) to r_c - 2 r_min, which also covers a particle's own image
+/// (2 z < r_c). std::invalid_argument when the cut-off cannot reach past contact.
+double noncontact_reach(const NonContactSpec& spec, const ParticleStore& p);
+
 class ConservativePairForces {
 public:
   /// The forces `spec` turns on, for the particles p (their radii and charges) in `box`; `skin`:
@@ -41,19 +71,10 @@ public:
   const NeighbourList& list() const { return nl_; }
 
 private:
-  /// What particle i feels from partner j: the force on i, N, and the pair's potential, J.
-  struct PairTerm {
-    Vec3 force;
-    double potential = 0.0;
-    bool in_range = false;
-  };
-  PairTerm pair(const ParticleStore& p, std::size_t i, std::size_t j) const;
-  /// Particle i and wall face f: the force on i and the potential.
-  PairTerm wall(const ParticleStore& p, std::size_t i, int f) const;
   /// Rebuild the list when a particle moved far or the particles were reordered, then the rows.
   void update(const ParticleStore& p);
   /// Force on particle i and its share of the potential (pairs halved).
-  PairTerm particle(const ParticleStore& p, std::size_t i) const;
+  NonContactTerm particle(const ParticleStore& p, std::size_t i) const;
 
   NonContactSpec spec_;
   BoxGeometry box_;
