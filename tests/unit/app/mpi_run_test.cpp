@@ -146,9 +146,11 @@ TEST(MpiRun, RanksWriteTheFilesOfOneProcess) {
 }
 
 TEST(MpiRun, CoupledBedOnRanksWritesTheFilesOfOneProcess) {
-  // Every rank steps the gas on all particles gathered in id order; each rank's own particles
-  // take their drag from it: series.csv (with the pressure drop and bed height), the gas fields
-  // and the checkpoints are those of one process, and a checkpoint of 3 ranks continues on 2.
+  // Each rank deposits its own particles into its copy of the gas in fixed point, the ranks sum
+  // the grids, and every rank steps the same gas (docs/parallel.md): series.csv (with the
+  // pressure drop and bed height), the gas fields and the checkpoints are those of one process
+  // with two threads, on 2 to 4 ranks cut into columns, slabs and 2 x 2 boxes, and a checkpoint
+  // of 3 ranks continues on 2. A control with another insertion seed differs.
   TempDir tmp;
   const auto bed = tmp.write("coupled.toml", kCoupled);
   const Result one = test::fluidem(
@@ -157,13 +159,22 @@ TEST(MpiRun, CoupledBedOnRanksWritesTheFilesOfOneProcess) {
   ASSERT_EQ(one.code, 0) << one.err;
   const std::string series = test::read_file(tmp.path / "one" / "series.csv");
   EXPECT_TRUE(contains(series, "pressure_drop")) << series;
-  for (int p : {2, 4}) {
-    const std::string out = "p" + std::to_string(p);
-    const Result r = mpirun(p, {"run", bed.string(), "--out", out}, tmp.path);
+  const std::vector<std::pair<int, std::string>> layouts = {
+      {2, "auto"}, {2, "[1, 1, 2]"}, {3, "[3, 1, 1]"}, {4, "auto"}, {4, "[2, 2, 1]"}};
+  for (const auto& [p, grid] : layouts) {
+    const std::string out = "p" + std::to_string(p) + (grid == "auto" ? "" : "g");
+    const std::string value = grid == "auto" ? "\"auto\"" : grid;
+    const Result r =
+        mpirun(p, {"run", bed.string(), "--out", out, "--set", "parallel.process_grid=" + value},
+               tmp.path);
     ASSERT_EQ(r.code, 0) << r.err << r.out;
-    EXPECT_EQ(test::read_file(tmp.path / out / "series.csv"), series) << p << " ranks";
+    EXPECT_EQ(test::read_file(tmp.path / out / "series.csv"), series) << p << " ranks, " << grid;
     expect_same_checkpoints(tmp.path / "one" / "checkpoint.h5", tmp.path / out / "checkpoint.h5");
   }
+  const Result other =
+      mpirun(2, {"run", bed.string(), "--out", "seed", "--set", "insert[0].seed=5"}, tmp.path);
+  ASSERT_EQ(other.code, 0) << other.err;
+  EXPECT_NE(test::read_file(tmp.path / "seed" / "series.csv"), series);
   const Result half = mpirun(
       3, {"run", bed.string(), "--out", "half", "--set", "simulation.end_time=0.004"}, tmp.path);
   ASSERT_EQ(half.code, 0) << half.err;
