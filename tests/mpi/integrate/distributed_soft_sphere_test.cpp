@@ -181,6 +181,61 @@ TEST(DistributedSoftSphere, RebalancedSlabsGiveTheBitsOfOneRank) {
   }
 }
 
+/// Three spheres at the first cut plane x_c of columns (the box's middle on one rank): A rests
+/// on the fixed sphere B across the plane (A's centre on the low side, B's on the high side,
+/// overlap 1e-5 d: a contact held by gravity, sliding along y, with tangential and rolling
+/// history), and C flies along x at 5 m/s, 3 d before the plane: it crosses it at step 180.
+ParticleStore straddling(double x_c) {
+  constexpr double d = test::kJitteredD;
+  const double y0 = 0.03, z0 = 0.02;
+  ParticleStore p;
+  p.add({x_c + 0.25 * d, y0, z0}, {}, 0.5 * d, 2500.0, 0, 0);                              // B
+  p.add({x_c - 0.25 * d, y0, z0 + 0.866014 * d}, {0.0, 0.05, 0.0}, 0.5 * d, 2500.0, 0, 1); // A
+  p.add({x_c - 3.0 * d, y0 + 3.0 * d, z0}, {5.0, 0.0, 0.0}, 0.5 * d, 2500.0, 0, 2);        // C
+  for (int k = 0; k < 6; ++k) // apart, at rest on the low side: the balance moves the plane
+    p.add({x_c - 5.0 * d, y0 - 4.0 * d + 1.5 * k * d, z0}, {}, 0.5 * d, 2500.0, 0, 3 + k);
+  p.inv_mass[0] = 0.0, p.inv_inertia[0] = 0.0;
+  return p;
+}
+
+/// The hash of the three spheres after 300 steps, with a balance by work at step 150 (whose cut
+/// planes must move when there are some); the contact must be alive then.
+std::uint64_t straddling_run(const Communicator& comm, double x_c) {
+  const CaseSpec spec = bed_spec();
+  DistributedSoftSphere dem(comm, std::make_unique<ContactTable>(spec), test::box_of(spec),
+                            settings({comm.size(), 1, 1}), straddling(x_c));
+  dem.advance(150);
+  const DistributedState mid = dem.gather(true);
+  if (comm.root()) {
+    EXPECT_GE(mid.history.key.size(), 2u); // A-B, in both rows
+  }
+  const std::vector<int> before = dem.decomposition().cuts(0);
+  dem.rebalance(false);
+  if (comm.size() > 1) {
+    EXPECT_NE(dem.decomposition().cuts(0), before);
+  }
+  dem.advance(150);
+  const DistributedState end = dem.gather(true);
+  if (comm.root()) {
+    EXPECT_GT(end.particles.x[2], x_c + 0.5 * test::kJitteredD); // C crossed the first plane
+  }
+  return outcome(comm, dem).hash;
+}
+
+TEST(DistributedSoftSphere, ContactAcrossAMovingCutPlaneWhileAParticleCrosses) {
+  // The contact straddling the cut plane keeps its history while C crosses the plane and the
+  // balance moves the plane (it leaves the ranks with a particle each): the bits of one rank.
+  const Communicator& world = Communicator::world();
+  const CaseSpec spec = bed_spec();
+  const Decomposition columns(settings({world.size(), 1, 1}).cells, world.size(), 2,
+                              {world.size(), 1, 1});
+  const double cell = test::kJitteredL / 20.0;
+  const double x_c = world.size() > 1 ? cell * columns.cuts(0)[1] : 0.5 * test::kJitteredL;
+  const std::uint64_t many = straddling_run(world, x_c);
+  if (!world.root()) return;
+  EXPECT_EQ(many, straddling_run(Communicator::self(), x_c));
+}
+
 TEST(DistributedSoftSphere, AnotherStartGivesOtherBits) {
   const Communicator& world = Communicator::world();
   const Outcome nudged = run(world, {0, 0, 0}, 1e-12);
