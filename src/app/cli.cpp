@@ -342,8 +342,11 @@ int run_command(RunArgs& a) {
     fmt::print(stderr,
                "stopped by {} at t = {:.6g} s (step {}): checkpoint {}, outputs flushed in "
                "{}\ncontinue with: fluidem run --restart {}\n",
-               sig == SIGINT ? "SIGINT" : (sig == SIGTERM ? "SIGTERM" : "a signal"), sim.time(),
-               sim.step_count(), s.checkpoint, a.out_dir, s.checkpoint);
+               sig == SIGINT    ? "SIGINT"
+               : sig == SIGTERM ? "SIGTERM"
+               : sig == SIGUSR1 ? "SIGUSR1"
+                                : "a signal",
+               sim.time(), sim.step_count(), s.checkpoint, a.out_dir, s.checkpoint);
     return 128 + sig;
   }
   print_run_summary(sim, s, a.out_dir);
@@ -383,8 +386,8 @@ int run_cli(int argc, char** argv) {
   CLI::App app{
       "fluidem: discrete particle simulation of gas-fluidised beds (CFD-DEM)\n"
       "Exit codes: 0 success, 2 invalid input, 3 run stopped because it went unstable, 4 an "
-      "output could not be written (disk full, I/O error), 130/143 stopped by "
-      "SIGINT/SIGTERM.",
+      "output could not be written (disk full, I/O error), 130/143/138 stopped by "
+      "SIGINT/SIGTERM/SIGUSR1 (under mpirun: SIGUSR1, see docs/parallel.md).",
       "fluidem"};
   app.set_version_flag("--version", std::string("fluidem ") + kVersion);
   app.require_subcommand(1);

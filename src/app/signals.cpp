@@ -39,12 +39,14 @@ const std::atomic<int>& install_stop_handlers() {
   g_stop.store(0);
   set_handler(SIGINT, on_stop_signal);
   set_handler(SIGTERM, on_stop_signal);
+  set_handler(SIGUSR1, on_stop_signal);
   return g_stop;
 }
 
 void remove_stop_handlers() {
   set_handler(SIGINT, SIG_DFL);
   set_handler(SIGTERM, SIG_DFL);
+  set_handler(SIGUSR1, SIG_DFL);
 }
 
 } // namespace fluidem

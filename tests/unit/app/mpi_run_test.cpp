@@ -432,6 +432,33 @@ conducting_walls = ["z_lo"]
   EXPECT_GT(std::abs(with.back() - without.back()), 1e-3 * std::abs(without.back()));
 }
 
+TEST(MpiRun, SigUsr1StopsEveryRankWithACheckpoint) {
+  // SIGUSR1 to mpirun (forwarded to every rank; SIGINT and SIGTERM make Open MPI kill the ranks
+  // a second later, docs/parallel.md): the ranks stop after the same step, the root writes the
+  // checkpoint and says so once, the run exits 138, and the checkpoint continues on 3 ranks.
+  TempDir tmp;
+  const auto bed = tmp.write("long.toml", kBed);
+  const std::string cmd =
+      "timeout --preserve-status -s USR1 4 mpirun --oversubscribe --allow-run-as-root --mca btl "
+      "self,vader -n 2 " +
+      test::quote(FLUIDEM_BINARY) + " run " + test::quote(bed.string()) +
+      " --out stopped --set simulation.end_time=5.0 -t 1";
+  const Result r = test::run_command(cmd, tmp.path);
+  ASSERT_EQ(r.code, 138) << r.err;
+  const std::string said = "stopped by SIGUSR1 at t = ";
+  ASSERT_TRUE(contains(r.err, said)) << r.err;
+  EXPECT_EQ(r.err.find(said), r.err.rfind(said)) << r.err; // once, by the root
+  const double t = std::stod(r.err.substr(r.err.find(said) + said.size()));
+  EXPECT_GT(t, 0.0);
+  const CheckpointReader ck((tmp.path / "stopped" / "checkpoint.h5").string());
+  EXPECT_TRUE(ck.has("rank_independent/contact"));
+  const Result cont = mpirun(3,
+                             {"run", "--restart", (tmp.path / "stopped" / "checkpoint.h5").string(),
+                              "--set", "simulation.end_time=" + std::to_string(t + 0.001)},
+                             tmp.path, 120);
+  EXPECT_EQ(cont.code, 0) << cont.err;
+}
+
 TEST(MpiRun, WhatTheRanksDoNotTakeIsRefused) {
   TempDir tmp;
   const auto bed = tmp.write("bed.toml", kBed);
