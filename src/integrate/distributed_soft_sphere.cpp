@@ -391,25 +391,6 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
   return g;
 }
 
-void DistributedSoftSphere::gather_all(ParticleStore& all) const {
-  std::vector<char> bytes;
-  {
-    const std::vector<double> none;
-    const auto parts = comm_.gather(pack_particles(p_, owned_, none, 0));
-    for (const auto& b : parts) bytes.insert(bytes.end(), b.begin(), b.end());
-  }
-  comm_.broadcast(bytes);
-  all.resize(0);
-  all.reserve(static_cast<std::size_t>(total_));
-  std::vector<double> none;
-  unpack_particles(bytes, all, none, 0);
-  std::vector<std::uint32_t> order(all.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return all.id[a] < all.id[b]; });
-  all.permute(order);
-}
-
 void DistributedSoftSphere::own_particles(ParticleStore& out) const {
   out.resize(owned_);
   std::vector<const void*> from;

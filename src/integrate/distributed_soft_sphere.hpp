@@ -108,8 +108,6 @@ public:
   /// totals of dissipated_energy() and contact_stats() on every rank. Collective.
   void observe(ParticleStore& all);
 
-  /// Every particle in id order on every rank. Collective.
-  void gather_all(ParticleStore& all) const;
   /// This rank's own particles (no ghosts), in its local order: what the gas coupling of a
   /// flow step reads (docs/parallel.md).
   void own_particles(ParticleStore& out) const;
@@ -117,7 +115,7 @@ public:
   /// particle i (the order of own_particles()), N.
   void hold_own_forces(const std::array<const double*, 3>& f);
   /// The force on each own particle held over the coming flow step (the gas's), from the
-  /// forces f[axis][k] on the particles `all` (in id order, gather_all()), N.
+  /// forces f[axis][k] on the particles `all` (in id order: a checkpoint's), N.
   void hold_forces(const ParticleStore& all, const std::array<const double*, 3>& f);
 
   /// Moves the cut planes of every cut axis so that each rank's part of the cost is as near the

@@ -288,8 +288,8 @@ private:
   DistributedSoftSphere* dist_ = nullptr; ///< stepper_ when rank-independent
   const Communicator* comm_ = &Communicator::self();
   const DistributedState* restart_state_ = nullptr; ///< during a restart's construction
-  /// Rank-independent coupled runs: every particle in id order, gathered on every rank for
-  /// the flow step (the gas and the coupling are computed by each rank on all of them).
+  /// Rank-independent coupled runs: this rank's own particles, copied for the flow step (each
+  /// rank couples them to its copy of the gas; GasCoupling::distribute).
   ParticleStore coupled_;
   HardSphereStepper* hard_ = nullptr; ///< stepper_ when engine = "hard_sphere"
   long steps_per_flow_ = 1;           ///< particle steps per gas step
