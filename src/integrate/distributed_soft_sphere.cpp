@@ -275,10 +275,14 @@ void DistributedSoftSphere::rebalance(bool measured) {
   sent_before_[0] += exchange_->bytes_sent(), sent_before_[1] += exchange_->messages_sent();
   exchange_ = std::make_unique<ParticleExchange>(comm_, map_, exchange_->halo());
   ++rebalances_;
-  rebuild(); // the particles to their new owners
+  // The particles to their new owners. Planes that moved far can give a particle to a rank
+  // whose box is not next to its old owner's: this one migration may go to every rank.
+  ParticleExchange anywhere(comm_, map_, std::numeric_limits<double>::infinity());
+  rebuild(&anywhere);
+  sent_before_[0] += anywhere.bytes_sent(), sent_before_[1] += anywhere.messages_sent();
 }
 
-void DistributedSoftSphere::rebuild() {
+void DistributedSoftSphere::rebuild(ParticleExchange* migration) {
   // The cut planes move to balance the measured cost every balance_interval builds, before the
   // particles move to their owners (rebalance() calls this again with the new cuts).
   if (s_.balance_interval > 0 && builds_ > 0 && builds_ % s_.balance_interval == 0 &&
@@ -304,7 +308,8 @@ void DistributedSoftSphere::rebuild() {
       c[20] = nc_potential_[i];
     }
   }
-  const std::vector<ParticleTooFar> lost = exchange_->migrate(p_, kept, carried, kCarried);
+  const std::vector<ParticleTooFar> lost =
+      (migration ? *migration : *exchange_).migrate(p_, kept, carried, kCarried);
   const std::size_t n = p_.size();
   dissipated_.resize(n), sums_.elastic.resize(n), sums_.acc.resize(12 * n), held_.resize(3 * n);
   if (nc_rows_) nc_force_.resize(3 * n), nc_potential_.resize(n);

@@ -153,7 +153,9 @@ private:
                         const BoxGeometry& box, const Settings& settings, const ParticleStore& all,
                         const DistributedState* state);
   void kick();
-  void rebuild();
+  /// A list build: the particles to their owners (through `migration`, or the ghost exchange's
+  /// neighbours), then the ghosts and the rows.
+  void rebuild(ParticleExchange* migration = nullptr);
   /// The totals of a gathered state (sums on the root, broadcast). Collective.
   Totals totals_of(const DistributedState& g) const;
 
