@@ -236,6 +236,59 @@ TEST(DistributedSoftSphere, ContactAcrossAMovingCutPlaneWhileAParticleCrosses) {
   EXPECT_EQ(many, straddling_run(Communicator::self(), x_c));
 }
 
+/// Three lines of 19 touching spheres along y (0.001 d apart), at rest on the floor of a box
+/// closed along x, in x cells 0, 3 and 5: the even cuts of 3 columns, {0, 6, 13, 20}, give all
+/// three to rank 0. Each line costs the same work (19 particles + 36 row entries), so a balance
+/// by work cuts at {0, 1, 4, 20}: the line in cell 5 goes from rank 0 to rank 2, whose new box
+/// (cells 4-19) is 3 cells (9 mm) from rank 0's (cell 0), farther than the halo (2 d + 2 skin =
+/// 6.6 mm): the two ranks are not neighbours any more.
+ParticleStore three_lines() {
+  constexpr double d = test::kJitteredD;
+  ParticleStore p;
+  std::int64_t id = 0;
+  for (const double x : {0.5 * d, 3.5 * d, 5.5 * d})
+    for (int j = 0; j < 19; ++j, ++id)
+      p.add({x, 0.5 * d + j * 1.001 * d, 0.5 * d}, {}, 0.5 * d, 2500.0, 0, id);
+  return p;
+}
+
+/// The hash after 40 steps, a balance by work and 60 more; the owners of the last line's first
+/// sphere before and after the balance.
+std::uint64_t far_balance_run(const Communicator& comm, int* before, int* after) {
+  CaseSpec spec = bed_spec();
+  spec.domain.periodic = {false, false, false};
+  DistributedSoftSphere::Settings s = settings({comm.size(), 1, 1});
+  s.cells.periodic = spec.domain.periodic;
+  const ParticleStore start = three_lines();
+  const std::size_t moved = 38;
+  DistributedSoftSphere dem(comm, std::make_unique<ContactTable>(spec), test::box_of(spec), s,
+                            start);
+  dem.advance(40);
+  *before = dem.decomposition().owner(start.x[moved], start.y[moved], start.z[moved]);
+  dem.rebalance(false);
+  *after = dem.decomposition().owner(start.x[moved], start.y[moved], start.z[moved]);
+  dem.advance(60);
+  return outcome(comm, dem).hash;
+}
+
+TEST(DistributedSoftSphere, BalanceThatSendsParticlesToAFarRank) {
+  // Regression: the migration after a balance went to the neighbouring ranks only (in the new
+  // cuts), and the run stopped with "particle ... left the ranks next to its own" when the
+  // planes moved far (seen in CI at 3 ranks, planes moved by noisy measured timings). Here, at
+  // 3 ranks, the planes move far by design; at every rank count the run must give the bits of
+  // one rank.
+  const Communicator& world = Communicator::world();
+  int before = 0, after = 0;
+  const std::uint64_t many = far_balance_run(world, &before, &after);
+  if (!world.root()) return;
+  if (world.size() == 3) {
+    EXPECT_EQ(before, 0);
+    EXPECT_EQ(after, 2);
+  }
+  int one_before = 0, one_after = 0;
+  EXPECT_EQ(many, far_balance_run(Communicator::self(), &one_before, &one_after));
+}
+
 TEST(DistributedSoftSphere, AnotherStartGivesOtherBits) {
   const Communicator& world = Communicator::world();
   const Outcome nudged = run(world, {0, 0, 0}, 1e-12);
