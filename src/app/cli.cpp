@@ -298,7 +298,7 @@ int run_command(RunArgs& a) {
   if (!ranks.root()) {
     RunOptions ro;
     ro.write_outputs = false;
-    ro.stop = &install_stop_handlers();
+    ro.stop = &install_stop_handlers(false); // the root announces the stop
     const RunSummary s = sim.run(a.out_dir, {}, ro);
     remove_stop_handlers();
     return s.stopped_by_signal != 0 ? 128 + s.stopped_by_signal : 0;

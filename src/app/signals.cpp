@@ -8,7 +8,9 @@ namespace fluidem {
 namespace {
 
 std::atomic<int> g_stop{0};
+std::atomic<bool> g_announce{true};
 static_assert(std::atomic<int>::is_always_lock_free, "the signal flag must be lock-free");
+static_assert(std::atomic<bool>::is_always_lock_free, "the announce flag must be lock-free");
 
 extern "C" void on_stop_signal(int sig) {
   int expected = 0;
@@ -19,6 +21,7 @@ extern "C" void on_stop_signal(int sig) {
     (void)ignored;
     ::_exit(128 + sig);
   }
+  if (!g_announce.load()) return;
   static const char msg[] = "\nfluidem: stopping after this step (writing a checkpoint; press "
                             "Ctrl-C again to abort at once)\n";
   const ssize_t ignored = ::write(2, msg, sizeof msg - 1);
@@ -35,8 +38,9 @@ void set_handler(int sig, void (*handler)(int)) {
 
 } // namespace
 
-const std::atomic<int>& install_stop_handlers() {
+const std::atomic<int>& install_stop_handlers(bool announce) {
   g_stop.store(0);
+  g_announce.store(announce);
   set_handler(SIGINT, on_stop_signal);
   set_handler(SIGTERM, on_stop_signal);
   set_handler(SIGUSR1, on_stop_signal);

@@ -10,8 +10,9 @@
 namespace fluidem {
 
 /// Installs the handlers (sigaction) and returns the flag they set: 0 until a signal arrives,
-/// then its number.
-const std::atomic<int>& install_stop_handlers();
+/// then its number. `announce`: the first signal prints that the run stops after this step (a
+/// run on several ranks announces it on the root only: mpirun forwards the signal to each).
+const std::atomic<int>& install_stop_handlers(bool announce = true);
 /// Puts the default handlers back.
 void remove_stop_handlers();
 

@@ -288,6 +288,16 @@ TEST(MpiRun, UnstableRunStopsEveryRankWithExit3) {
   EXPECT_EQ(r.err.find("error:"), r.err.rfind("error:")) << r.err;
 }
 
+/// `fluidem run CASE --out OUT` with the options `common`, then `extra`.
+std::vector<std::string> run_args(const std::filesystem::path& bed, const std::string& out,
+                                  const std::vector<std::string>& common,
+                                  const std::vector<std::string>& extra) {
+  std::vector<std::string> a = {"run", bed.string(), "--out", out};
+  a.insert(a.end(), common.begin(), common.end());
+  a.insert(a.end(), extra.begin(), extra.end());
+  return a;
+}
+
 /// The column `name` of a series.csv, per row.
 std::vector<double> column(const std::string& csv, const std::string& name) {
   std::vector<double> out;
@@ -329,11 +339,8 @@ wavelength = 0.02
 )");
   const std::vector<std::string> still = {"--set", "simulation.gravity=[0.0, 0.0, 0.0]", "--set",
                                           "insert[0].velocity_spread=0.0"};
-  auto args = [&](const std::string& out, std::vector<std::string> extra) {
-    std::vector<std::string> a = {"run", bed.string(), "--out", out};
-    a.insert(a.end(), still.begin(), still.end());
-    a.insert(a.end(), extra.begin(), extra.end());
-    return a;
+  auto args = [&](const std::string& out, const std::vector<std::string>& extra) {
+    return run_args(bed, out, still, extra);
   };
   const Result one =
       test::fluidem(args("one", {"-t", "1", "--set", "parallel.rank_independent=true"}), tmp.path);
@@ -387,11 +394,8 @@ conducting_walls = ["z_lo"]
       "--set", "species[0].charge=1e-10",           "--set", "simulation.time_step=1.25e-6",
       "--set", "simulation.end_time=0.003",         "--set", "output.series_interval=0.0002",
       "--set", "output.checkpoint_interval=0.0015", "--set", "insert[0].count=600"};
-  auto args = [&](const std::string& out, std::vector<std::string> extra) {
-    std::vector<std::string> a = {"run", bed.string(), "--out", out};
-    a.insert(a.end(), charged.begin(), charged.end());
-    a.insert(a.end(), extra.begin(), extra.end());
-    return a;
+  auto args = [&](const std::string& out, const std::vector<std::string>& extra) {
+    return run_args(bed, out, charged, extra);
   };
   const Result one =
       test::fluidem(args("one", {"-t", "2", "--set", "parallel.rank_independent=true"}), tmp.path);
@@ -438,16 +442,23 @@ TEST(MpiRun, SigUsr1StopsEveryRankWithACheckpoint) {
   // checkpoint and says so once, the run exits 138, and the checkpoint continues on 3 ranks.
   TempDir tmp;
   const auto bed = tmp.write("long.toml", kBed);
+  // The signal goes once the run has begun (its series.csv exists, written after the stop
+  // handlers are in place; a second more for the ranks' handlers): a fixed delay raced with the
+  // set-up on a loaded machine, where SIGUSR1 then ended a rank before its handler was there.
   const std::string cmd =
-      "timeout --preserve-status -s USR1 4 mpirun --oversubscribe --allow-run-as-root --mca btl "
-      "self,vader -n 2 " +
+      "( mpirun --oversubscribe --allow-run-as-root --mca btl self,vader -n 2 " +
       test::quote(FLUIDEM_BINARY) + " run " + test::quote(bed.string()) +
-      " --out stopped --set simulation.end_time=5.0 -t 1";
+      " --out stopped --set simulation.end_time=5.0 -t 1 & pid=$!; i=0; "
+      "while [ ! -s stopped/series.csv ] && [ $i -lt 600 ]; do sleep 0.2; i=$((i+1)); done; "
+      "sleep 1; kill -USR1 $pid; wait $pid )";
   const Result r = test::run_command(cmd, tmp.path);
   ASSERT_EQ(r.code, 138) << r.err;
   const std::string said = "stopped by SIGUSR1 at t = ";
   ASSERT_TRUE(contains(r.err, said)) << r.err;
   EXPECT_EQ(r.err.find(said), r.err.rfind(said)) << r.err; // once, by the root
+  const std::string stopping = "stopping after this step"; // the handler's notice: once too
+  ASSERT_TRUE(contains(r.err, stopping)) << r.err;
+  EXPECT_EQ(r.err.find(stopping), r.err.rfind(stopping)) << r.err;
   const double t = std::stod(r.err.substr(r.err.find(said) + said.size()));
   EXPECT_GT(t, 0.0);
   const CheckpointReader ck((tmp.path / "stopped" / "checkpoint.h5").string());
