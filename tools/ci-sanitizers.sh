@@ -13,6 +13,8 @@ build=build-asan
 # keeps warnings as errors.
 # -O1 -g1 (the sanitizers' recommended optimisation, line tables only, asserts on): the build
 # is the longest part of this stage; RelWithDebInfo (-O2 -g) took 12 min on the loaded machine.
+# No target clones (one code path, CMakeLists.txt) and the test files at -O0
+# (tests/CMakeLists.txt): 585 s instead of 847 s for this build on 2026-12-06.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=None -DFLUIDEM_SANITIZE=ON \
   -DFLUIDEM_WERROR=OFF -DFLUIDEM_BUILD_BENCH=OFF \
   -DCMAKE_CXX_FLAGS="-O1 -g1 -fno-sanitize-recover=undefined" \
