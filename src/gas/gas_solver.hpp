@@ -158,6 +158,9 @@ public:
   const LinearSolverOptions& linear_solver_options() const { return lin_; }
   /// Changes the linear solvers (results stay within the linear tolerance).
   void set_linear_solver_options(const LinearSolverOptions& options);
+  /// Solves the pressure correction together with the ranks of `ranks`, with the same bits
+  /// for any number of them (StructLinearSolver::share); before the first step only.
+  void share_pressure_solve(const SharedSolve& ranks) { pressure_solver_->share(ranks); }
   const LinearSolverCounters& linear_counters() const { return counters_; }
 
   /// Face roles (internal, exposed for tests and coupling): solved, fixed, ...

@@ -1,17 +1,21 @@
-// hypre Struct wrapper: PFMG- (or SMG-) preconditioned PCG / GMRES on one box, one MPI rank,
-// with the hypre objects kept from solve to solve (pressure_solver.hpp).
+// hypre Struct wrapper: PFMG- (or SMG-) preconditioned PCG / GMRES on one box, on one MPI rank or
+// shared by several (share()), with the hypre objects kept from solve to solve
+// (pressure_solver.hpp).
 // Open MPI: C bindings only (the C++ bindings would need libmpi_cxx at link time).
 #define OMPI_SKIP_MPICXX 1
 #define MPICH_SKIP_MPICXX 1
 #include "gas/pressure_solver.hpp"
 #include "core/error.hpp"
 #include "gas/band_solver.hpp"
+#include "gas/rank_dot.hpp"
+#include "gas/shared_pcg.hpp"
 #include <HYPRE_struct_ls.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <mpi.h>
 #include <mutex>
+#include <stdexcept>
 
 namespace fluidem::gas {
 
@@ -91,6 +95,37 @@ struct StructLinearSolver::Impl {
   int iterations_after_setup = 0; ///< of the first solve after the last set-up
   long n_setups = 0, n_solves = 0, n_direct = 0;
   std::vector<double> values, buf_b, buf_x;
+
+  // Shared solve (share()): this rank's part plo..phi of the box (padded indices; all of it
+  // when not shared), its hypre extents, every rank's part, and the vector of matrix products.
+  bool shared = false;
+  SharedSolve sh;
+  std::array<int, 3> plo{}, phi{}, phlo{}, phhi{};
+  long part_cells = 0;
+  std::vector<std::array<int, 6>> parts; ///< per rank: lo[3], hi[3] (padded indices)
+  HYPRE_StructVector y = nullptr;
+  std::vector<double> gathered;
+  std::vector<int> counts, displs;
+
+  MPI_Comm comm() const { return shared && sh.comm != -1 ? MPI_Comm_f2c(sh.comm) : MPI_COMM_SELF; }
+  std::array<int, 3> axis_of_hypre() const {
+    return ndim == 2 ? std::array<int, 3>{0, 2, 2} : std::array<int, 3>{0, 1, 2};
+  }
+  static long count(const std::array<int, 3>& a, const std::array<int, 3>& b) {
+    long n = 1;
+    for (int d = 0; d < 3; ++d) n *= std::max(0, b[d] - a[d] + 1);
+    return n;
+  }
+  void set_part(std::array<int, 3> l, std::array<int, 3> h) {
+    plo = l;
+    phi = h;
+    part_cells = count(l, h);
+    const auto axis = axis_of_hypre();
+    for (int a = 0; a < ndim; ++a) {
+      phlo[a] = l[axis[a]];
+      phhi[a] = h[axis[a]];
+    }
+  }
 
   // Direct solver (StructSolverOptions::direct_max_work): the box's unknowns numbered with
   // the longest axis slowest; per band index its padded index, the band offsets of the
@@ -183,8 +218,8 @@ struct StructLinearSolver::Impl {
 
   void make_hypre() {
     ensure_mpi_initialised();
-    HYPRE_StructGridCreate(MPI_COMM_SELF, ndim, &grid);
-    HYPRE_StructGridSetExtents(grid, hlo.data(), hhi.data());
+    HYPRE_StructGridCreate(comm(), ndim, &grid);
+    if (part_cells > 0) HYPRE_StructGridSetExtents(grid, phlo.data(), phhi.data());
     HYPRE_StructGridSetPeriodic(grid, hperiod.data());
     HYPRE_StructGridAssemble(grid);
     HYPRE_StructStencilCreate(ndim, nentries, &stencil);
@@ -193,13 +228,17 @@ struct StructLinearSolver::Impl {
       if (e > 0) offset[(e - 1) / 2] = e % 2 == 1 ? -1 : 1; // m, p along hypre axis (e-1)/2
       HYPRE_StructStencilSetElement(stencil, e, offset.data());
     }
-    HYPRE_StructMatrixCreate(MPI_COMM_SELF, grid, stencil, &A);
+    HYPRE_StructMatrixCreate(comm(), grid, stencil, &A);
     HYPRE_StructMatrixInitialize(A);
-    HYPRE_StructVectorCreate(MPI_COMM_SELF, grid, &b);
+    HYPRE_StructVectorCreate(comm(), grid, &b);
     HYPRE_StructVectorInitialize(b);
-    HYPRE_StructVectorCreate(MPI_COMM_SELF, grid, &x);
+    HYPRE_StructVectorCreate(comm(), grid, &x);
     HYPRE_StructVectorInitialize(x);
-    const auto n = static_cast<std::size_t>(cells);
+    if (shared) {
+      HYPRE_StructVectorCreate(comm(), grid, &y);
+      HYPRE_StructVectorInitialize(y);
+    }
+    const auto n = static_cast<std::size_t>(part_cells);
     values.resize(static_cast<std::size_t>(nentries) * n);
     buf_b.resize(n);
     buf_x.resize(n);
@@ -218,7 +257,7 @@ struct StructLinearSolver::Impl {
   void setup_mg() {
     destroy_mg();
     if (opt.multigrid == StructSolverOptions::Multigrid::smg) {
-      HYPRE_StructSMGCreate(MPI_COMM_SELF, &mg);
+      HYPRE_StructSMGCreate(comm(), &mg);
       HYPRE_StructSMGSetMemoryUse(mg, 0);
       HYPRE_StructSMGSetMaxIter(mg, 1);
       HYPRE_StructSMGSetTol(mg, 0.0);
@@ -227,7 +266,7 @@ struct StructLinearSolver::Impl {
       HYPRE_StructSMGSetNumPostRelax(mg, opt.post_relax);
       HYPRE_StructSMGSetup(mg, A, b, x);
     } else {
-      HYPRE_StructPFMGCreate(MPI_COMM_SELF, &mg);
+      HYPRE_StructPFMGCreate(comm(), &mg);
       HYPRE_StructPFMGSetMaxIter(mg, 1);
       HYPRE_StructPFMGSetTol(mg, 0.0);
       HYPRE_StructPFMGSetZeroGuess(mg);
@@ -243,7 +282,16 @@ struct StructLinearSolver::Impl {
       }
       if (max_levels > 0) levels = levels > 0 ? std::min(levels, max_levels) : max_levels;
       if (levels > 0) HYPRE_StructPFMGSetMaxLevels(mg, levels);
+      // Shared: the coarsening directions from the whole system (each rank holds it), not from
+      // hypre's sums of the coefficients over the ranks, whose rounding depends on the parts.
+      if (shared) HYPRE_StructPFMGSetDxyz(mg, dxyz.data());
       HYPRE_StructPFMGSetup(mg, A, b, x);
+    }
+    if (shared) {
+      ++n_setups;
+      step_started = false;
+      stale = false;
+      return; // shared_pcg() is the Krylov solver
     }
     const bool smg = opt.multigrid == StructSolverOptions::Multigrid::smg;
     const HYPRE_PtrToStructSolverFcn solve_fn = smg ? HYPRE_StructSMGSolve : HYPRE_StructPFMGSolve;
@@ -267,6 +315,133 @@ struct StructLinearSolver::Impl {
     ++n_setups;
     step_started = false;
     stale = false;
+  }
+
+  // Shared: hypre's coarsening weights per hypre axis, 1/sqrt(mean over the whole box of the
+  // |off-diagonal| coefficients along it) (the measure hypre's PFMG computes itself, taken here
+  // from the whole system in one order, so that every rank and every number of ranks coarsens
+  // alike); an axis without links is never coarsened.
+  std::array<double, 3> dxyz{1.0, 1.0, 1.0};
+  void set_dxyz(const StencilSystem& sys) {
+    const std::array<const std::vector<double>*, 6> off{&sys.xm, &sys.xp, &sys.ym,
+                                                        &sys.yp, &sys.zm, &sys.zp};
+    const long sy = padded[0], sz = static_cast<long>(padded[0]) * padded[1];
+    std::array<double, 3> c{};
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i) {
+          const auto p = static_cast<std::size_t>(i + j * sy + k * sz);
+          for (int d = 0; d < 3; ++d)
+            c[d] += std::abs((*off[2 * d])[p]) + std::abs((*off[2 * d + 1])[p]);
+        }
+    const auto axis = axis_of_hypre();
+    dxyz = {1.0, 1.0, 1.0};
+    for (int h = 0; h < ndim; ++h) {
+      const double mean = c[axis[h]] / static_cast<double>(cells);
+      dxyz[h] = mean > 0.0 ? 1.0 / std::sqrt(mean) : 1e100;
+    }
+  }
+
+  // Shared: PCG on this rank's part (guess: its part of the initial guess, then the solution).
+  LinearSolveStats shared_solve(std::vector<double>& guess, double rel_tol, int max_iterations) {
+    const bool mine = part_cells > 0;
+    const auto set = [&](HYPRE_StructVector v, const std::vector<double>& in) {
+      if (mine) // (hypre's argument is not const; it only reads it)
+        HYPRE_StructVectorSetBoxValues(v, phlo.data(), phhi.data(), const_cast<double*>(in.data()));
+      HYPRE_StructVectorAssemble(v);
+    };
+    const auto get = [&](HYPRE_StructVector v, std::vector<double>& out) {
+      out.resize(static_cast<std::size_t>(part_cells));
+      if (mine) HYPRE_StructVectorGetBoxValues(v, phlo.data(), phhi.data(), out.data());
+    };
+    const int handle = sh.comm;
+    SharedPcgOperators op;
+    op.apply = [&](const std::vector<double>& in, std::vector<double>& out) {
+      set(x, in);
+      HYPRE_StructMatrixMatvec(1.0, A, x, 0.0, y);
+      get(y, out);
+    };
+    op.precondition = [&](const std::vector<double>& in, std::vector<double>& out) {
+      set(b, in);
+      HYPRE_StructPFMGSolve(mg, A, b, x);
+      get(x, out);
+    };
+    op.dot = [&](const std::vector<double>& u, const std::vector<double>& v) {
+      return rank_dot(handle, cells, u.data(), v.data(), u.size());
+    };
+    const std::vector<double> rhs = buf_b;
+    const SharedPcgResult r = shared_pcg(op, rhs, guess, rel_tol, max_iterations);
+    HYPRE_ClearAllErrors();
+    LinearSolveStats st;
+    st.iterations = r.iterations;
+    st.relative_residual = r.relative_residual;
+    st.converged = r.converged;
+    return st;
+  }
+
+  // Shared: the parts of every rank into x (padded layout), the same bits on every rank.
+  void gather_into(std::vector<double>& xv) {
+    const long sy = padded[0], sz = static_cast<long>(padded[0]) * padded[1];
+    gathered.resize(static_cast<std::size_t>(cells));
+    if (sh.comm == -1 || sh.size == 1) {
+      std::copy(buf_x.begin(), buf_x.end(), gathered.begin());
+    } else {
+      MPI_Allgatherv(buf_x.data(), static_cast<int>(part_cells), MPI_DOUBLE, gathered.data(),
+                     counts.data(), displs.data(), MPI_DOUBLE, comm());
+    }
+    std::size_t q = 0;
+    for (const auto& pr : parts)
+      for (int k = pr[2]; k <= pr[5]; ++k)
+        for (int j = pr[1]; j <= pr[4]; ++j)
+          for (int i = pr[0]; i <= pr[3]; ++i, ++q)
+            xv[static_cast<std::size_t>(i + j * sy + k * sz)] = gathered[q];
+  }
+
+  // Shared: the box cut into sh.size parts (sh.parts, or each prime factor of the size, largest
+  // first, given to the axis whose parts are longest); rank r has coordinates (x slowest).
+  void cut_into_parts() {
+    std::array<int, 3> n{}, np = sh.parts;
+    for (int d = 0; d < 3; ++d) n[d] = hi[d] - lo[d] + 1;
+    if (np[0] * np[1] * np[2] != sh.size) {
+      if (np != std::array<int, 3>{0, 0, 0})
+        throw std::logic_error("StructLinearSolver::share: parts do not multiply to the size");
+      np = {1, 1, 1};
+      std::vector<int> primes;
+      for (int v = sh.size, f = 2; v > 1;) {
+        if (v % f == 0) {
+          primes.push_back(f);
+          v /= f;
+        } else {
+          ++f;
+        }
+      }
+      std::sort(primes.rbegin(), primes.rend());
+      for (const int f : primes) {
+        int best = 0;
+        for (int d = 1; d < 3; ++d)
+          if (static_cast<long>(n[d]) * np[best] > static_cast<long>(n[best]) * np[d]) best = d;
+        np[best] *= f;
+      }
+    }
+    parts.clear();
+    counts.clear();
+    displs.clear();
+    int offset = 0;
+    for (int r = 0; r < sh.size; ++r) {
+      const std::array<int, 3> c{r / (np[1] * np[2]), (r / np[2]) % np[1], r % np[2]};
+      std::array<int, 6> pr{};
+      for (int d = 0; d < 3; ++d) {
+        pr[d] = lo[d] + static_cast<int>(static_cast<long>(n[d]) * c[d] / np[d]);
+        pr[d + 3] = lo[d] + static_cast<int>(static_cast<long>(n[d]) * (c[d] + 1) / np[d]) - 1;
+      }
+      parts.push_back(pr);
+      const long cnt = count({pr[0], pr[1], pr[2]}, {pr[3], pr[4], pr[5]});
+      counts.push_back(static_cast<int>(cnt));
+      displs.push_back(offset);
+      offset += static_cast<int>(cnt);
+    }
+    const auto& mine = parts[static_cast<std::size_t>(sh.rank)];
+    set_part({mine[0], mine[1], mine[2]}, {mine[3], mine[4], mine[5]});
   }
 
   LinearSolveStats krylov_solve(double rel_tol, int max_iterations) {
@@ -331,6 +506,7 @@ StructLinearSolver::StructLinearSolver(std::array<int, 3> padded, std::array<int
   std::size_t n = 1;
   for (int d = 0; d < 3; ++d) n *= static_cast<std::size_t>(hi[d] - lo[d] + 1);
   m.cells = static_cast<long>(n);
+  m.set_part(lo, hi);
   m.band_possible = symmetric && !periodic[0] && !periodic[1] && !periodic[2];
   if (m.band_possible) {
     std::array<int, 3> ext{hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1};
@@ -353,6 +529,7 @@ StructLinearSolver::~StructLinearSolver() {
   m.destroy_mg();
   if (!m.grid) return; // never solved iteratively: no hypre objects
   HYPRE_StructVectorDestroy(m.x);
+  if (m.y) HYPRE_StructVectorDestroy(m.y);
   HYPRE_StructVectorDestroy(m.b);
   HYPRE_StructMatrixDestroy(m.A);
   HYPRE_StructStencilDestroy(m.stencil);
@@ -400,9 +577,9 @@ LinearSolveStats StructLinearSolver::solve(const StencilSystem& sys, std::vector
                                                     &sys.yp,   &sys.zm, &sys.zp};
   const int ne = m.nentries;
   std::size_t q = 0;
-  for (int k = m.lo[2]; k <= m.hi[2]; ++k)
-    for (int j = m.lo[1]; j <= m.hi[1]; ++j)
-      for (int i = m.lo[0]; i <= m.hi[0]; ++i, ++q) {
+  for (int k = m.plo[2]; k <= m.phi[2]; ++k)
+    for (int j = m.plo[1]; j <= m.phi[1]; ++j)
+      for (int i = m.plo[0]; i <= m.phi[0]; ++i, ++q) {
         const long p = i * sx + j * sy + k * sz;
         double v[7];
         for (int e = 0; e < 7; ++e) v[e] = (*a[e])[p];
@@ -426,41 +603,75 @@ LinearSolveStats StructLinearSolver::solve(const StencilSystem& sys, std::vector
         m.buf_b[q] = sys.rhs[p];
         m.buf_x[q] = x[p];
       }
+  const bool mine = m.part_cells > 0;
   int entries[7] = {0, 1, 2, 3, 4, 5, 6};
-  HYPRE_StructMatrixSetBoxValues(m.A, m.hlo.data(), m.hhi.data(), ne, entries, m.values.data());
+  if (mine)
+    HYPRE_StructMatrixSetBoxValues(m.A, m.phlo.data(), m.phhi.data(), ne, entries, m.values.data());
   HYPRE_StructMatrixAssemble(m.A);
-  HYPRE_StructVectorSetBoxValues(m.b, m.hlo.data(), m.hhi.data(), m.buf_b.data());
+  if (mine) HYPRE_StructVectorSetBoxValues(m.b, m.phlo.data(), m.phhi.data(), m.buf_b.data());
   HYPRE_StructVectorAssemble(m.b);
-  HYPRE_StructVectorSetBoxValues(m.x, m.hlo.data(), m.hhi.data(), m.buf_x.data());
+  if (mine) HYPRE_StructVectorSetBoxValues(m.x, m.phlo.data(), m.phhi.data(), m.buf_x.data());
   HYPRE_StructVectorAssemble(m.x);
 
   using Reuse = StructSolverOptions::Reuse;
   const bool fresh = !m.mg || m.opt.reuse == Reuse::every_solve ||
                      (m.opt.reuse == Reuse::per_step && m.step_started) ||
                      (m.opt.reuse == Reuse::adaptive && m.stale);
+  if (fresh && m.shared) m.set_dxyz(sys);
   if (fresh) m.setup_mg();
-  LinearSolveStats st = m.krylov_solve(rel_tol, max_iterations);
+  std::vector<double> guess = m.shared ? m.buf_x : std::vector<double>{};
+  LinearSolveStats st = m.shared ? m.shared_solve(guess, rel_tol, max_iterations)
+                                 : m.krylov_solve(rel_tol, max_iterations);
   st.setups = fresh ? 1 : 0;
   if (fresh) m.iterations_after_setup = st.iterations;
   if (!st.converged && !fresh) { // the reused set-up was not good enough: redo it and retry
-    HYPRE_StructVectorSetBoxValues(m.x, m.hlo.data(), m.hhi.data(), m.buf_x.data());
+    if (mine) HYPRE_StructVectorSetBoxValues(m.x, m.phlo.data(), m.phhi.data(), m.buf_x.data());
     HYPRE_StructVectorAssemble(m.x);
+    if (m.shared) m.set_dxyz(sys);
     m.setup_mg();
     const int before = st.iterations;
-    st = m.krylov_solve(rel_tol, max_iterations);
+    guess = m.buf_x;
+    st = m.shared ? m.shared_solve(guess, rel_tol, max_iterations)
+                  : m.krylov_solve(rel_tol, max_iterations);
     m.iterations_after_setup = st.iterations;
     st.iterations += before;
     st.setups = 1;
   }
   m.stale = st.iterations > 2 * m.iterations_after_setup + 2;
   ++m.n_solves;
-  HYPRE_StructVectorGetBoxValues(m.x, m.hlo.data(), m.hhi.data(), m.buf_x.data());
-
+  if (m.shared) {
+    m.buf_x = guess;
+    m.gather_into(x);
+    return st;
+  }
+  HYPRE_StructVectorGetBoxValues(m.x, m.phlo.data(), m.phhi.data(), m.buf_x.data());
   q = 0;
   for (int k = m.lo[2]; k <= m.hi[2]; ++k)
     for (int j = m.lo[1]; j <= m.hi[1]; ++j)
       for (int i = m.lo[0]; i <= m.hi[0]; ++i, ++q) x[i * sx + j * sy + k * sz] = m.buf_x[q];
   return st;
+}
+
+void StructLinearSolver::share(const SharedSolve& shared) {
+  Impl& m = *impl_;
+  if (!m.symmetric) throw std::logic_error("StructLinearSolver::share: symmetric systems only");
+  if (m.opt.multigrid != StructSolverOptions::Multigrid::pfmg)
+    throw std::logic_error("StructLinearSolver::share: PFMG only (SMG is not checked to be "
+                           "independent of the parts)");
+  if (m.grid) throw std::logic_error("StructLinearSolver::share: before the first solve only");
+  if (shared.size < 1 || shared.rank < 0 || shared.rank >= shared.size)
+    throw std::logic_error("StructLinearSolver::share: rank outside 0 .. size - 1");
+  if (shared.comm != -1) ensure_mpi_initialised();
+  m.shared = true;
+  m.sh = shared;
+  m.cut_into_parts();
+}
+
+std::array<int, 3> StructLinearSolver::part_lo() const {
+  return impl_->plo;
+}
+std::array<int, 3> StructLinearSolver::part_hi() const {
+  return impl_->phi;
 }
 
 } // namespace fluidem::gas

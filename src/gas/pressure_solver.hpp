@@ -59,6 +59,15 @@ struct StructSolverOptions {
   double direct_max_work = 0.0;
 };
 
+/// The MPI ranks that solve one symmetric system together (StructLinearSolver::share): each
+/// holds the whole system and the whole solution, and solves the rows of its part of the box.
+struct SharedSolve {
+  int comm = -1; ///< the communicator's MPI_Comm_c2f handle; -1: this process alone
+  int rank = 0, size = 1;
+  /// Parts per grid axis (product = size), or {0, 0, 0}: chosen (the longest parts cut first).
+  std::array<int, 3> parts{0, 0, 0};
+};
+
 class StructLinearSolver {
 public:
   /// padded: array dimensions (x fastest); lo/hi: inclusive box of unknowns in padded indices;
@@ -74,6 +83,18 @@ public:
   /// Solves for x on the box (x outside the box untouched); x holds the initial guess.
   LinearSolveStats solve(const StencilSystem& sys, std::vector<double>& x, double rel_tol,
                          int max_iterations);
+  /// From now on, solve on the ranks of `shared`, with the same bits for any number of them
+  /// (docs/parallel.md, "The gas on several ranks"): the box is cut into shared.size parts, each
+  /// rank hands hypre the rows of its part, PCG runs with fixed-point inner products
+  /// (rank_dot.hpp) preconditioned by one PFMG cycle whose coarsening is fixed from the whole
+  /// system (not by hypre's sums over the ranks), and the ranks' parts of the solution are
+  /// gathered on every rank. Symmetric systems only (std::logic_error otherwise); collective:
+  /// every solve must then be made by all ranks. The direct path, when it applies, stays a
+  /// solve of the whole system on each rank (the same bits everywhere).
+  void share(const SharedSolve& shared);
+  /// This rank's part of the box (inclusive padded indices; hi < lo along some axis: empty).
+  std::array<int, 3> part_lo() const;
+  std::array<int, 3> part_hi() const;
   /// A new flow step begins (Reuse::per_step redoes the set-up at the next solve).
   void new_step();
   /// Replaces the options; the next solve does a fresh set-up.

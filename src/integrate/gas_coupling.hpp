@@ -58,8 +58,12 @@ public:
 
   /// A distributed run: step() is then given this rank's own particles, and the sums over the
   /// particles into the gas are taken over all ranks in fixed point (coupling/rank_sum.hpp), so
-  /// that every rank steps the same gas, bit for bit, on any rank count.
-  void distribute(coupling::RankSum ranks) { ranks_ = std::move(ranks); }
+  /// that every rank steps the same gas, bit for bit, on any rank count. The ranks share the
+  /// gas's pressure solve (gas::StructLinearSolver::share; solver: the ranks of `ranks`).
+  void distribute(coupling::RankSum ranks, const gas::SharedSolve& solver) {
+    ranks_ = std::move(ranks);
+    gas_->share_pressure_solve(solver);
+  }
   /// Distributed runs: the bytes of the fixed-point sums reduced over the ranks so far, and
   /// their reductions (the grid-sized ones).
   double bytes_summed_over_ranks() const {

@@ -102,8 +102,9 @@ Simulation::Simulation(CaseSpec spec, const ParticleStore* initial,
   if (spec_.noncontact.any()) set_up_noncontact(skin);
   if (spec_.gas) {
     gas_ = std::make_unique<GasCoupling>(spec_, p_);
-    if (dist_) gas_->distribute(rank_sum_of(*comm_)); // own particles, a copy of the gas each
-    spec_.coupling.drag = gas_->drag_name();          // the resolved case names the closure used
+    if (dist_) // own particles, a copy of the gas each, the pressure solve shared
+      gas_->distribute(rank_sum_of(*comm_), {comm_->mpi_handle(), comm_->rank(), comm_->size()});
+    spec_.coupling.drag = gas_->drag_name(); // the resolved case names the closure used
     set_up_fluid_forces();
     forces_.add(std::make_unique<GasForceSource>(*gas_));
   }

@@ -46,6 +46,10 @@ Communicator& Communicator::world() {
   return *w;
 }
 
+int Communicator::mpi_handle() const {
+  return mpi_ ? static_cast<int>(MPI_Comm_c2f(MPI_COMM_WORLD)) : -1;
+}
+
 Communicator& Communicator::self() {
   static Communicator s(0, 1, false);
   return s;

@@ -46,6 +46,10 @@ public:
   /// Ends every rank with this exit code (MPI_Abort; exit() for one rank without MPI).
   [[noreturn]] void abort(int code) const;
 
+  /// The communicator's Fortran handle (MPI_Comm_c2f, for libraries that take an MPI_Comm:
+  /// hypre), or -1 for a process without MPI.
+  int mpi_handle() const;
+
   /// Whether this process was started by mpirun (then MPI is used, even on one rank).
   static bool launched_by_mpirun();
 

@@ -1,0 +1,34 @@
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
+#include "gas/rank_dot.hpp"
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <mpi.h>
+
+namespace fluidem::gas {
+
+double rank_dot(int comm, long total_entries, const double* a, const double* b, std::size_t n) {
+  double m = 0.0; // max |a_i b_i| (NaN or inf: stays inf)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = std::abs(a[i] * b[i]);
+    m = std::isfinite(t) ? std::max(m, t) : std::numeric_limits<double>::infinity();
+  }
+  const MPI_Comm c = comm == kThisProcessAlone ? MPI_COMM_NULL : MPI_Comm_f2c(comm);
+  if (c != MPI_COMM_NULL) MPI_Allreduce(MPI_IN_PLACE, &m, 1, MPI_DOUBLE, MPI_MAX, c);
+  if (!std::isfinite(m)) return std::numeric_limits<double>::quiet_NaN();
+  if (m == 0.0) return 0.0;
+  // |a_i b_i| 2^s < 2^(ilogb(m) + 1 + s) = 2^(60 - bits(N)): N of them stay below 2^60.
+  const auto bits_n =
+      static_cast<int>(std::bit_width(static_cast<unsigned long>(std::max(total_entries, 1L))));
+  const int s = std::clamp(60 - bits_n - (std::ilogb(m) + 1), -1000, 1000);
+  const double scale = std::ldexp(1.0, s);
+  std::int64_t sum = 0;
+  for (std::size_t i = 0; i < n; ++i) sum += std::llround(a[i] * b[i] * scale);
+  if (c != MPI_COMM_NULL) MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_INT64_T, MPI_SUM, c);
+  return std::ldexp(static_cast<double>(sum), -s);
+}
+
+} // namespace fluidem::gas
