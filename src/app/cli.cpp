@@ -205,9 +205,12 @@ void print_run_summary(const Simulation& sim, const RunSummary& s, const std::st
   // engine does all three), the gas solver, the coupling (porosity, forces both ways, the
   // gas kicks) and the output.
   const std::string gas_time =
-      sim.gas() ? fmt::format(", gas solver {:.3f} s, coupling {:.3f} s", s.seconds_gas_solver,
-                              s.seconds_gas - s.seconds_gas_solver)
-                : "";
+      sim.gas()
+          ? fmt::format(", gas solver {:.3f} s (pressure solve {:.3f} s{}), coupling {:.3f} s",
+                        s.seconds_gas_solver, s.seconds_gas_pressure,
+                        s.ranks > 1 ? ", shared by the ranks" : "",
+                        s.seconds_gas - s.seconds_gas_solver)
+          : "";
   if (sim.hard_sphere())
     fmt::print("time in the collision engine {:.3f} s (events and neighbour lists, {} builds), "
                "output {:.3f} s{}\n",

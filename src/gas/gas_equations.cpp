@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "gas/gas_solver.hpp"
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -377,8 +378,11 @@ void GasSolver::solve_pressure_correction(double dt) {
     sys_.diag[q0] = sys_.diag[q0] > 0.0 ? 2.0 * sys_.diag[q0] : 1.0;
   }
   std::fill(pc_.begin(), pc_.end(), 0.0);
+  const auto t0 = std::chrono::steady_clock::now();
   const LinearSolveStats st =
       pressure_solver_->solve(sys_, pc_, s_.linear_tolerance, s_.linear_max_iterations);
+  counters_.pressure_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++counters_.pressure_solves;
   counters_.pressure_iterations += st.iterations;
   counters_.pressure_setups += st.setups;

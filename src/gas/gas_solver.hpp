@@ -58,6 +58,7 @@ struct LinearSolverCounters {
   long momentum_fallbacks = 0;                       ///< solves handed to hypre GMRES
   long pressure_solves = 0, pressure_iterations = 0; ///< hypre PCG solves and iterations
   long pressure_setups = 0;                          ///< multigrid set-ups of the pressure solver
+  double pressure_seconds = 0.0;                     ///< wall time in the pressure solves
 };
 
 class GasSolver {

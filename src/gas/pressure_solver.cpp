@@ -104,7 +104,8 @@ struct StructLinearSolver::Impl {
   long part_cells = 0;
   std::vector<std::array<int, 6>> parts; ///< per rank: lo[3], hi[3] (padded indices)
   HYPRE_StructVector y = nullptr;
-  std::vector<double> gathered;
+  std::vector<double> gathered, guess;
+  SharedPcgWork work;
   std::vector<int> counts, displs;
 
   MPI_Comm comm() const { return shared && sh.comm != -1 ? MPI_Comm_f2c(sh.comm) : MPI_COMM_SELF; }
@@ -342,8 +343,8 @@ struct StructLinearSolver::Impl {
     }
   }
 
-  // Shared: PCG on this rank's part (guess: its part of the initial guess, then the solution).
-  LinearSolveStats shared_solve(std::vector<double>& guess, double rel_tol, int max_iterations) {
+  // Shared: PCG on this rank's part (xs: its part of the initial guess, then the solution).
+  LinearSolveStats shared_solve(std::vector<double>& xs, double rel_tol, int max_iterations) {
     const bool mine = part_cells > 0;
     const auto set = [&](HYPRE_StructVector v, const std::vector<double>& in) {
       if (mine) // (hypre's argument is not const; it only reads it)
@@ -369,8 +370,7 @@ struct StructLinearSolver::Impl {
     op.dot = [&](const std::vector<double>& u, const std::vector<double>& v) {
       return rank_dot(handle, cells, u.data(), v.data(), u.size());
     };
-    const std::vector<double> rhs = buf_b;
-    const SharedPcgResult r = shared_pcg(op, rhs, guess, rel_tol, max_iterations);
+    const SharedPcgResult r = shared_pcg(op, buf_b, xs, rel_tol, max_iterations, work);
     HYPRE_ClearAllErrors();
     LinearSolveStats st;
     st.iterations = r.iterations;
@@ -619,8 +619,8 @@ LinearSolveStats StructLinearSolver::solve(const StencilSystem& sys, std::vector
                      (m.opt.reuse == Reuse::adaptive && m.stale);
   if (fresh && m.shared) m.set_dxyz(sys);
   if (fresh) m.setup_mg();
-  std::vector<double> guess = m.shared ? m.buf_x : std::vector<double>{};
-  LinearSolveStats st = m.shared ? m.shared_solve(guess, rel_tol, max_iterations)
+  if (m.shared) m.guess = m.buf_x;
+  LinearSolveStats st = m.shared ? m.shared_solve(m.guess, rel_tol, max_iterations)
                                  : m.krylov_solve(rel_tol, max_iterations);
   st.setups = fresh ? 1 : 0;
   if (fresh) m.iterations_after_setup = st.iterations;
@@ -630,8 +630,8 @@ LinearSolveStats StructLinearSolver::solve(const StencilSystem& sys, std::vector
     if (m.shared) m.set_dxyz(sys);
     m.setup_mg();
     const int before = st.iterations;
-    guess = m.buf_x;
-    st = m.shared ? m.shared_solve(guess, rel_tol, max_iterations)
+    m.guess = m.buf_x;
+    st = m.shared ? m.shared_solve(m.guess, rel_tol, max_iterations)
                   : m.krylov_solve(rel_tol, max_iterations);
     m.iterations_after_setup = st.iterations;
     st.iterations += before;
@@ -640,7 +640,7 @@ LinearSolveStats StructLinearSolver::solve(const StencilSystem& sys, std::vector
   m.stale = st.iterations > 2 * m.iterations_after_setup + 2;
   ++m.n_solves;
   if (m.shared) {
-    m.buf_x = guess;
+    std::swap(m.buf_x, m.guess);
     m.gather_into(x);
     return st;
   }

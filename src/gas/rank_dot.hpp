@@ -2,9 +2,10 @@
 // them (docs/parallel.md, "The gas on several ranks"): each product a_i b_i is rounded to a whole
 // multiple of 2^-s, the integers are added exactly (in any order, then over the ranks), and the
 // sum is converted back. The scale is the same on every rank: the largest 2^s with
-// N max|a_i b_i| 2^s < 2^60 (N the entries of all ranks, the maximum taken over all ranks), so
-// no sum overflows and the rounding is below 2 N max|a_i b_i| 2^-60 per product (2e-13 of the
-// largest product for 10^5 entries) — the scheme of coupling/rank_sum.hpp for one number.
+// max|a_i b_i| 2^s < 2^min(60 - bits(N), 51) (N the entries of all ranks, bits(N) its binary
+// digits, the maximum taken over all ranks), so no sum of N products overflows, and the rounding
+// is at most 2^-s / 2 <= max(N 2^-60, 2^-51) max|a_i b_i| per product (1e-13 of the largest
+// product for 10^5 entries) — the scheme of coupling/rank_sum.hpp for one number.
 #pragma once
 #include <cstddef>
 

@@ -1,10 +1,12 @@
 #include "gas/shared_pcg.hpp"
+#include <algorithm>
 #include <cmath>
 
 namespace fluidem::gas {
 
 SharedPcgResult shared_pcg(const SharedPcgOperators& op, const std::vector<double>& b,
-                           std::vector<double>& x, double rel_tol, int max_iterations) {
+                           std::vector<double>& x, double rel_tol, int max_iterations,
+                           SharedPcgWork& work) {
   SharedPcgResult res;
   const std::size_t n = b.size();
   const double bb = op.dot(b, b);
@@ -13,7 +15,8 @@ SharedPcgResult shared_pcg(const SharedPcgOperators& op, const std::vector<doubl
     res.converged = true;
     return res;
   }
-  std::vector<double> r(n), z(n), p(n), q(n);
+  std::vector<double>&r = work.r, &z = work.z, &p = work.p, &q = work.q;
+  for (auto* v : {&r, &z, &p, &q}) v->resize(n);
   op.apply(x, q);
   for (std::size_t i = 0; i < n; ++i) r[i] = b[i] - q[i];
   double rr = op.dot(r, r);
@@ -23,7 +26,7 @@ SharedPcgResult shared_pcg(const SharedPcgOperators& op, const std::vector<doubl
     return res;
   }
   op.precondition(r, z);
-  p = z;
+  std::copy(z.begin(), z.end(), p.begin());
   double gamma = op.dot(r, z);
   while (res.iterations < max_iterations) {
     op.apply(p, q);

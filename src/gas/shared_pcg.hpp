@@ -19,6 +19,11 @@ struct SharedPcgOperators {
   std::function<double(const std::vector<double>& a, const std::vector<double>& b)> dot;
 };
 
+/// The iteration's vectors, kept between solves (no allocation, no fresh pages, per solve).
+struct SharedPcgWork {
+  std::vector<double> r, z, p, q;
+};
+
 struct SharedPcgResult {
   int iterations = 0;
   double relative_residual = 0.0; ///< ||b - A x||_2 / ||b||_2 (the recursively updated r)
@@ -29,6 +34,7 @@ struct SharedPcgResult {
 /// iterate. b = 0 gives x = 0 (as hypre's PCG answers). A breakdown (p.Ap <= 0 or not finite:
 /// A or M not positive definite) stops the iteration unconverged.
 SharedPcgResult shared_pcg(const SharedPcgOperators& op, const std::vector<double>& b,
-                           std::vector<double>& x, double rel_tol, int max_iterations);
+                           std::vector<double>& x, double rel_tol, int max_iterations,
+                           SharedPcgWork& work);
 
 } // namespace fluidem::gas

@@ -90,6 +90,8 @@ public:
   const gas::GasSolver& solver() const { return *gas_; }
   /// Wall seconds spent in the gas solver's steps so far (the rest of step(): the coupling).
   double solver_seconds() const { return solver_seconds_; }
+  /// The part of solver_seconds() in the pressure solves.
+  double pressure_seconds() const { return gas_->linear_counters().pressure_seconds; }
 
   /// Checkpoint state: the gas solver's and the force on each particle of the last flow step
   /// (it acts until the next one: soft-sphere runs may be checkpointed between flow steps).

@@ -520,6 +520,7 @@ RunSummary Simulation::summary(long steps, double seconds, double seconds_output
   s.seconds_output = seconds_output;
   s.seconds_gas = t_gas_;
   s.seconds_gas_solver = gas_ ? gas_->solver_seconds() : 0.0;
+  s.seconds_gas_pressure = gas_ ? gas_->pressure_seconds() : 0.0;
   s.bytes_per_particle = dist_       ? stepper_->bytes() / std::max<std::size_t>(1, dist_->owned())
                          : p_.size() ? (p_.bytes() + stepper_->bytes()) / p_.size()
                                      : 0;

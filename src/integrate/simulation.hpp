@@ -66,7 +66,8 @@ struct RunSummary {
   long folded_steps = 0;
   double seconds_contacts = 0.0, seconds_integration = 0.0, seconds_neighbour = 0.0,
          seconds_output = 0.0, seconds_gas = 0.0;
-  double seconds_gas_solver = 0.0; ///< the part of seconds_gas in the gas solver's steps
+  double seconds_gas_solver = 0.0;   ///< the part of seconds_gas in the gas solver's steps
+  double seconds_gas_pressure = 0.0; ///< the part of seconds_gas_solver in its pressure solves
   double seconds_step_sources =
       0.0; ///< soft spheres: the forces evaluated every step (non-contact)
   std::size_t bytes_per_particle = 0;
