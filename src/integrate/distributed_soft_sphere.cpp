@@ -64,6 +64,9 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
   kept.offset.assign(1, 0);
   dissipated_.assign(owned_, 0.0);
   held_.assign(3 * owned_, 0.0);
+  const auto aw = static_cast<std::size_t>(s_.attached_width);
+  held_torque_.assign(s_.held_torques ? 3 * owned_ : 0, 0.0);
+  attached_.assign(aw * owned_, 0.0);
   if (state) {
     const auto hw = static_cast<std::size_t>(kept.width);
     const KeptHistory& h = state->history;
@@ -79,6 +82,12 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
       if (!state->held.empty())
         std::copy_n(state->held.begin() + static_cast<std::ptrdiff_t>(3 * i), 3,
                     held_.begin() + static_cast<std::ptrdiff_t>(3 * k));
+      if (s_.held_torques && !state->held_torque.empty())
+        std::copy_n(state->held_torque.begin() + static_cast<std::ptrdiff_t>(3 * i), 3,
+                    held_torque_.begin() + static_cast<std::ptrdiff_t>(3 * k));
+      if (aw > 0 && !state->attached.empty())
+        std::copy_n(state->attached.begin() + static_cast<std::ptrdiff_t>(aw * i), aw,
+                    attached_.begin() + static_cast<std::ptrdiff_t>(aw * k));
       for (std::uint32_t m = h.offset[i]; m < h.offset[i + 1]; ++m) {
         kept.key.push_back(h.key[m]);
         kept.values.insert(kept.values.end(),
@@ -120,7 +129,8 @@ std::size_t DistributedSoftSphere::bytes() const {
              sizeof(std::uint32_t) +
          (rows_->history.capacity() + rows_->wall_history.capacity() + sums_.acc.capacity() +
           sums_.elastic.capacity() + sums_.released.capacity() + x0_.capacity() +
-          dissipated_.capacity() + held_.capacity()) *
+          dissipated_.capacity() + held_.capacity() + held_torque_.capacity() +
+          attached_.capacity()) *
              sizeof(double);
 }
 
@@ -151,9 +161,16 @@ void DistributedSoftSphere::kick() {
     p_.vx[i] += h * ((f[0] + fh[0] + fn[0]) * im + a[0]);
     p_.vy[i] += h * ((f[1] + fh[1] + fn[1]) * im + a[1]);
     p_.vz[i] += h * ((f[2] + fh[2] + fn[2]) * im + a[2]);
-    p_.wx[i] += h * f[3] * ii;
-    p_.wy[i] += h * f[4] * ii;
-    p_.wz[i] += h * f[5] * ii;
+    if (s_.held_torques) {
+      const double* th = held_torque_.data() + 3 * i;
+      p_.wx[i] += h * (f[3] + th[0]) * ii;
+      p_.wy[i] += h * (f[4] + th[1]) * ii;
+      p_.wz[i] += h * (f[5] + th[2]) * ii;
+    } else {
+      p_.wx[i] += h * f[3] * ii;
+      p_.wy[i] += h * f[4] * ii;
+      p_.wz[i] += h * f[5] * ii;
+    }
   });
 }
 
@@ -295,11 +312,12 @@ void DistributedSoftSphere::rebuild(ParticleExchange* migration) {
   p_.resize(owned_);
   // With each particle: its dissipated energy, and its last contact sums and elastic energy (a
   // build between steps, by rebalance(), keeps them for the next kick).
-  // And its non-contact force and potential share.
-  constexpr int kCarried = 21;
-  std::vector<double> carried(kCarried * owned_);
+  // And its non-contact force and potential share, its held torque and attached numbers.
+  const std::size_t tw = s_.held_torques ? 3 : 0, aw = static_cast<std::size_t>(s_.attached_width);
+  const std::size_t width = 21 + tw + aw;
+  std::vector<double> carried(width * owned_);
   for (std::size_t i = 0; i < owned_; ++i) {
-    double* c = carried.data() + kCarried * i;
+    double* c = carried.data() + width * i;
     c[0] = dissipated_[i], c[1] = sums_.elastic[i];
     std::copy_n(sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i), 12, c + 2);
     std::copy_n(held_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3, c + 14);
@@ -307,14 +325,17 @@ void DistributedSoftSphere::rebuild(ParticleExchange* migration) {
       std::copy_n(nc_force_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3, c + 17);
       c[20] = nc_potential_[i];
     }
+    std::copy_n(held_torque_.begin() + static_cast<std::ptrdiff_t>(tw * i), tw, c + 21);
+    std::copy_n(attached_.begin() + static_cast<std::ptrdiff_t>(aw * i), aw, c + 21 + tw);
   }
   const std::vector<ParticleTooFar> lost =
-      (migration ? *migration : *exchange_).migrate(p_, kept, carried, kCarried);
+      (migration ? *migration : *exchange_).migrate(p_, kept, carried, static_cast<int>(width));
   const std::size_t n = p_.size();
   dissipated_.resize(n), sums_.elastic.resize(n), sums_.acc.resize(12 * n), held_.resize(3 * n);
+  held_torque_.resize(tw * n), attached_.resize(aw * n);
   if (nc_rows_) nc_force_.resize(3 * n), nc_potential_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const double* c = carried.data() + kCarried * i;
+    const double* c = carried.data() + width * i;
     dissipated_[i] = c[0], sums_.elastic[i] = c[1];
     std::copy_n(c + 2, 12, sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i));
     std::copy_n(c + 14, 3, held_.begin() + static_cast<std::ptrdiff_t>(3 * i));
@@ -322,6 +343,8 @@ void DistributedSoftSphere::rebuild(ParticleExchange* migration) {
       std::copy_n(c + 17, 3, nc_force_.begin() + static_cast<std::ptrdiff_t>(3 * i));
       nc_potential_[i] = c[20];
     }
+    std::copy_n(c + 21, tw, held_torque_.begin() + static_cast<std::ptrdiff_t>(tw * i));
+    std::copy_n(c + 21 + tw, aw, attached_.begin() + static_cast<std::ptrdiff_t>(aw * i));
   }
   const double first_lost = comm_.min(lost.empty() ? std::numeric_limits<double>::infinity()
                                                    : static_cast<double>(lost.front().id));
@@ -346,9 +369,14 @@ void DistributedSoftSphere::rebuild(ParticleExchange* migration) {
 DistributedState DistributedSoftSphere::gather(bool with_history) const {
   // Per particle: dissipated, elastic, the 12 contact sums, its build position; then
   // (with_history) its entries.
-  constexpr int kExtra = 21;
+  const std::size_t tw = s_.held_torques ? 3 : 0, aw = static_cast<std::size_t>(s_.attached_width);
+  const std::size_t kExtra = 21 + tw + aw;
   std::vector<double> extra(kExtra * owned_);
   for (std::size_t i = 0; i < owned_; ++i) {
+    std::copy_n(held_torque_.begin() + static_cast<std::ptrdiff_t>(tw * i), tw,
+                extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 21));
+    std::copy_n(attached_.begin() + static_cast<std::ptrdiff_t>(aw * i), aw,
+                extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 21 + tw));
     extra[kExtra * i + 20] = nc_rows_ ? nc_potential_[i] : 0.0;
     extra[kExtra * i] = dissipated_[i], extra[kExtra * i + 1] = sums_.elastic[i];
     std::copy_n(sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i), 12,
@@ -358,7 +386,7 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
     std::copy_n(held_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3,
                 extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 17));
   }
-  const auto parts = comm_.gather(pack_particles(p_, owned_, extra, kExtra));
+  const auto parts = comm_.gather(pack_particles(p_, owned_, extra, static_cast<int>(kExtra)));
   KeptHistory kept_mine;
   std::vector<std::vector<char>> history_parts;
   if (with_history) {
@@ -370,7 +398,7 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
   if (!comm_.root()) return g;
   ParticleStore& p = g.particles;
   std::vector<double> all_extra;
-  for (const auto& b : parts) unpack_particles(b, p, all_extra, kExtra);
+  for (const auto& b : parts) unpack_particles(b, p, all_extra, static_cast<int>(kExtra));
   KeptHistory all_kept;
   all_kept.width = rows_->history_width();
   all_kept.offset.assign(1, 0);
@@ -383,6 +411,7 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
   const std::size_t n = order.size();
   g.dissipated.resize(n), g.elastic.resize(n), g.contact.resize(12 * n), g.x0.resize(3 * n);
   g.held.resize(3 * n);
+  g.held_torque.resize(tw * n), g.attached.resize(aw * n);
   g.noncontact.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const double* e = all_extra.data() + kExtra * order[k];
@@ -391,6 +420,8 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
     std::copy_n(e + 14, 3, g.x0.begin() + static_cast<std::ptrdiff_t>(3 * k));
     std::copy_n(e + 17, 3, g.held.begin() + static_cast<std::ptrdiff_t>(3 * k));
     g.noncontact[k] = e[20];
+    std::copy_n(e + 21, tw, g.held_torque.begin() + static_cast<std::ptrdiff_t>(tw * k));
+    std::copy_n(e + 21 + tw, aw, g.attached.begin() + static_cast<std::ptrdiff_t>(aw * k));
   }
   if (with_history) g.history = reorder(all_kept, order);
   return g;
@@ -413,16 +444,55 @@ void DistributedSoftSphere::hold_own_forces(const std::array<const double*, 3>& 
     for (std::size_t a = 0; a < 3; ++a) held_[3 * i + a] = f[a][i];
 }
 
-void DistributedSoftSphere::hold_forces(const ParticleStore& all,
-                                        const std::array<const double*, 3>& f) {
+std::vector<std::size_t> DistributedSoftSphere::index_in(const ParticleStore& all,
+                                                         const char* what) const {
+  std::vector<std::size_t> index(owned_);
   for (std::size_t i = 0; i < owned_; ++i) {
     const auto it = std::lower_bound(all.id.begin(), all.id.end(), p_.id[i]);
     if (it == all.id.end() || *it != p_.id[i])
-      throw std::logic_error("DistributedSoftSphere::hold_forces: particle " +
+      throw std::logic_error(std::string("DistributedSoftSphere::") + what + ": particle " +
                              std::to_string(p_.id[i]) + " is not among all particles");
-    const auto k = static_cast<std::size_t>(it - all.id.begin());
-    for (std::size_t a = 0; a < 3; ++a) held_[3 * i + a] = f[a][k];
+    index[i] = static_cast<std::size_t>(it - all.id.begin());
   }
+  return index;
+}
+
+void DistributedSoftSphere::hold_forces(const ParticleStore& all,
+                                        const std::array<const double*, 3>& f) {
+  const std::vector<std::size_t> index = index_in(all, "hold_forces");
+  for (std::size_t i = 0; i < owned_; ++i)
+    for (std::size_t a = 0; a < 3; ++a) held_[3 * i + a] = f[a][index[i]];
+}
+
+void DistributedSoftSphere::hold_own_torques(const std::array<const double*, 3>& t) {
+  if (!s_.held_torques) throw std::logic_error("DistributedSoftSphere: no held torques");
+  for (std::size_t i = 0; i < owned_; ++i)
+    for (std::size_t a = 0; a < 3; ++a) held_torque_[3 * i + a] = t[a][i];
+}
+
+void DistributedSoftSphere::hold_torques(const ParticleStore& all,
+                                         const std::array<const double*, 3>& t) {
+  if (!s_.held_torques) throw std::logic_error("DistributedSoftSphere: no held torques");
+  const std::vector<std::size_t> index = index_in(all, "hold_torques");
+  for (std::size_t i = 0; i < owned_; ++i)
+    for (std::size_t a = 0; a < 3; ++a) held_torque_[3 * i + a] = t[a][index[i]];
+}
+
+void DistributedSoftSphere::set_attached(const ParticleStore& all, std::span<const double> values) {
+  const auto aw = static_cast<std::size_t>(s_.attached_width);
+  if (values.size() != aw * all.size())
+    throw std::logic_error("DistributedSoftSphere::set_attached: " + std::to_string(values.size()) +
+                           " numbers for " + std::to_string(all.size()) + " particles of width " +
+                           std::to_string(aw));
+  const std::vector<std::size_t> index = index_in(all, "set_attached");
+  for (std::size_t i = 0; i < owned_; ++i)
+    std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(aw * index[i]), aw,
+                attached_.begin() + static_cast<std::ptrdiff_t>(aw * i));
+}
+
+void DistributedSoftSphere::add_inertia(const std::function<double(double)>& added) {
+  for (std::size_t i = 0; i < p_.size(); ++i) // own particles and ghosts alike
+    if (p_.inv_mass[i] > 0.0) p_.inv_mass[i] = 1.0 / (p_.mass[i] + added(2.0 * p_.radius[i]));
 }
 
 void DistributedSoftSphere::observe(ParticleStore& all) {

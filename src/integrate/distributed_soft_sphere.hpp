@@ -10,7 +10,9 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "contact/contact_table.hpp"
@@ -40,6 +42,10 @@ struct DistributedState {
   /// a particle has moved half the skin from there)
   std::vector<double> x0;
   std::vector<double> held; ///< 3 per particle: the gas force held over the flow step, N
+  /// 3 per particle: the torque held over the flow step, N m (Settings::held_torques)
+  std::vector<double> held_torque;
+  /// Settings::attached_width per particle: what a force source keeps per particle
+  std::vector<double> attached;
   /// Per particle: its share of the non-contact forces' potential energy, J (0 without them)
   std::vector<double> noncontact;
   std::int64_t builds = 0; ///< neighbour-list builds so far
@@ -63,6 +69,13 @@ public:
     /// over rows of their own reach (noncontact/ordered_noncontact.hpp); null: none. Must
     /// outlive the engine.
     const NonContactSpec* noncontact = nullptr;
+    /// Torques held over the flow step beside the forces (the fluid torque of
+    /// [coupling.forces]).
+    bool held_torques = false;
+    /// Numbers each particle carries with it from rank to rank for a force source (the
+    /// [coupling.forces] state: the Basset history and the last step's impulses), gathered in
+    /// its checkpoints; the source reads and writes them through attached().
+    int attached_width = 0;
   };
   /// Every rank passes the same particles `all` (each keeps those it owns) and the same
   /// settings; the first contact forces are computed. Collective.
@@ -117,6 +130,18 @@ public:
   /// The force on each own particle held over the coming flow step (the gas's), from the
   /// forces f[axis][k] on the particles `all` (in id order: a checkpoint's), N.
   void hold_forces(const ParticleStore& all, const std::array<const double*, 3>& f);
+
+  /// The torques held over the coming flow step (Settings::held_torques), as the forces.
+  void hold_own_torques(const std::array<const double*, 3>& t);
+  void hold_torques(const ParticleStore& all, const std::array<const double*, 3>& t);
+  /// The own particles' attached numbers (Settings::attached_width each, in the order of
+  /// own_particles()); they travel with their particles.
+  std::span<double> attached() { return attached_; }
+  /// The attached numbers of the particles `all` (in id order: a checkpoint's), width each.
+  void set_attached(const ParticleStore& all, std::span<const double> values);
+  /// Adds inertia to every moving particle, own and ghost: 1/m becomes 1/(m + added(d)) (the
+  /// added mass of [coupling.forces]; m the particle's mass, d its diameter).
+  void add_inertia(const std::function<double(double)>& added);
 
   /// Moves the cut planes of every cut axis so that each rank's part of the cost is as near the
   /// mean as the cells allow, and migrates the particles to their new owners; the cost of a
@@ -173,10 +198,14 @@ private:
   void compute_noncontact();
   ParticleStore p_; ///< own particles [0, owned_), then ghosts
   std::size_t owned_ = 0;
-  std::int64_t total_ = 0;         ///< particles on all ranks
-  std::vector<double> dissipated_; ///< per own particle, J
-  std::vector<double> held_;       ///< 3 per own particle: the held (gas) force, N
-  std::vector<double> x0_;         ///< own particles' positions at the last build (x y z)
+  std::int64_t total_ = 0;          ///< particles on all ranks
+  std::vector<double> dissipated_;  ///< per own particle, J
+  std::vector<double> held_;        ///< 3 per own particle: the held (gas) force, N
+  std::vector<double> held_torque_; ///< 3 per own particle (Settings::held_torques), N m
+  std::vector<double> attached_;    ///< Settings::attached_width per own particle
+  /// The index k of each own particle in `all` (sorted by id); logic_error if one is missing.
+  std::vector<std::size_t> index_in(const ParticleStore& all, const char* what) const;
+  std::vector<double> x0_; ///< own particles' positions at the last build (x y z)
   OrderedContactSums sums_;
   OrderedContactStats stats_;
   long builds_ = 0;

@@ -78,11 +78,23 @@ void FluidForces::begin_step(const ParticleStore& p, const coupling::ParticleGas
   }
 }
 
-void FluidForces::deposit_reaction(gas::GasSolver& gs, const ParticleStore& p) const {
+void FluidForces::deposit_reaction(gas::GasSolver& gs, const ParticleStore& p,
+                                   const coupling::RankSum* ranks) {
   if (!started_) return;
   const gas::GasGrid& g = gs.grid();
   const double inv_v = 1.0 / g.cell_volume();
   const std::array<bool, 3> periodic = coupling::periodic_axes(gs);
+  // On ranks: field d in fixed point, each node's part at most |reaction_d| / V_cell (the
+  // weights over a particle's nodes sum to 1).
+  if (ranks) {
+    std::array<double, 3> largest{};
+    for (std::size_t d = 0; d < 3; ++d)
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const double v = std::abs(reaction_[d][i]) * inv_v;
+        largest[d] = std::isnan(v) || std::isnan(largest[d]) ? v : std::max(largest[d], v);
+      }
+    fixed_.start(g.size(), largest, static_cast<std::int64_t>(p.size()), *ranks);
+  }
   for (int d = 0; d < 3; ++d) {
     const auto ud = static_cast<std::size_t>(d);
     std::vector<double>& src = gs.explicit_source(d);
@@ -102,8 +114,21 @@ void FluidForces::deposit_reaction(gas::GasSolver& gs, const ParticleStore& p) c
       if (!(wsum > 0.0)) continue;
       const double share = -reaction_[ud][i] * inv_v / wsum;
       for (std::size_t m = 0; m < static_cast<std::size_t>(st.n); ++m)
-        if (takes[m]) src[q[m]] += st.w[m] * share;
+        if (takes[m]) {
+          if (ranks)
+            fixed_.add(ud, q[m], st.w[m] * share);
+          else
+            src[q[m]] += st.w[m] * share;
+        }
     }
+  }
+  if (!ranks) return;
+  fixed_.reduce(*ranks);
+  std::vector<double> sum;
+  for (int d = 0; d < 3; ++d) {
+    fixed_.result(static_cast<std::size_t>(d), sum);
+    std::vector<double>& src = gs.explicit_source(d);
+    for (std::size_t q = 0; q < sum.size(); ++q) src[q] += sum[q];
   }
 }
 
@@ -219,6 +244,70 @@ void FluidForces::restore(const std::vector<std::pair<std::string, std::vector<d
     b.tail = get("basset_tail");
     basset_->set_state(b);
   }
+}
+
+namespace {
+/// The per-particle arrays of FluidForces::state() and their numbers per particle, in its order
+/// ("started", a scalar, is not one).
+std::vector<std::pair<std::string, std::size_t>>
+particle_arrays(const coupling::FluidForceSettings& s) {
+  std::vector<std::pair<std::string, std::size_t>> a;
+  for (const char* axis : {"x", "y", "z"})
+    for (const char* name : {"held_", "physical_", "v_start_", "u_start_", "reaction_", "torque_"})
+      a.emplace_back(std::string(name) + axis, 1);
+  if (s.basset) {
+    const auto ring = static_cast<std::size_t>(s.basset_window) + 1;
+    a.emplace_back("basset_count", 1);
+    a.emplace_back("basset_samples", 3 * ring);
+    a.emplace_back("basset_start_slip", 3);
+    a.emplace_back("basset_tail", 3 * coupling::forces::BassetHistory::tail_terms);
+  }
+  return a;
+}
+} // namespace
+
+std::size_t FluidForces::width(const coupling::FluidForceSettings& s) {
+  std::size_t w = 0;
+  for (const auto& [name, k] : particle_arrays(s)) w += k;
+  return w;
+}
+
+void FluidForces::save(std::vector<double>& out) const {
+  const std::size_t n = held_[0].size(), w = width(s_);
+  out.resize(n * w);
+  const auto st = state();
+  std::size_t offset = 0;
+  for (const auto& [name, k] : particle_arrays(s_)) {
+    const auto it =
+        std::find_if(st.begin(), st.end(), [&](const auto& e) { return e.first == name; });
+    if (it == st.end() || it->second.size() != n * k)
+      throw std::logic_error("FluidForces::save: state array '" + name + "' is not " +
+                             std::to_string(k) + " per particle");
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy_n(it->second.begin() + static_cast<std::ptrdiff_t>(k * i), k,
+                  out.begin() + static_cast<std::ptrdiff_t>(w * i + offset));
+    offset += k;
+  }
+}
+
+std::vector<std::pair<std::string, std::vector<double>>>
+FluidForces::unpacked(const std::vector<double>& in, std::size_t n) const {
+  const std::size_t w = width(s_);
+  if (in.size() != n * w)
+    throw std::logic_error("FluidForces::unpacked: " + std::to_string(in.size()) + " numbers for " +
+                           std::to_string(n) + " particles of " + std::to_string(w));
+  std::vector<std::pair<std::string, std::vector<double>>> st;
+  std::size_t offset = 0;
+  for (const auto& [name, k] : particle_arrays(s_)) {
+    std::vector<double> v(n * k);
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy_n(in.begin() + static_cast<std::ptrdiff_t>(w * i + offset), k,
+                  v.begin() + static_cast<std::ptrdiff_t>(k * i));
+    st.emplace_back(name, std::move(v));
+    offset += k;
+  }
+  st.emplace_back("started", std::vector<double>{started_ ? 1.0 : 0.0});
+  return st;
 }
 
 void FluidForces::permute(const std::vector<std::uint32_t>& new_to_old) {

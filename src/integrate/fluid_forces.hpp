@@ -38,6 +38,7 @@
 #include "core/coupling_settings.hpp"
 #include "coupling/exchange.hpp"
 #include "coupling/forces/basset_history.hpp"
+#include "coupling/rank_sum.hpp"
 #include "gas/gas_solver.hpp"
 #include "particles/particle_store.hpp"
 
@@ -60,8 +61,10 @@ public:
   /// w^n, and u^n kept for Du/Dt.
   void begin_step(const ParticleStore& p, const coupling::ParticleGasForces& f);
   /// Two-way: minus the last step's impulses / DT into the gas's explicit source (after
-  /// deposit_momentum_source, which overwrites it).
-  void deposit_reaction(gas::GasSolver& gs, const ParticleStore& p) const;
+  /// deposit_momentum_source, which overwrites it). ranks: the particles are this rank's, and
+  /// the sums over all ranks' particles are taken in fixed point (coupling/rank_sum.hpp).
+  void deposit_reaction(gas::GasSolver& gs, const ParticleStore& p,
+                        const coupling::RankSum* ranks = nullptr);
   /// After the gas step (f.u = u^{n+1}(x^n)): the held forces F_held of the step.
   void compute(const gas::GasSolver& gs, const ParticleStore& p,
                const coupling::ParticleGasForces& f);
@@ -78,6 +81,16 @@ public:
   void restore(const std::vector<std::pair<std::string, std::vector<double>>>& s);
   void permute(const std::vector<std::uint32_t>& new_to_old);
 
+  /// The per-particle numbers of state(), particle by particle (runs on MPI ranks carry them
+  /// with their particles): numbers per particle (for these settings, before any particle),
+  /// the particles' numbers into `out` (width() each), and back for n particles.
+  static std::size_t width(const coupling::FluidForceSettings& s);
+  void save(std::vector<double>& out) const;
+  void load(const std::vector<double>& in, std::size_t n) { restore(unpacked(in, n)); }
+  /// The state() of n particles whose numbers `in` holds (width() each).
+  std::vector<std::pair<std::string, std::vector<double>>> unpacked(const std::vector<double>& in,
+                                                                    std::size_t n) const;
+
 private:
   coupling::FluidForceSettings s_;
   double dt_, rho_, mu_;
@@ -91,6 +104,7 @@ private:
   std::array<std::vector<double>, 3> torque_;   ///< held fluid torque, N m
   bool started_ = false;                        ///< a step has been computed
   std::unique_ptr<coupling::forces::BassetHistory> basset_;
+  coupling::FixedPointSum fixed_; ///< deposit_reaction() on ranks
 };
 
 } // namespace fluidem

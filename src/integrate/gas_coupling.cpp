@@ -93,7 +93,7 @@ void GasCoupling::step(const ParticleStore& p, double time, double dt) {
   if (fluid_) fluid_->begin_step(p, f_);
   if (settings_.mode == CouplingMode::two_way) {
     coupling::deposit_momentum_source(*gas_, p, f_, ranks);
-    if (fluid_) fluid_->deposit_reaction(*gas_, p);
+    if (fluid_) fluid_->deposit_reaction(*gas_, p, ranks);
     smoother_.smooth_momentum_source(*gas_);
     if (settings_.hold_gas_at_rest) hold_at_rest(dt);
   }

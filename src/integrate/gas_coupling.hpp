@@ -14,10 +14,13 @@
 // The gas settings of the case are completed here from the particle domain: dimension, lo/hi,
 // 2-D depth (the domain's y extent) and gravity are the simulation's own.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -83,6 +86,21 @@ public:
   /// The fluid torque on each particle, N m, held over the current flow step; nullptr without
   /// [coupling.forces] torque.
   const double* torque(int d) const { return fluid_ ? fluid_->torque(d) : nullptr; }
+  /// On ranks, the [coupling.forces] state travels with the particles (FluidForces::save):
+  /// its numbers per particle (0 without fluid forces), the state of the particles the next
+  /// step() is given, and that of the last step's, particle by particle.
+  std::size_t fluid_state_width() const {
+    return fluid_ ? FluidForces::width(settings_.forces) : 0;
+  }
+  void load_fluid_state(std::span<const double> in, std::size_t n) {
+    fluid_->load(std::vector<double>(in.begin(), in.end()), n);
+  }
+  void save_fluid_state(std::span<double> out) const {
+    std::vector<double> v;
+    fluid_->save(v);
+    if (v.size() != out.size()) throw std::logic_error("GasCoupling::save_fluid_state: sizes");
+    std::copy(v.begin(), v.end(), out.begin());
+  }
 
   /// The gas force on each particle (drag + pressure), N, held over the current flow step.
   const std::vector<double>& force(int d) const { return force_[static_cast<std::size_t>(d)]; }

@@ -10,6 +10,7 @@
 #include "analysis/bed_height.hpp"
 #include "core/gravity_axis.hpp"
 #include "integrate/contact_time_limit.hpp"
+#include "integrate/fluid_forces.hpp"
 #include "integrate/liquid_bridge_source.hpp"
 #include "integrate/memory_estimate.hpp"
 #include "integrate/noncontact_source.hpp"
@@ -131,6 +132,7 @@ void Simulation::set_up_fluid_forces() {
   for (std::size_t i = 0; i < p_.size(); ++i)
     if (p_.inv_mass[i] > 0.0)
       p_.inv_mass[i] = 1.0 / (p_.mass[i] + gas_->added_inertia(2.0 * p_.radius[i]));
+  if (dist_) dist_->add_inertia([&](double d) { return gas_->added_inertia(d); });
 }
 
 void Simulation::set_up_analyses() {
@@ -193,8 +195,6 @@ bool Simulation::choose_rank_independent() const {
                               "mpirun, or with parallel.rank_independent = true); run this case "
                               "without mpirun and with parallel.rank_independent = false");
   };
-  refuse(spec_.coupling.forces.any(), "coupling.forces",
-         "the fluid forces beyond drag and pressure (virtual mass, Basset, lift, torque)");
   refuse(spec_.noncontact.liquid_bridge.has_value(), "liquid_bridge", "liquid bridges");
   refuse(spec_.output.collisions, "output.collisions", "the collision statistics");
   refuse(spec_.output.continuum.has_value(), "output.continuum", "the continuum averages");
@@ -214,6 +214,10 @@ void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_f
     d.balance_interval = spec_.parallel.balance_interval;
     d.body = spec_.body_force ? &*spec_.body_force : nullptr;
     d.noncontact = spec_.noncontact.any_conservative() ? &spec_.noncontact : nullptr;
+    if (spec_.gas && spec_.coupling.forces.any()) { // their state travels with the particles
+      d.held_torques = spec_.coupling.forces.torque != "off";
+      d.attached_width = static_cast<int>(FluidForces::width(spec_.coupling.forces));
+    }
     if (d.noncontact) try { // (the cut-off checked before the engine is built)
         noncontact_reach(*d.noncontact, restart_state_ ? restart_state_->particles : p_);
       } catch (const std::invalid_argument& e) {
@@ -323,8 +327,13 @@ void Simulation::flow_step() {
     const auto t0 = WallClock::now();
     ++flow_steps_;
     dist_->own_particles(coupled_);
+    const bool fluid = gas_->fluid_state_width() > 0; // [coupling.forces]: their state travels
+    if (fluid) gas_->load_fluid_state(dist_->attached(), coupled_.size());
     gas_->step(coupled_, time_, dt_ * static_cast<double>(steps_per_flow_));
     dist_->hold_own_forces({gas_->force(0).data(), gas_->force(1).data(), gas_->force(2).data()});
+    if (fluid && gas_->torque(0))
+      dist_->hold_own_torques({gas_->torque(0), gas_->torque(1), gas_->torque(2)});
+    if (fluid) gas_->save_fluid_state(dist_->attached());
     t_gas_ += seconds_since(t0);
     return;
   }

@@ -352,7 +352,11 @@ void Simulation::write_checkpoint(const std::string& path) {
     w.put("gas/diagnostics",
           std::vector<double>{g.gas.last_mass_residual, g.gas.last_velocity_change,
                               g.gas.boundary_outflow});
-    for (const auto& [name, v] : g.fluid) w.put("gas/fluid/" + name, v);
+    // Ranks: the fluid forces' state of every particle, gathered with them (id order).
+    const auto fluid = dist_ && gas_->fluid_forces()
+                           ? gas_->fluid_forces()->unpacked(gathered.attached, parts.size())
+                           : g.fluid;
+    for (const auto& [name, v] : fluid) w.put("gas/fluid/" + name, v);
   }
   w.commit();
   // A synchronisation point: the run that continues from here and one restarted from the
@@ -468,9 +472,17 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
     else if (s.collisions_)
       s.collisions_ = std::make_unique<CollisionStatistics>(s.collisions_->settings(), s.time_);
     if (s.gas_) s.gas_->restore(read_gas(r, checkpoint, *s.gas_));
-    if (s.gas_ && s.dist_) // the forces held over the flow step, from the gas's (id order)
+    if (s.gas_ && s.dist_) { // the forces held over the flow step, from the gas's (id order)
       s.dist_->hold_forces(
           s.p_, {s.gas_->force(0).data(), s.gas_->force(1).data(), s.gas_->force(2).data()});
+      if (s.gas_->fluid_state_width() > 0) { // [coupling.forces]: their state and torque
+        std::vector<double> packed(s.gas_->fluid_state_width() * s.p_.size());
+        s.gas_->save_fluid_state(packed);
+        s.dist_->set_attached(s.p_, packed);
+        if (s.gas_->torque(0))
+          s.dist_->hold_torques(s.p_, {s.gas_->torque(0), s.gas_->torque(1), s.gas_->torque(2)});
+      }
+    }
   } catch (const CheckpointError&) {
     throw;
   } catch (const std::exception& e) {
