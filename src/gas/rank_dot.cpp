@@ -25,12 +25,14 @@ double rank_dot(int comm, long total_entries, const double* a, const double* b, 
   // integer (ties to even) exactly, without a call to llround.
   const auto bits_n =
       static_cast<int>(std::bit_width(static_cast<unsigned long>(std::max(total_entries, 1L))));
-  const int s = std::clamp(std::min(60 - bits_n, 51) - (std::ilogb(m) + 1), -1000, 1000);
-  const double scale = std::ldexp(1.0, s);
+  const int s = std::min(60 - bits_n, 51) - (std::ilogb(m) + 1); // |s| <= 1126
+  // 2^s as two factors, each a normal double (2^s itself is not for m below ~2^-970); scaling
+  // by powers of two is exact.
+  const double scale1 = std::ldexp(1.0, s / 2), scale2 = std::ldexp(1.0, s - s / 2);
   constexpr double kRound = 0x1.8p52;
   std::int64_t sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double v = a[i] * b[i] * scale;
+    const double v = a[i] * b[i] * scale1 * scale2;
     sum += static_cast<std::int64_t>((v + kRound) - kRound);
   }
   if (c != MPI_COMM_NULL) MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_INT64_T, MPI_SUM, c);

@@ -4,8 +4,9 @@
 // sum is converted back. The scale is the same on every rank: the largest 2^s with
 // max|a_i b_i| 2^s < 2^min(60 - bits(N), 51) (N the entries of all ranks, bits(N) its binary
 // digits, the maximum taken over all ranks), so no sum of N products overflows, and the rounding
-// is at most 2^-s / 2 <= max(N 2^-60, 2^-51) max|a_i b_i| per product (1e-13 of the largest
-// product for 10^5 entries) — the scheme of coupling/rank_sum.hpp for one number.
+// is at most 2^-s / 2 <= 2 max(N 2^-60, 2^-52) max|a_i b_i| per product (2e-13 of the largest
+// product for 10^5 entries), N times that over the sum, plus one rounding of the result — the
+// scheme of coupling/rank_sum.hpp for one number.
 #pragma once
 #include <cstddef>
 
