@@ -364,6 +364,10 @@ struct StructLinearSolver::Impl {
     };
     op.precondition = [&](const std::vector<double>& in, std::vector<double>& out) {
       set(b, in);
+      // PFMG's first relaxation assumes a zero guess, yet on a periodic axis of odd period it
+      // reads the points of its own colour across the period: they must be zero (the last
+      // product's input otherwise, and PCG stagnated on periods of 5).
+      HYPRE_StructVectorSetConstantValues(x, 0.0);
       HYPRE_StructPFMGSolve(mg, A, b, x);
       get(x, out);
     };
