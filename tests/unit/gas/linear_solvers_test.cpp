@@ -17,6 +17,7 @@
 //    tolerance (1e-6 m/s) and 1e-8 relative in pressure after 20 steps of the 2-D bed; the
 //    hypre fallback of the momentum solve is taken at DT near the viscous time; a linear solve
 //    that does not converge is an InstabilityError naming the settings.
+#include "../../common/stencil_residual.hpp"
 #include "core/error.hpp"
 #include "gas/band_solver.hpp"
 #include "gas/gas_solver.hpp"
@@ -80,30 +81,7 @@ StencilSystem random_system(const Box& b, double dominance, unsigned seed) {
 
 // ||b - A x|| / ||b|| on the box, the periodic neighbours wrapped explicitly.
 double relative_residual(const Box& b, const StencilSystem& s, const std::vector<double>& x) {
-  double rr = 0.0, bb = 0.0;
-  const auto at = [&](int i, int j, int k) {
-    int c[3] = {i, j, k};
-    for (int a = 0; a < 3; ++a) {
-      const int period = b.hi[a] - b.lo[a] + 1;
-      if (b.periodic[a] && c[a] < b.lo[a]) c[a] += period;
-      if (b.periodic[a] && c[a] > b.hi[a]) c[a] -= period;
-      // Outside the array (a box starting at index 0): the coefficient there is 0, read nothing.
-      if (c[a] < 0 || c[a] >= b.padded[a]) return 0.0;
-    }
-    return x[b.idx(c[0], c[1], c[2])];
-  };
-  for (int k = b.lo[2]; k <= b.hi[2]; ++k)
-    for (int j = b.lo[1]; j <= b.hi[1]; ++j)
-      for (int i = b.lo[0]; i <= b.hi[0]; ++i) {
-        const long q = b.idx(i, j, k);
-        const double r = s.rhs[q] - s.diag[q] * x[q] - s.xm[q] * at(i - 1, j, k) -
-                         s.xp[q] * at(i + 1, j, k) - s.ym[q] * at(i, j - 1, k) -
-                         s.yp[q] * at(i, j + 1, k) - s.zm[q] * at(i, j, k - 1) -
-                         s.zp[q] * at(i, j, k + 1);
-        rr += r * r;
-        bb += s.rhs[q] * s.rhs[q];
-      }
-  return std::sqrt(rr / bb);
+  return test::stencil_relative_residual(b.padded, b.lo, b.hi, b.periodic, s, x);
 }
 
 double max_rel_diff(const Box& b, const std::vector<double>& x, const std::vector<double>& y) {
