@@ -272,21 +272,40 @@ std::size_t FluidForces::width(const coupling::FluidForceSettings& s) {
   return w;
 }
 
-void FluidForces::save(std::vector<double>& out) const {
+// The numbers of a particle in the order of particle_arrays(): per axis held, physical,
+// v_start, u_start, reaction, torque; then its Basset history (BassetHistory::save_particle).
+void FluidForces::save(std::span<double> out) const {
   const std::size_t n = held_[0].size(), w = width(s_);
-  out.resize(n * w);
-  const auto st = state();
-  std::size_t offset = 0;
-  for (const auto& [name, k] : particle_arrays(s_)) {
-    const auto it =
-        std::find_if(st.begin(), st.end(), [&](const auto& e) { return e.first == name; });
-    if (it == st.end() || it->second.size() != n * k)
-      throw std::logic_error("FluidForces::save: state array '" + name + "' is not " +
-                             std::to_string(k) + " per particle");
-    for (std::size_t i = 0; i < n; ++i)
-      std::copy_n(it->second.begin() + static_cast<std::ptrdiff_t>(k * i), k,
-                  out.begin() + static_cast<std::ptrdiff_t>(w * i + offset));
-    offset += k;
+  if (out.size() != n * w)
+    throw std::logic_error("FluidForces::save: room for " + std::to_string(out.size()) +
+                           " numbers, " + std::to_string(n) + " particles of " + std::to_string(w));
+  for (std::size_t i = 0; i < n; ++i) {
+    double* o = out.data() + w * i;
+    for (std::size_t d = 0; d < 3; ++d) {
+      double* od = o + 6 * d;
+      od[0] = held_[d][i], od[1] = physical_[d][i], od[2] = v_start_[d][i];
+      od[3] = u_start_[d][i], od[4] = reaction_[d][i], od[5] = torque_[d][i];
+    }
+    if (basset_) basset_->save_particle(i, o + 18);
+  }
+}
+
+void FluidForces::load(std::span<const double> in, std::size_t n) {
+  const std::size_t w = width(s_);
+  if (in.size() != n * w)
+    throw std::logic_error("FluidForces::load: " + std::to_string(in.size()) + " numbers for " +
+                           std::to_string(n) + " particles of " + std::to_string(w));
+  for (auto* a : {&held_, &physical_, &v_start_, &u_start_, &reaction_, &torque_})
+    for (auto& v : *a) v.resize(n);
+  if (basset_) basset_->resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* o = in.data() + w * i;
+    for (std::size_t d = 0; d < 3; ++d) {
+      const double* od = o + 6 * d;
+      held_[d][i] = od[0], physical_[d][i] = od[1], v_start_[d][i] = od[2];
+      u_start_[d][i] = od[3], reaction_[d][i] = od[4], torque_[d][i] = od[5];
+    }
+    if (basset_) basset_->load_particle(i, o + 18);
   }
 }
 

@@ -30,6 +30,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -83,10 +84,11 @@ public:
 
   /// The per-particle numbers of state(), particle by particle (runs on MPI ranks carry them
   /// with their particles): numbers per particle (for these settings, before any particle),
-  /// the particles' numbers into `out` (width() each), and back for n particles.
+  /// the particles' numbers into `out` (width() each, sized for all of them), and back for n
+  /// particles.
   static std::size_t width(const coupling::FluidForceSettings& s);
-  void save(std::vector<double>& out) const;
-  void load(const std::vector<double>& in, std::size_t n) { restore(unpacked(in, n)); }
+  void save(std::span<double> out) const;
+  void load(std::span<const double> in, std::size_t n);
   /// The state() of n particles whose numbers `in` holds (width() each).
   std::vector<std::pair<std::string, std::vector<double>>> unpacked(const std::vector<double>& in,
                                                                     std::size_t n) const;

@@ -14,13 +14,11 @@
 // The gas settings of the case are completed here from the particle domain: dimension, lo/hi,
 // 2-D depth (the domain's y extent) and gravity are the simulation's own.
 #pragma once
-#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -92,15 +90,8 @@ public:
   std::size_t fluid_state_width() const {
     return fluid_ ? FluidForces::width(settings_.forces) : 0;
   }
-  void load_fluid_state(std::span<const double> in, std::size_t n) {
-    fluid_->load(std::vector<double>(in.begin(), in.end()), n);
-  }
-  void save_fluid_state(std::span<double> out) const {
-    std::vector<double> v;
-    fluid_->save(v);
-    if (v.size() != out.size()) throw std::logic_error("GasCoupling::save_fluid_state: sizes");
-    std::copy(v.begin(), v.end(), out.begin());
-  }
+  void load_fluid_state(std::span<const double> in, std::size_t n) { fluid_->load(in, n); }
+  void save_fluid_state(std::span<double> out) const { fluid_->save(out); }
 
   /// The gas force on each particle (drag + pressure), N, held over the current flow step.
   const std::vector<double>& force(int d) const { return force_[static_cast<std::size_t>(d)]; }

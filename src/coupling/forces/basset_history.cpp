@@ -70,6 +70,22 @@ void BassetHistory::resize(std::size_t n) {
   tail_.resize(3 * n * kT, 0.0);
 }
 
+void BassetHistory::save_particle(std::size_t i, double* out) const {
+  const std::size_t ns = 3 * ring(), nt = 3 * kT;
+  out[0] = static_cast<double>(count_[i]); // a whole number below 2^53: exact
+  std::copy_n(samples_.data() + ns * i, ns, out + 1);
+  std::copy_n(start_slip_.data() + 3 * i, 3, out + 1 + ns);
+  std::copy_n(tail_.data() + nt * i, nt, out + 1 + ns + 3);
+}
+
+void BassetHistory::load_particle(std::size_t i, const double* in) {
+  const std::size_t ns = 3 * ring(), nt = 3 * kT;
+  count_[i] = static_cast<std::uint64_t>(in[0]);
+  std::copy_n(in + 1, ns, samples_.data() + ns * i);
+  std::copy_n(in + 1 + ns, 3, start_slip_.data() + 3 * i);
+  std::copy_n(in + 1 + ns + 3, nt, tail_.data() + nt * i);
+}
+
 void BassetHistory::clear(std::size_t i) {
   count_[i] = 0;
   std::fill_n(samples_.begin() + static_cast<std::ptrdiff_t>(3 * i * ring()), 3 * ring(), 0.0);

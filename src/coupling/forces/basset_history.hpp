@@ -111,6 +111,11 @@ public:
   /// false).
   void push(std::size_t i, const Vec3& w);
 
+  /// Particle i's history as numbers (its sample count, samples, slip start and tail: the
+  /// order of state()'s arrays), particle_width() of them; and back.
+  std::size_t particle_width() const { return 1 + 3 * ring() + 3 + 3 * tail_terms; }
+  void save_particle(std::size_t i, double* out) const;
+  void load_particle(std::size_t i, const double* in);
   /// Reorders: new index k takes old particle new_to_old[k] (as ParticleStore::permute).
   void permute(const std::vector<std::uint32_t>& new_to_old);
 
