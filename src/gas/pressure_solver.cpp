@@ -75,10 +75,9 @@ struct StructLinearSolver::Impl {
   int max_levels = 0; ///< PFMG levels that keep every period >= 3 (0: no limit)
   long cells = 0;     ///< unknowns in the box
   // hypre's view: ndim axes (x, z when the box is one cell thick along y, else x, y, z),
-  // extents hlo..hhi, stencil entries in the order of `slot` (index into the 7 stencil
-  // arrays: 0 diag, 1 xm, 2 xp, 3 ym, 4 yp, 5 zm, 6 zp).
+  // this rank's extents phlo..phhi (set_part), stencil entries in the order of `slot` (index
+  // into the 7 stencil arrays: 0 diag, 1 xm, 2 xp, 3 ym, 4 yp, 5 zm, 6 zp).
   int ndim = 3;
-  std::array<int, 3> hlo{}, hhi{};
   std::array<int, 7> slot{0, 1, 2, 3, 4, 5, 6};
   int nentries = 7;
   StructSolverOptions opt;
@@ -495,18 +494,14 @@ StructLinearSolver::StructLinearSolver(std::array<int, 3> padded, std::array<int
   }
   // One cell thick along y and not periodic there (2-D runs): the y links are out of the box
   // (0), so hypre gets the 5-point x-z problem.
-  std::array<int, 3> axis{0, 1, 2};
   if (lo[1] == hi[1] && !periodic[1]) {
     m.ndim = 2;
-    axis = {0, 2, 2};
     m.slot = {0, 1, 2, 5, 6, 0, 0};
     m.nentries = 5;
   }
-  for (int a = 0; a < m.ndim; ++a) {
-    m.hlo[a] = lo[axis[a]];
-    m.hhi[a] = hi[axis[a]];
+  const std::array<int, 3> axis = m.axis_of_hypre();
+  for (int a = 0; a < m.ndim; ++a)
     m.hperiod[a] = m.periodic[axis[a]] ? hi[axis[a]] - lo[axis[a]] + 1 : 0;
-  }
   std::size_t n = 1;
   for (int d = 0; d < 3; ++d) n *= static_cast<std::size_t>(hi[d] - lo[d] + 1);
   m.cells = static_cast<long>(n);
