@@ -279,7 +279,12 @@ void GasSolver::solve_momentum(int d, double dt) {
   // A 3-D box one cell deep between y boundaries (pseudo-2-D beds): no row is interior in y,
   // but the rows interior in x and z take the Kind 2 row (both y links at the wall).
   const bool one_cell_in_y = !two_d && g_.n[1] == 1 && !bc_.periodic(1) && d != 1;
-  const int ny = g_.n[1] - lo[1] + 1, rows = ny * (g_.n[2] - lo[2] + 1);
+  // This rank's rows: its z planes of the box when the ranks share the solve (the Gauss-Seidel
+  // solver reads no other row of the system).
+  RedBlackGaussSeidel& gs = *momentum_gs_[d];
+  const int ny = g_.n[1] - lo[1] + 1;
+  const int r_begin = (gs.plane_lo() - lo[2]) * ny,
+            r_end = std::max(r_begin, (gs.plane_hi() + 1 - lo[2]) * ny);
   const auto assemble_row = [&](int r) {
     const int j = lo[1] + r % ny, k = lo[2] + r / ny;
     const bool inside_z = k >= in_lo[2] && k <= in_hi[2];
@@ -306,17 +311,22 @@ void GasSolver::solve_momentum(int d, double dt) {
   };
   if (parallel_) { // unthreaded: no OpenMP region at all (its runtime call shows on small grids)
 #pragma omp parallel for schedule(static)
-    for (int r = 0; r < rows; ++r) assemble_row(r);
+    for (int r = r_begin; r < r_end; ++r) assemble_row(r);
   } else {
-    for (int r = 0; r < rows; ++r) assemble_row(r);
+    for (int r = r_begin; r < r_end; ++r) assemble_row(r);
   }
+  gs.gather_planes(dcoef_[d]);
   LinearSolveStats st;
   if (lin_.momentum == LinearSolverOptions::Momentum::gauss_seidel) {
-    st = momentum_gs_[d]->solve(sys_, u, s_.linear_tolerance, lin_.momentum_max_sweeps);
+    st = gs.solve(sys_, u, s_.linear_tolerance, lin_.momentum_max_sweeps);
     ++counters_.momentum_solves;
     counters_.momentum_sweeps += st.iterations;
   }
   if (!st.converged) { // hypre GMRES + PFMG, from where Gauss-Seidel stopped
+    // Shared, hypre (on this process alone) needs the whole system: every rank's planes.
+    for (auto* a :
+         {&sys_.diag, &sys_.xm, &sys_.xp, &sys_.ym, &sys_.yp, &sys_.zm, &sys_.zp, &sys_.rhs})
+      gs.gather_planes(*a);
     if (!momentum_solver_[d]) {
       StructSolverOptions o;
       o.relax_type = 3; // red-black Gauss-Seidel, non-symmetric

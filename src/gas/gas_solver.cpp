@@ -65,7 +65,15 @@ void GasSolver::set_parallel_cells(long assembly, long gauss_seidel) {
     if (g_.dimension == 2 && d == 1) continue;
     momentum_gs_[d] = std::make_unique<RedBlackGaussSeidel>(g_.padded, momentum_box_lo(d), g_.n,
                                                             per, cells >= gauss_seidel);
+    if (momentum_ranks_.comm != kThisProcessAlone)
+      momentum_gs_[d]->share(momentum_ranks_.comm, momentum_ranks_.rank, momentum_ranks_.size);
   }
+}
+
+void GasSolver::share_momentum_solves(const SharedSolve& ranks) {
+  momentum_ranks_ = ranks;
+  for (auto& gs : momentum_gs_)
+    if (gs && ranks.comm != kThisProcessAlone) gs->share(ranks.comm, ranks.rank, ranks.size);
 }
 
 std::array<int, 3> GasSolver::momentum_box_lo(int d) const {

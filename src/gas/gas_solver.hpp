@@ -162,6 +162,11 @@ public:
   /// Solves the pressure correction together with the ranks of `ranks`, with the same bits
   /// for any number of them (StructLinearSolver::share); before the first step only.
   void share_pressure_solve(const SharedSolve& ranks) { pressure_solver_->share(ranks); }
+  /// Solves the momentum equations together with the ranks of `ranks`, with the same bits for
+  /// any number of them: each rank assembles and sweeps its z planes of each component
+  /// (RedBlackGaussSeidel::share), and the solution and SIMPLEC coefficients are gathered on
+  /// every rank after each component; before the first step only.
+  void share_momentum_solves(const SharedSolve& ranks);
   const LinearSolverCounters& linear_counters() const { return counters_; }
 
   /// Face roles (internal, exposed for tests and coupling): solved, fixed, ...
@@ -241,6 +246,7 @@ private:
   LinearSolverOptions lin_;
   LinearSolverCounters counters_;
   std::array<std::unique_ptr<RedBlackGaussSeidel>, 3> momentum_gs_;
+  SharedSolve momentum_ranks_; ///< comm kThisProcessAlone: the momentum solves are not shared
   std::array<std::unique_ptr<StructLinearSolver>, 3> momentum_solver_; ///< made when needed
   std::unique_ptr<StructLinearSolver> pressure_solver_;
   double step_time_ = 0.0; ///< start of the step being taken (for messages)

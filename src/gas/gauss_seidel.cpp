@@ -1,7 +1,10 @@
 // Red-black Gauss-Seidel on a structured box (gauss_seidel.hpp).
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
 #include "gas/gauss_seidel.hpp"
 #include <algorithm>
 #include <cmath>
+#include <mpi.h>
 
 namespace fluidem::gas {
 
@@ -11,17 +14,94 @@ RedBlackGaussSeidel::RedBlackGaussSeidel(std::array<int, 3> padded, std::array<i
     : padded_(padded), lo_(lo), hi_(hi), periodic_(periodic), parallel_(threaded) {
   sy_ = padded[0];
   sz_ = static_cast<long>(padded[0]) * padded[1];
-  rows_ = (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+  ny_ = hi[1] - lo[1] + 1;
+  rows_ = ny_ * (hi[2] - lo[2] + 1);
   row_sum_.assign(static_cast<std::size_t>(rows_), 0.0);
   zeros_.assign(static_cast<std::size_t>(padded[0]), 0.0);
+  k_lo_ = lo[2];
+  k_hi_ = hi[2];
+  r_begin_ = 0;
+  r_end_ = rows_;
+}
+
+void RedBlackGaussSeidel::share(int comm, int rank, int size) {
+  comm_ = comm;
+  rank_ = rank;
+  const int planes = hi_[2] - lo_[2] + 1;
+  active_ = std::min(size, planes);
+  plane_begin_.assign(static_cast<std::size_t>(size) + 1, hi_[2] + 1);
+  for (int r = 0; r <= active_; ++r) plane_begin_[r] = lo_[2] + r * planes / active_;
+  k_lo_ = plane_begin_[rank];
+  k_hi_ = plane_begin_[rank + 1] - 1;
+  r_begin_ = std::min((k_lo_ - lo_[2]) * ny_, rows_);
+  r_end_ = std::max(r_begin_, (k_hi_ + 1 - lo_[2]) * ny_);
+}
+
+void RedBlackGaussSeidel::gather_planes(std::vector<double>& a) const {
+  if (!shared()) return;
+  const int size = static_cast<int>(plane_begin_.size()) - 1;
+  std::vector<int> counts(size), displs(size);
+  for (int r = 0; r < size; ++r) {
+    counts[r] = static_cast<int>((plane_begin_[r + 1] - plane_begin_[r]) * sz_);
+    displs[r] = static_cast<int>((plane_begin_[r] - lo_[2]) * sz_);
+  }
+  MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, a.data() + lo_[2] * sz_, counts.data(),
+                 displs.data(), MPI_DOUBLE, MPI_Comm_f2c(comm_));
+}
+
+// The planes beside this rank's part: k_lo - 1 from the rank below, k_hi + 1 from the rank
+// above; along a periodic z the first rank's ghost plane lo - 1 is the last rank's plane hi and
+// the last rank's ghost plane hi + 1 the first rank's plane lo (refresh_periodic's images).
+void RedBlackGaussSeidel::exchange_halo(std::vector<double>& x) const {
+  if (rank_ >= active_) return;
+  const bool per = periodic_[2];
+  const int below = rank_ > 0 ? rank_ - 1 : (per ? active_ - 1 : -1);
+  const int above = rank_ + 1 < active_ ? rank_ + 1 : (per ? 0 : -1);
+  const int plane = static_cast<int>(sz_);
+  if (active_ == 1) { // alone on the box: the periodic images are local copies
+    if (per) {
+      std::copy_n(x.begin() + hi_[2] * sz_, sz_, x.begin() + (lo_[2] - 1) * sz_);
+      std::copy_n(x.begin() + lo_[2] * sz_, sz_, x.begin() + (hi_[2] + 1) * sz_);
+    }
+    return;
+  }
+  const MPI_Comm c = MPI_Comm_f2c(comm_);
+  MPI_Request req[4];
+  int n = 0;
+  // Tag 0: a plane sent upwards (it lands below the receiver's part), 1: downwards.
+  if (below >= 0) {
+    MPI_Irecv(x.data() + (k_lo_ - 1) * sz_, plane, MPI_DOUBLE, below, 0, c, &req[n++]);
+    MPI_Isend(x.data() + k_lo_ * sz_, plane, MPI_DOUBLE, below, 1, c, &req[n++]);
+  }
+  if (above >= 0) {
+    MPI_Irecv(x.data() + (k_hi_ + 1) * sz_, plane, MPI_DOUBLE, above, 1, c, &req[n++]);
+    MPI_Isend(x.data() + k_hi_ * sz_, plane, MPI_DOUBLE, above, 0, c, &req[n++]);
+  }
+  MPI_Waitall(n, req, MPI_STATUSES_IGNORE);
+}
+
+double RedBlackGaussSeidel::sum_rows() {
+  if (shared()) {
+    const int size = static_cast<int>(plane_begin_.size()) - 1;
+    std::vector<int> counts(size), displs(size);
+    for (int r = 0; r < size; ++r) {
+      counts[r] = (plane_begin_[r + 1] - plane_begin_[r]) * ny_;
+      displs[r] = (plane_begin_[r] - lo_[2]) * ny_;
+    }
+    MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, row_sum_.data(), counts.data(),
+                   displs.data(), MPI_DOUBLE, MPI_Comm_f2c(comm_));
+  }
+  double total = 0.0;
+  for (int r = 0; r < rows_; ++r) total += row_sum_[r]; // fixed order: thread-independent
+  return total;
 }
 
 // Periodic images: ghost layer lo-1 holds x[hi], hi+1 holds x[lo] (whole padded planes, so
 // edges of two periodic axes come out right after both passes).
-void RedBlackGaussSeidel::refresh_periodic(std::vector<double>& x) const {
+void RedBlackGaussSeidel::refresh_periodic(std::vector<double>& x, bool with_z) const {
   const std::array<long, 3> stride{1, sy_, sz_};
   for (int d = 0; d < 3; ++d) {
-    if (!periodic_[d]) continue;
+    if (!periodic_[d] || (d == 2 && !with_z)) continue;
     const int a = d == 0 ? 1 : 0, b = d == 2 ? 1 : 2; // the other two axes
     const long sd = stride[d], period = hi_[d] - lo_[d] + 1;
     for (int q = 0; q < padded_[b]; ++q)
@@ -33,10 +113,11 @@ void RedBlackGaussSeidel::refresh_periodic(std::vector<double>& x) const {
   }
 }
 
-double RedBlackGaussSeidel::half_sweep(const StencilSystem& s, std::vector<double>& xv,
-                                       int colour) {
-  if (periodic_[0] || periodic_[1] || periodic_[2]) refresh_periodic(xv);
-  const int ny = hi_[1] - lo_[1] + 1, i_lo = lo_[0], i_hi = hi_[0];
+double RedBlackGaussSeidel::half_sweep(const StencilSystem& s, std::vector<double>& xv, int colour,
+                                       bool want_sum) {
+  // Shared, the z images come from exchange_halo after each half-sweep instead.
+  if (periodic_[0] || periodic_[1] || periodic_[2]) refresh_periodic(xv, !shared());
+  const int ny = ny_, i_lo = lo_[0], i_hi = hi_[0];
   const long sy = sy_, sz = sz_;
   const double *diag = s.diag.data(), *xm = s.xm.data(), *xp = s.xp.data(), *ym = s.ym.data(),
                *yp = s.yp.data(), *zm = s.zm.data(), *zp = s.zp.data(), *rhs = s.rhs.data();
@@ -65,20 +146,20 @@ double RedBlackGaussSeidel::half_sweep(const StencilSystem& s, std::vector<doubl
     }
     row_sum[r] = sum;
   };
+  const int r0 = r_begin_, r1 = r_end_;
   if (parallel_) {
 #pragma omp parallel for schedule(static)
-    for (int r = 0; r < rows_; ++r) row(r);
+    for (int r = r0; r < r1; ++r) row(r);
   } else {
-    for (int r = 0; r < rows_; ++r) row(r);
+    for (int r = r0; r < r1; ++r) row(r);
   }
-  double total = 0.0;
-  for (int r = 0; r < rows_; ++r) total += row_sum[r]; // fixed order: thread-independent
-  return total;
+  if (shared()) exchange_halo(xv);
+  return want_sum ? sum_rows() : 0.0;
 }
 
 LinearSolveStats RedBlackGaussSeidel::solve(const StencilSystem& s, std::vector<double>& x,
                                             double rel_tol, int max_sweeps) {
-  const int ny = hi_[1] - lo_[1] + 1;
+  const int ny = ny_;
   const double* rhs = s.rhs.data();
   const auto rhs_row = [&](int r) {
     const long base = (lo_[1] + r % ny) * sy_ + (lo_[2] + r / ny) * sz_;
@@ -88,12 +169,11 @@ LinearSolveStats RedBlackGaussSeidel::solve(const StencilSystem& s, std::vector<
   };
   if (parallel_) {
 #pragma omp parallel for schedule(static)
-    for (int r = 0; r < rows_; ++r) rhs_row(r);
+    for (int r = r_begin_; r < r_end_; ++r) rhs_row(r);
   } else {
-    for (int r = 0; r < rows_; ++r) rhs_row(r);
+    for (int r = r_begin_; r < r_end_; ++r) rhs_row(r);
   }
-  double bb = 0.0;
-  for (int r = 0; r < rows_; ++r) bb += row_sum_[r];
+  const double bb = sum_rows();
   LinearSolveStats st;
   if (bb == 0.0) { // the solution is 0 (as hypre's Krylov solvers answer b = 0)
     for (int r = 0; r < rows_; ++r) {
@@ -104,14 +184,17 @@ LinearSolveStats RedBlackGaussSeidel::solve(const StencilSystem& s, std::vector<
     st.converged = true;
     return st;
   }
+  // Shared: every rank's x holds the whole guess here, so the first half-sweep's z images
+  // are local copies; later ones come from the neighbours (exchange_halo).
+  if (shared() && periodic_[2]) refresh_periodic(x);
   const double target = rel_tol * rel_tol * bb;
-  half_sweep(s, x, 0);
-  half_sweep(s, x, 1);
+  half_sweep(s, x, 0, false);
+  half_sweep(s, x, 1, false);
   int sweeps = 1;
   double previous = -1.0;
   for (;;) {
     // Black residuals are 0 now: this red half-sweep sees the whole residual of sweep `sweeps`.
-    const double rr = half_sweep(s, x, 0);
+    const double rr = half_sweep(s, x, 0, true);
     st.iterations = sweeps;
     st.relative_residual = std::sqrt(rr / bb);
     if (rr <= target) {
@@ -126,9 +209,10 @@ LinearSolveStats RedBlackGaussSeidel::solve(const StencilSystem& s, std::vector<
       if (sweeps + more > max_sweeps) break; // hopeless within the budget: let the caller switch
     }
     previous = rr;
-    half_sweep(s, x, 1);
+    half_sweep(s, x, 1, false);
     ++sweeps;
   }
+  gather_planes(x);
   if (periodic_[0] || periodic_[1] || periodic_[2]) refresh_periodic(x);
   return st;
 }

@@ -15,8 +15,15 @@
 // sweep are the other colour), so they can run in parallel; the residual norms are summed per
 // row and then over rows in a fixed order. Results are bitwise independent of the thread count
 // and of `threaded`.
+//
+// Ranks (optional, share()): the ranks sweep their own contiguous z planes of the box and pass
+// the planes at their cuts to their neighbours after each half-sweep; the residual norms of all
+// rows are gathered and summed in the same order as on one process. Every point gets the same
+// arithmetic as on one process, so the solution is the same bits for any number of ranks
+// (docs/parallel.md, "The gas on several ranks").
 #pragma once
 #include "gas/pressure_solver.hpp"
+#include "gas/rank_dot.hpp"
 #include <array>
 #include <vector>
 
@@ -35,19 +42,48 @@ public:
   /// Solves for x on the box (x holds the initial guess; outside the box only the periodic
   /// images are written). Entries of sys that link out of the box along a non-periodic axis
   /// must be 0; x is read there only inside the padded array (it must be finite).
+  /// Shared (share()): only the rows of this rank's planes of sys are read, and x holds the
+  /// whole solution on every rank on return.
   LinearSolveStats solve(const StencilSystem& sys, std::vector<double>& x, double rel_tol,
                          int max_sweeps);
 
+  /// From now on, solve together with the ranks of the communicator `comm` (its MPI_Comm_c2f
+  /// handle, rank_dot.hpp), each sweeping its part of the box's z planes (contiguous, as even
+  /// as the planes allow; ranks beyond the number of planes get none). Every solve is then
+  /// collective.
+  void share(int comm, int rank, int size);
+  bool shared() const { return comm_ != kNotShared; }
+  /// This rank's planes lo..hi of the box (hi < lo: none); the whole box when not shared.
+  int plane_lo() const { return k_lo_; }
+  int plane_hi() const { return k_hi_; }
+  /// Collective when shared: every rank's array gets the other ranks' planes of the box (each
+  /// rank's whole padded planes). Nothing when not shared.
+  void gather_planes(std::vector<double>& a) const;
+
 private:
-  void refresh_periodic(std::vector<double>& x) const;
-  /// One half-sweep over the points of `colour`; returns sum over them of the squared
-  /// residual before the update.
-  double half_sweep(const StencilSystem& sys, std::vector<double>& x, int colour);
+  static constexpr int kNotShared = -2;
+  /// The ghost layers of the periodic axes; z only when `with_z`.
+  void refresh_periodic(std::vector<double>& x, bool with_z = true) const;
+  /// One half-sweep over the points of `colour` on this rank's planes; returns the sum over
+  /// all the box's points of that colour of the squared residual before the update (when
+  /// `want_sum`; shared, the ranks' row sums are gathered for it).
+  double half_sweep(const StencilSystem& sys, std::vector<double>& x, int colour, bool want_sum);
+  /// Shared: the planes next to this rank's part (z-periodic: across the period) from the
+  /// ranks that own them.
+  void exchange_halo(std::vector<double>& x) const;
+  /// The per-row sums of all rows (shared: gathered from the ranks) added in row order.
+  double sum_rows();
 
   std::array<int, 3> padded_{}, lo_{}, hi_{};
   std::array<bool, 3> periodic_{};
   long sy_ = 0, sz_ = 0;
   int rows_ = 0; ///< (j, k) rows of the box
+  int ny_ = 0;   ///< rows per plane
+  int comm_ = kNotShared;
+  int k_lo_ = 0, k_hi_ = -1;     ///< this rank's planes
+  int r_begin_ = 0, r_end_ = 0;  ///< this rank's rows
+  std::vector<int> plane_begin_; ///< first plane of each rank, and one past the last
+  int active_ = 1, rank_ = 0;    ///< ranks that own planes (0..active_-1), this rank
   bool parallel_ = false;
   std::vector<double> row_sum_;
   std::vector<double> zeros_; ///< stands in for the row below a box that starts at index 0
