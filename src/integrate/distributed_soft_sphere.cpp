@@ -30,6 +30,82 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
                                              const DistributedState& state)
     : DistributedSoftSphere(comm, std::move(table), box, settings, state.particles, &state) {}
 
+template <class Self>
+auto DistributedSoftSphere::carried_fields(Self& self) {
+  using V =
+      std::conditional_t<std::is_const_v<Self>, const std::vector<double>, std::vector<double>>;
+  const std::size_t nc = self.s_.noncontact ? 1 : 0, tw = self.s_.held_torques ? 3 : 0,
+                    aw = static_cast<std::size_t>(self.s_.attached_width);
+  // Its dissipated energy, its last contact sums and elastic energy (a build between steps, by
+  // rebalance(), keeps them for the next kick), the held gas force, its build position, its
+  // non-contact force and potential share, its held torque and attached numbers.
+  return std::array<std::pair<V*, std::size_t>, 9>{{{&self.dissipated_, 1},
+                                                    {&self.sums_.elastic, 1},
+                                                    {&self.sums_.acc, OrderedContactSums::kAcc},
+                                                    {&self.held_, 3},
+                                                    {&self.x0_, 3},
+                                                    {&self.nc_force_, 3 * nc},
+                                                    {&self.nc_potential_, nc},
+                                                    {&self.held_torque_, tw},
+                                                    {&self.attached_, aw}}};
+}
+
+template <class State>
+auto DistributedSoftSphere::state_fields(State& g) {
+  using V =
+      std::conditional_t<std::is_const_v<State>, const std::vector<double>, std::vector<double>>;
+  return std::array<V*, 9>{&g.dissipated, &g.elastic,     &g.contact, &g.held, &g.x0,
+                           nullptr, // the non-contact force: not kept, recomputed
+                           &g.noncontact, &g.held_torque, &g.attached};
+}
+
+namespace {
+
+/// The numbers per particle of `fields` (rows of their widths), packed particle by particle.
+template <class Fields>
+std::size_t packed_width(const Fields& fields) {
+  std::size_t w = 0;
+  for (const auto& f : fields) w += f.second;
+  return w;
+}
+
+template <class Fields>
+std::vector<double> pack_fields(const Fields& fields, std::size_t n) {
+  const std::size_t width = packed_width(fields);
+  std::vector<double> out(width * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double* c = out.data() + width * i;
+    for (const auto& [values, w] : fields) {
+      std::copy_n(values->begin() + static_cast<std::ptrdiff_t>(w * i), w, c);
+      c += w;
+    }
+  }
+  return out;
+}
+
+/// Unpacks `packed` (pack_fields' layout, widths of `fields`) into `to` (one array per field,
+/// null: skipped), resized to n particles; particle k of the result is packed particle
+/// from[k] (identity when `from` is empty).
+template <class Fields, class To>
+void unpack_fields(const Fields& fields, const std::vector<double>& packed, const To& to,
+                   std::size_t n, const std::vector<std::uint32_t>& from = {}) {
+  const std::size_t width = packed_width(fields);
+  std::size_t at = 0;
+  for (std::size_t f = 0; f < fields.size(); ++f) {
+    const std::size_t w = fields[f].second;
+    if (to[f]) {
+      to[f]->resize(w * n);
+      for (std::size_t k = 0; k < n; ++k)
+        std::copy_n(packed.begin() +
+                        static_cast<std::ptrdiff_t>(width * (from.empty() ? k : from[k]) + at),
+                    w, to[f]->begin() + static_cast<std::ptrdiff_t>(w * k));
+    }
+    at += w;
+  }
+}
+
+} // namespace
+
 DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
                                              std::unique_ptr<ContactTable> table,
                                              const BoxGeometry& box, const Settings& settings,
@@ -67,27 +143,28 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
   const auto aw = static_cast<std::size_t>(s_.attached_width);
   held_torque_.assign(s_.held_torques ? 3 * owned_ : 0, 0.0);
   attached_.assign(aw * owned_, 0.0);
+  x0_.resize(3 * owned_);
   if (state) {
     const auto hw = static_cast<std::size_t>(kept.width);
     const KeptHistory& h = state->history;
     sums_.acc.resize(OrderedContactSums::kAcc * owned_);
     sums_.elastic.resize(owned_);
     sums_.released.assign(owned_, 0.0);
+    // What travels with each particle, from the state's arrays (those it keeps: a state without
+    // held forces, torques or attached numbers leaves them 0).
+    const auto fields = carried_fields(*this);
+    const auto from = state_fields(*state);
+    for (std::size_t f = 0; f < fields.size(); ++f) {
+      const std::size_t w = fields[f].second;
+      if (!from[f] || from[f]->empty() || w == 0) continue;
+      std::vector<double>& to = *fields[f].first;
+      to.resize(w * owned_);
+      for (std::size_t k = 0; k < owned_; ++k)
+        std::copy_n(from[f]->begin() + static_cast<std::ptrdiff_t>(w * mine[k]), w,
+                    to.begin() + static_cast<std::ptrdiff_t>(w * k));
+    }
     for (std::size_t k = 0; k < owned_; ++k) {
       const std::size_t i = mine[k];
-      std::copy_n(state->contact.begin() + static_cast<std::ptrdiff_t>(12 * i), 12,
-                  sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * k));
-      sums_.elastic[k] = state->elastic[i];
-      dissipated_[k] = state->dissipated[i];
-      if (!state->held.empty())
-        std::copy_n(state->held.begin() + static_cast<std::ptrdiff_t>(3 * i), 3,
-                    held_.begin() + static_cast<std::ptrdiff_t>(3 * k));
-      if (s_.held_torques && !state->held_torque.empty())
-        std::copy_n(state->held_torque.begin() + static_cast<std::ptrdiff_t>(3 * i), 3,
-                    held_torque_.begin() + static_cast<std::ptrdiff_t>(3 * k));
-      if (aw > 0 && !state->attached.empty())
-        std::copy_n(state->attached.begin() + static_cast<std::ptrdiff_t>(aw * i), aw,
-                    attached_.begin() + static_cast<std::ptrdiff_t>(aw * k));
       for (std::uint32_t m = h.offset[i]; m < h.offset[i + 1]; ++m) {
         kept.key.push_back(h.key[m]);
         kept.values.insert(kept.values.end(),
@@ -111,12 +188,8 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
     nc_rows_->build(p_, owned_, state ? 2.0 * s_.skin : s_.skin, {});
     compute_noncontact();
   }
-  x0_.resize(3 * owned_);
-  for (std::size_t k = 0; k < owned_; ++k)
-    if (state)
-      std::copy_n(state->x0.begin() + static_cast<std::ptrdiff_t>(3 * mine[k]), 3,
-                  x0_.begin() + static_cast<std::ptrdiff_t>(3 * k));
-    else
+  if (!state)
+    for (std::size_t k = 0; k < owned_; ++k)
       x0_[3 * k] = p_.x[k], x0_[3 * k + 1] = p_.y[k], x0_[3 * k + 2] = p_.z[k];
   if (!state) stats_ = compute_ordered_contact_forces(p_, *rows_, *table_, s_.dt, sums_);
   observed_stats_.max_overlap_ratio = comm_.max(stats_.max_overlap_ratio);
@@ -310,42 +383,15 @@ void DistributedSoftSphere::rebuild(ParticleExchange* migration) {
   // The own particles' histories leave the rows keyed by partner id; the ghosts are dropped.
   KeptHistory kept = rows_->keep(p_);
   p_.resize(owned_);
-  // With each particle: its dissipated energy, and its last contact sums and elastic energy (a
-  // build between steps, by rebalance(), keeps them for the next kick).
-  // And its non-contact force and potential share, its held torque and attached numbers.
-  const std::size_t tw = s_.held_torques ? 3 : 0, aw = static_cast<std::size_t>(s_.attached_width);
-  const std::size_t width = 21 + tw + aw;
-  std::vector<double> carried(width * owned_);
-  for (std::size_t i = 0; i < owned_; ++i) {
-    double* c = carried.data() + width * i;
-    c[0] = dissipated_[i], c[1] = sums_.elastic[i];
-    std::copy_n(sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i), 12, c + 2);
-    std::copy_n(held_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3, c + 14);
-    if (nc_rows_) {
-      std::copy_n(nc_force_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3, c + 17);
-      c[20] = nc_potential_[i];
-    }
-    std::copy_n(held_torque_.begin() + static_cast<std::ptrdiff_t>(tw * i), tw, c + 21);
-    std::copy_n(attached_.begin() + static_cast<std::ptrdiff_t>(aw * i), aw, c + 21 + tw);
-  }
+  // What travels with each particle (carried_fields).
+  const auto fields = carried_fields(*this);
+  std::vector<double> carried = pack_fields(fields, owned_);
   const std::vector<ParticleTooFar> lost =
-      (migration ? *migration : *exchange_).migrate(p_, kept, carried, static_cast<int>(width));
-  const std::size_t n = p_.size();
-  dissipated_.resize(n), sums_.elastic.resize(n), sums_.acc.resize(12 * n), held_.resize(3 * n);
-  held_torque_.resize(tw * n), attached_.resize(aw * n);
-  if (nc_rows_) nc_force_.resize(3 * n), nc_potential_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double* c = carried.data() + width * i;
-    dissipated_[i] = c[0], sums_.elastic[i] = c[1];
-    std::copy_n(c + 2, 12, sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i));
-    std::copy_n(c + 14, 3, held_.begin() + static_cast<std::ptrdiff_t>(3 * i));
-    if (nc_rows_) {
-      std::copy_n(c + 17, 3, nc_force_.begin() + static_cast<std::ptrdiff_t>(3 * i));
-      nc_potential_[i] = c[20];
-    }
-    std::copy_n(c + 21, tw, held_torque_.begin() + static_cast<std::ptrdiff_t>(tw * i));
-    std::copy_n(c + 21 + tw, aw, attached_.begin() + static_cast<std::ptrdiff_t>(aw * i));
-  }
+      (migration ? *migration : *exchange_)
+          .migrate(p_, kept, carried, static_cast<int>(packed_width(fields)));
+  std::array<std::vector<double>*, 9> to{};
+  for (std::size_t f = 0; f < fields.size(); ++f) to[f] = fields[f].first;
+  unpack_fields(fields, carried, to, p_.size());
   const double first_lost = comm_.min(lost.empty() ? std::numeric_limits<double>::infinity()
                                                    : static_cast<double>(lost.front().id));
   if (std::isfinite(first_lost))
@@ -367,25 +413,10 @@ void DistributedSoftSphere::rebuild(ParticleExchange* migration) {
 }
 
 DistributedState DistributedSoftSphere::gather(bool with_history) const {
-  // Per particle: dissipated, elastic, the 12 contact sums, its build position; then
-  // (with_history) its entries.
-  const std::size_t tw = s_.held_torques ? 3 : 0, aw = static_cast<std::size_t>(s_.attached_width);
-  const std::size_t kExtra = 21 + tw + aw;
-  std::vector<double> extra(kExtra * owned_);
-  for (std::size_t i = 0; i < owned_; ++i) {
-    std::copy_n(held_torque_.begin() + static_cast<std::ptrdiff_t>(tw * i), tw,
-                extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 21));
-    std::copy_n(attached_.begin() + static_cast<std::ptrdiff_t>(aw * i), aw,
-                extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 21 + tw));
-    extra[kExtra * i + 20] = nc_rows_ ? nc_potential_[i] : 0.0;
-    extra[kExtra * i] = dissipated_[i], extra[kExtra * i + 1] = sums_.elastic[i];
-    std::copy_n(sums_.acc.begin() + static_cast<std::ptrdiff_t>(12 * i), 12,
-                extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 2));
-    std::copy_n(x0_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3,
-                extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 14));
-    std::copy_n(held_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3,
-                extra.begin() + static_cast<std::ptrdiff_t>(kExtra * i + 17));
-  }
+  // Per particle: what travels with it (carried_fields); then (with_history) its entries.
+  const auto fields = carried_fields(*this);
+  const auto kExtra = packed_width(fields);
+  const std::vector<double> extra = pack_fields(fields, owned_);
   const auto parts = comm_.gather(pack_particles(p_, owned_, extra, static_cast<int>(kExtra)));
   KeptHistory kept_mine;
   std::vector<std::vector<char>> history_parts;
@@ -409,20 +440,8 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
             [&](std::uint32_t a, std::uint32_t b) { return p.id[a] < p.id[b]; });
   p.permute(order);
   const std::size_t n = order.size();
-  g.dissipated.resize(n), g.elastic.resize(n), g.contact.resize(12 * n), g.x0.resize(3 * n);
-  g.held.resize(3 * n);
-  g.held_torque.resize(tw * n), g.attached.resize(aw * n);
-  g.noncontact.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const double* e = all_extra.data() + kExtra * order[k];
-    g.dissipated[k] = e[0], g.elastic[k] = e[1];
-    std::copy_n(e + 2, 12, g.contact.begin() + static_cast<std::ptrdiff_t>(12 * k));
-    std::copy_n(e + 14, 3, g.x0.begin() + static_cast<std::ptrdiff_t>(3 * k));
-    std::copy_n(e + 17, 3, g.held.begin() + static_cast<std::ptrdiff_t>(3 * k));
-    g.noncontact[k] = e[20];
-    std::copy_n(e + 21, tw, g.held_torque.begin() + static_cast<std::ptrdiff_t>(tw * k));
-    std::copy_n(e + 21 + tw, aw, g.attached.begin() + static_cast<std::ptrdiff_t>(aw * k));
-  }
+  unpack_fields(fields, all_extra, state_fields(g), n, order);
+  if (g.noncontact.empty()) g.noncontact.assign(n, 0.0); // without non-contact forces: 0 each
   if (with_history) g.history = reorder(all_kept, order);
   return g;
 }

@@ -203,6 +203,14 @@ private:
   std::vector<double> held_;        ///< 3 per own particle: the held (gas) force, N
   std::vector<double> held_torque_; ///< 3 per own particle (Settings::held_torques), N m
   std::vector<double> attached_;    ///< Settings::attached_width per own particle
+  /// The per-particle arrays of the own particles that travel with them (migration, gather,
+  /// restart), with their widths, in the one order in which their numbers are packed (Self:
+  /// this class, const or not).
+  template <class Self>
+  static auto carried_fields(Self& self);
+  /// The same arrays in a gathered state, in that order (null: not kept there, recomputed).
+  template <class State>
+  static auto state_fields(State& g);
   /// The index k of each own particle in `all` (sorted by id); logic_error if one is missing.
   std::vector<std::size_t> index_in(const ParticleStore& all, const char* what) const;
   std::vector<double> x0_; ///< own particles' positions at the last build (x y z)
