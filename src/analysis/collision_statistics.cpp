@@ -78,22 +78,43 @@ void CollisionStatistics::sample_regions(const ParticleStore& p) {
 
 void CollisionStatistics::add_step(const ContactRecord& record, const ParticleStore& p,
                                    double time) {
-  current_.clear();
-  current_.reserve(record.samples.size());
+  keyed_.clear();
+  keyed_.reserve(record.samples.size());
   for (const ContactSample& c : record.samples) {
-    Ongoing o{};
+    KeyedContact k;
     if (c.j >= 0) {
-      o.a = std::min(c.id_i, c.id_j), o.b = std::max(c.id_i, c.id_j);
-      o.diameter = 2.0 * std::min(p.radius[static_cast<std::size_t>(c.i)],
+      k.a = std::min(c.id_i, c.id_j), k.b = std::max(c.id_i, c.id_j);
+      k.diameter = 2.0 * std::min(p.radius[static_cast<std::size_t>(c.i)],
                                   p.radius[static_cast<std::size_t>(c.j)]);
     } else {
-      o.a = c.id_i, o.b = c.id_j;
-      o.diameter = 2.0 * p.radius[static_cast<std::size_t>(c.i)];
+      k.a = c.id_i, k.b = c.id_j;
+      k.diameter = 2.0 * p.radius[static_cast<std::size_t>(c.i)];
     }
-    o.begin = time;
-    o.max_overlap = c.overlap;
-    current_.push_back(o);
+    k.overlap = c.overlap;
+    k.contact_point = c.contact_point;
+    keyed_.push_back(k);
   }
+  merge(keyed_, time);
+  sample_regions(p);
+}
+
+void CollisionStatistics::add_keyed_step(const std::vector<KeyedContact>& contacts,
+                                         const ParticleStore& in_regions, double time) {
+  merge(contacts, time);
+  sample_regions(in_regions);
+}
+
+bool CollisionStatistics::in_a_region(const Vec3& x) const {
+  for (const CollisionRegion& r : s_.regions)
+    if (inside(r, x)) return true;
+  return false;
+}
+
+void CollisionStatistics::merge(const std::vector<KeyedContact>& contacts, double time) {
+  current_.clear();
+  current_.reserve(contacts.size());
+  for (const KeyedContact& c : contacts)
+    current_.push_back({c.a, c.b, time, c.overlap, c.diameter});
   auto key_less = [](const Ongoing& x, const Ongoing& y) {
     return x.a != y.a ? x.a < y.a : x.b < y.b;
   };
@@ -120,14 +141,12 @@ void CollisionStatistics::add_step(const ContactRecord& record, const ParticleSt
       o.max_overlap = std::max(o.max_overlap, c.max_overlap);
       merged_.push_back(o);
     } else { // begins
-      const ContactSample& sample = record.samples[order[k]];
-      begin(c.b, sample.contact_point);
+      begin(c.b, contacts[order[k]].contact_point);
       merged_.push_back(c);
     }
   }
   while (io < ongoing_.size()) end(ongoing_[io++], time);
   std::swap(ongoing_, merged_);
-  sample_regions(p);
 }
 
 void CollisionStatistics::add_instant_step(const std::vector<InstantCollision>& collisions,

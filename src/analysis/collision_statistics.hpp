@@ -71,6 +71,14 @@ public:
 
   /// Soft spheres: the contacts at the end of the step that ended at `time`.
   void add_step(const ContactRecord& record, const ParticleStore& p, double time);
+  /// Soft spheres on the rank-independent engine: the contacts of the step that ended at
+  /// `time`, keyed by ids (gathered from the ranks: one entry per contact, any order), and the
+  /// particles whose centres lie in a region (their sums are taken in the store's order: id
+  /// order gives the same bits on any number of ranks).
+  void add_keyed_step(const std::vector<KeyedContact>& contacts, const ParticleStore& in_regions,
+                      double time);
+  /// Whether x lies in one of the regions (minimum image on periodic axes).
+  bool in_a_region(const Vec3& x) const;
   /// Hard spheres: the collisions of the step that ended at `time`.
   void add_instant_step(const std::vector<InstantCollision>& collisions, const ParticleStore& p,
                         double time);
@@ -138,6 +146,8 @@ private:
     long samples = 0;
     double sum_count = 0.0, sum_volume = 0.0;
   };
+  /// A step's contacts merged with the ongoing ones: new keys begin, missing keys end.
+  void merge(const std::vector<KeyedContact>& contacts, double time);
   void begin(std::int64_t b, const Vec3& point);
   void end(const Ongoing& c, double time);
   void sample_regions(const ParticleStore& p);
@@ -148,6 +158,7 @@ private:
   Acc interval_, total_;
   std::vector<RegionAcc> region_;
   std::vector<Ongoing> ongoing_, current_, merged_;
+  std::vector<KeyedContact> keyed_; ///< add_step's record, keyed
   std::vector<std::int64_t> hist_;
 };
 

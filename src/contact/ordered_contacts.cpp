@@ -57,7 +57,8 @@ template <bool Tangential, bool Rolling>
 
 template <class Normal, class Tangential, class Rolling>
 OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const ContactTable& table,
-                            double dt, OrderedContactSums& sums) {
+                            double dt, OrderedContactSums& sums,
+                            std::vector<KeyedContact>* record) {
   constexpr int hw = contact_kernel::kHistoryWidth<Normal, Tangential, Rolling>;
   if (rows.history_width() != hw)
     throw std::logic_error("ordered contact loop: the rows keep " +
@@ -73,7 +74,7 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
       if (h[m] != 0.0) return true;
     return false;
   };
-  const auto row = [&](std::size_t i, OrderedContactStats& st) {
+  const auto row = [&](std::size_t i, OrderedContactStats& st, std::vector<KeyedContact>* rec) {
     double* a = sums.acc.data() + OrderedContactSums::kAcc * i;
     double elastic = 0.0, released = 0.0;
     const std::int64_t id_i = p.id[i];
@@ -149,6 +150,9 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
         elastic += out.elastic;
         released += out.spring_loss;
         add_contact(st, c.overlap / (2.0 * std::min(ri, rj)), id_i, out.force);
+        if (rec) [[unlikely]]
+          rec->push_back({id_i, p.id[j], c.overlap, 2.0 * std::min(ri, rj),
+                          Vec3{p.x[ia], p.y[ia], p.z[ia]} + c.n * (ri - 0.5 * c.overlap)});
       }
     }
     // Walls: a partner of infinite mass and radius at rest whose normal never turns.
@@ -188,24 +192,33 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
       elastic += out.elastic;
       released += out.spring_loss;
       add_contact(st, c.overlap / (2.0 * ri), id_i, out.force);
+      if (rec) [[unlikely]] // the contact point on the wall
+        rec->push_back({id_i, -1 - f, c.overlap, 2.0 * ri, Vec3{xw[0], xw[1], xw[2]} + c.n * gap});
     }
     sums.elastic[i] = elastic;
     sums.released[i] = released;
   };
   OrderedContactStats total;
+  if (record) record->clear();
   if (threaded_particles(owned)) {
     // Each particle writes its own sums and its own row's history: any schedule gives the same
-    // values; the stats are integers and maxima.
-    std::vector<OrderedContactStats> per_thread(static_cast<std::size_t>(omp_get_max_threads()));
+    // values; the stats are integers and maxima. The recorded contacts are a set (their users
+    // sort them by ids): each thread's are appended in thread order.
+    const auto threads = static_cast<std::size_t>(omp_get_max_threads());
+    std::vector<OrderedContactStats> per_thread(threads);
+    std::vector<std::vector<KeyedContact>> recorded(record ? threads : 0);
 #pragma omp parallel
     {
-      OrderedContactStats& st = per_thread[static_cast<std::size_t>(omp_get_thread_num())];
+      const auto t = static_cast<std::size_t>(omp_get_thread_num());
+      OrderedContactStats& st = per_thread[t];
+      std::vector<KeyedContact>* rec = record ? &recorded[t] : nullptr;
 #pragma omp for schedule(dynamic, 256)
-      for (std::size_t i = 0; i < owned; ++i) row(i, st);
+      for (std::size_t i = 0; i < owned; ++i) row(i, st, rec);
     }
     for (const auto& st : per_thread) join(total, st);
+    for (const auto& r : recorded) record->insert(record->end(), r.begin(), r.end());
   } else {
-    for (std::size_t i = 0; i < owned; ++i) row(i, total);
+    for (std::size_t i = 0; i < owned; ++i) row(i, total, record);
   }
   return total;
 }
@@ -214,12 +227,14 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
 
 OrderedContactStats compute_ordered_contact_forces(const ParticleStore& p, OrderedRows& rows,
                                                    const ContactTable& table, double dt,
-                                                   OrderedContactSums& sums) {
+                                                   OrderedContactSums& sums,
+                                                   std::vector<KeyedContact>* record) {
   using namespace contact_models;
   const Chosen& m = table.models();
   return with_chosen_models<OrderedContactStats>(
-      m.normal->index, m.tangential->index, m.rolling->index,
-      [&]<class N, class T, class R>() { return compute<N, T, R>(p, rows, table, dt, sums); });
+      m.normal->index, m.tangential->index, m.rolling->index, [&]<class N, class T, class R>() {
+        return compute<N, T, R>(p, rows, table, dt, sums, record);
+      });
 }
 
 } // namespace fluidem

@@ -11,6 +11,7 @@
 
 #include "contact/contact_table.hpp"
 #include "neighbour/ordered_rows.hpp"
+#include "particles/contact_record.hpp"
 #include "particles/particle_store.hpp"
 
 namespace fluidem {
@@ -34,9 +35,13 @@ struct OrderedContactStats {
 };
 
 /// Contact forces and torques on the first rows.owned() particles of p (its own), from their
-/// rows (built on p), updating the rows' histories.
+/// rows (built on p), updating the rows' histories. `record` (null: none): replaced by the
+/// touching contacts that this rank's rows see from their lower id's side (each pair in exactly
+/// one row over all ranks) and the own particles' wall contacts, keyed by ids, in no particular
+/// order.
 OrderedContactStats compute_ordered_contact_forces(const ParticleStore& p, OrderedRows& rows,
                                                    const ContactTable& table, double dt,
-                                                   OrderedContactSums& sums);
+                                                   OrderedContactSums& sums,
+                                                   std::vector<KeyedContact>* record = nullptr);
 
 } // namespace fluidem

@@ -284,7 +284,8 @@ void DistributedSoftSphere::step() {
     exchange_->update_ghosts(p_, owned_);
   seconds_.neighbour += seconds_since(t0);
   t0 = WallClock::now();
-  stats_ = compute_ordered_contact_forces(p_, *rows_, *table_, dt, sums_);
+  stats_ = compute_ordered_contact_forces(p_, *rows_, *table_, dt, sums_,
+                                          s_.record_contacts ? &contacts_ : nullptr);
   if (nc_rows_) compute_noncontact();
   observed_stats_.max_overlap_ratio = comm_.max(stats_.max_overlap_ratio);
   seconds_.contacts += seconds_since(t0);
@@ -444,6 +445,46 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
   if (g.noncontact.empty()) g.noncontact.assign(n, 0.0); // without non-contact forces: 0 each
   if (with_history) g.history = reorder(all_kept, order);
   return g;
+}
+
+std::vector<KeyedContact> DistributedSoftSphere::gather_contacts() const {
+  static_assert(std::is_trivially_copyable_v<KeyedContact>);
+  const auto parts = comm_.gather(std::span<const char>(
+      reinterpret_cast<const char*>(contacts_.data()), contacts_.size() * sizeof(KeyedContact)));
+  std::vector<KeyedContact> all;
+  for (const auto& b : parts) {
+    const std::size_t at = all.size();
+    all.resize(at + b.size() / sizeof(KeyedContact));
+    std::memcpy(all.data() + at, b.data(), b.size());
+  }
+  return all;
+}
+
+ParticleStore
+DistributedSoftSphere::gather_where(const std::function<bool(const Vec3&)>& keep) const {
+  std::vector<std::uint32_t> chosen;
+  for (std::size_t i = 0; i < owned_; ++i)
+    if (keep(p_.position(i))) chosen.push_back(static_cast<std::uint32_t>(i));
+  ParticleStore mine;
+  mine.resize(chosen.size());
+  std::vector<const void*> from;
+  p_.for_each_array([&](const auto& a) { from.push_back(&a); });
+  std::size_t k = 0;
+  mine.for_each_array([&](auto& a) {
+    using A = std::remove_reference_t<decltype(a)>;
+    const A& src = *static_cast<const A*>(from[k++]);
+    for (std::size_t m = 0; m < chosen.size(); ++m) a[m] = src[chosen[m]];
+  });
+  const auto parts = comm_.gather(pack_particles(mine, mine.size(), {}, 0));
+  ParticleStore all;
+  std::vector<double> no_extra;
+  for (const auto& b : parts) unpack_particles(b, all, no_extra, 0);
+  std::vector<std::uint32_t> order(all.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return all.id[a] < all.id[b]; });
+  all.permute(order);
+  return all;
 }
 
 void DistributedSoftSphere::own_particles(ParticleStore& out) const {

@@ -76,6 +76,9 @@ public:
     /// [coupling.forces] state: the Basset history and the last step's impulses), gathered in
     /// its checkpoints; the source reads and writes them through attached().
     int attached_width = 0;
+    /// Record each step's touching contacts keyed by ids (the collision statistics):
+    /// gather_contacts().
+    bool record_contacts = false;
   };
   /// Every rank passes the same particles `all` (each keeps those it owns) and the same
   /// settings; the first contact forces are computed. Collective.
@@ -107,6 +110,13 @@ public:
   /// Every particle, sorted by id, on the root (empty elsewhere); their contact histories too
   /// when `with_history`. Collective.
   DistributedState gather(bool with_history = false) const;
+  /// The touching contacts of the last step (Settings::record_contacts) of all ranks, each
+  /// once (a pair from its lower id's row), on the root in no particular order (empty
+  /// elsewhere). Collective.
+  std::vector<KeyedContact> gather_contacts() const;
+  /// The particles whose positions `keep` accepts, on the root in id order (empty elsewhere).
+  /// Collective.
+  ParticleStore gather_where(const std::function<bool(const Vec3&)>& keep) const;
   /// This rank's contacts of the last step: its deepest overlap (and the lower id of that
   /// contact), its largest force.
   ContactStats local_stats() const {
@@ -216,6 +226,7 @@ private:
   std::vector<double> x0_; ///< own particles' positions at the last build (x y z)
   OrderedContactSums sums_;
   OrderedContactStats stats_;
+  std::vector<KeyedContact> contacts_; ///< Settings::record_contacts: the last step's
   long builds_ = 0;
   double observed_dissipated_ = 0.0;
   double observed_noncontact_ = 0.0;

@@ -196,7 +196,6 @@ bool Simulation::choose_rank_independent() const {
                               "without mpirun and with parallel.rank_independent = false");
   };
   refuse(spec_.noncontact.liquid_bridge.has_value(), "liquid_bridge", "liquid bridges");
-  refuse(spec_.output.collisions, "output.collisions", "the collision statistics");
   refuse(spec_.output.continuum.has_value(), "output.continuum", "the continuum averages");
   return true;
 }
@@ -214,6 +213,7 @@ void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_f
     d.balance_interval = spec_.parallel.balance_interval;
     d.body = spec_.body_force ? &*spec_.body_force : nullptr;
     d.noncontact = spec_.noncontact.any_conservative() ? &spec_.noncontact : nullptr;
+    d.record_contacts = collisions_ != nullptr;
     if (spec_.gas && spec_.coupling.forces.any()) { // their state travels with the particles
       d.held_torques = spec_.coupling.forces.torque != "off";
       d.attached_width = static_cast<int>(FluidForces::width(spec_.coupling.forces));
@@ -348,6 +348,18 @@ void Simulation::feed_analyses(bool sampled_continuum) {
   if (sampled_continuum) // positions and contacts of the step, full-step velocities
     continuum_->accumulate(p_, record_.samples);
   if (!collisions_) return;
+  if (dist_) {
+    // The ranks' contacts (each pair once, from its lower id's row) and the particles in the
+    // regions go to the root, which keeps the statistics: sorted by ids there, so the same
+    // bits on any number of ranks (docs/parallel.md).
+    const std::vector<KeyedContact> contacts = dist_->gather_contacts();
+    const ParticleStore in_regions =
+        collisions_->settings().regions.empty()
+            ? ParticleStore{}
+            : dist_->gather_where([&](const Vec3& x) { return collisions_->in_a_region(x); });
+    if (comm_->root()) collisions_->add_keyed_step(contacts, in_regions, time_);
+    return;
+  }
   if (hard_) {
     instant_.clear();
     for (const HardSphereCollision& c : hard_->engine().last_step_collisions())

@@ -22,6 +22,17 @@ struct ContactSample {
   Vec3 contact_point;     ///< m: x_i + (r_i - overlap/2) n for pairs, on the wall for walls
 };
 
+/// One touching contact keyed by particle ids, independent of any store's indices (what the
+/// rank-independent contact loop records for the collision statistics, gathered over the
+/// ranks): a pair seen from its lower id's side, a wall contact from its particle.
+struct KeyedContact {
+  std::int64_t a = 0;    ///< the pair's lower id; a wall contact's particle
+  std::int64_t b = -1;   ///< the pair's higher id; for a wall: -1 - face (face 0..5)
+  double overlap = 0.0;  ///< m, > 0
+  double diameter = 0.0; ///< m: the smaller of the pair's (a wall contact: its particle's)
+  Vec3 contact_point;    ///< m: x_a + (r_a - overlap/2) n (n from a to b), on the wall for walls
+};
+
 /// The record the contact loop fills when `enabled`; cleared by the loop at each call.
 struct ContactRecord {
   bool enabled = false;

@@ -571,6 +571,51 @@ TEST(MpiRun, SigUsr1StopsEveryRankWithACheckpoint) {
   EXPECT_EQ(cont.code, 0) << cont.err;
 }
 
+TEST(MpiRun, CollisionStatisticsOnRanksWriteTheFilesOfOneProcess) {
+  // The settling bed with output.collisions and a region across the cut planes of 2 and 3
+  // ranks (the statistics are kept by the root from the ranks' contacts, each pair recorded in
+  // its lower id's row): collisions.csv and collision_overlap.csv are one process's, bit for
+  // bit, and so is a run continued from a 2-rank checkpoint on 3 ranks (the ongoing contacts
+  // kept in it). The statistics count contacts: pair and wall collisions, particles in the
+  // region.
+  TempDir tmp;
+  const auto bed = tmp.write("bed.toml", std::string(kBed) + R"(collisions = true
+[[output.collision_region]]
+name = "middle"
+centre = [0.015, 0.01, 0.006]
+radius = 0.006
+)");
+  const Result one = test::fluidem(
+      {"run", bed.string(), "--out", "one", "--set", "parallel.rank_independent=true"}, tmp.path);
+  ASSERT_EQ(one.code, 0) << one.err;
+  const std::string rows = test::read_file(tmp.path / "one" / "collisions.csv");
+  const std::string histogram = test::read_file(tmp.path / "one" / "collision_overlap.csv");
+  const std::vector<double> pairs = column(rows, "pair_collisions");
+  const std::vector<double> walls = column(rows, "wall_collisions");
+  const std::vector<double> inside = column(rows, "middle_particles");
+  ASSERT_FALSE(pairs.empty());
+  EXPECT_GT(*std::max_element(pairs.begin(), pairs.end()), 0.0) << rows;
+  EXPECT_GT(*std::max_element(walls.begin(), walls.end()), 0.0) << rows;
+  EXPECT_GT(inside.back(), 0.0) << rows;
+  for (int p : {2, 3}) {
+    const std::string out = "p" + std::to_string(p);
+    const Result r = mpirun(p, {"run", bed.string(), "--out", out}, tmp.path);
+    ASSERT_EQ(r.code, 0) << r.err << r.out;
+    EXPECT_EQ(test::read_file(tmp.path / out / "collisions.csv"), rows) << p << " ranks";
+    EXPECT_EQ(test::read_file(tmp.path / out / "collision_overlap.csv"), histogram) << p;
+  }
+  const Result half = mpirun(
+      2, {"run", bed.string(), "--out", "half", "--set", "simulation.end_time=0.006"}, tmp.path);
+  ASSERT_EQ(half.code, 0) << half.err;
+  const Result cont = mpirun(3,
+                             {"run", "--restart", (tmp.path / "half" / "checkpoint.h5").string(),
+                              "--set", "simulation.end_time=0.012"},
+                             tmp.path);
+  ASSERT_EQ(cont.code, 0) << cont.err;
+  EXPECT_EQ(test::read_file(tmp.path / "half" / "collisions.csv"), rows);
+  EXPECT_EQ(test::read_file(tmp.path / "half" / "collision_overlap.csv"), histogram);
+}
+
 TEST(MpiRun, WhatTheRanksDoNotTakeIsRefused) {
   TempDir tmp;
   const auto bed = tmp.write("bed.toml", kBed);
@@ -590,9 +635,8 @@ TEST(MpiRun, WhatTheRanksDoNotTakeIsRefused) {
   EXPECT_EQ(grid.err.find("error:"), grid.err.rfind("error:")) << grid.err;
   // What the rank-independent engine does not take yet (docs/parallel.md), named, on one
   // process as on ranks.
-  for (const char* key : {"output.collisions", "output.continuum"}) {
-    const std::string set =
-        std::string(key) + (std::string(key) == "output.collisions" ? "=true" : ".cells=[2, 1, 2]");
+  for (const char* key : {"output.continuum"}) {
+    const std::string set = std::string(key) + ".cells=[2, 1, 2]";
     const Result r = test::fluidem({"run", bed.string(), "--out", "r", "--set",
                                     "parallel.rank_independent=true", "--set", set},
                                    tmp.path);

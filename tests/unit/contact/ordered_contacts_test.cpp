@@ -122,6 +122,76 @@ TEST_P(OrderedContacts, ThreadsGiveTheSameBits) {
   expect_same_bits(one, two);
 }
 
+/// The contacts the ordered loop records on the particles `own` of p (others as ghosts), at
+/// the third call.
+std::vector<KeyedContact> ordered_record(const CaseSpec& spec, const ParticleStore& p,
+                                         const std::vector<bool>& own) {
+  std::vector<std::uint32_t> order;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (own[i]) order.push_back(static_cast<std::uint32_t>(i));
+  const std::size_t owned = order.size();
+  for (std::size_t i = p.size(); i-- > 0;)
+    if (!own[i]) order.push_back(static_cast<std::uint32_t>(i));
+  ParticleStore local = p;
+  local.permute(order);
+  const ContactTable table(spec);
+  OrderedRows rows(test::box_of(spec), contact_history_width(table), 0.0);
+  rows.build(local, owned, kSkin, KeptHistory{});
+  OrderedContactSums sums;
+  std::vector<KeyedContact> record;
+  for (int c = 0; c < 3; ++c)
+    compute_ordered_contact_forces(local, rows, table, kDt, sums, c == 2 ? &record : nullptr);
+  return record;
+}
+
+TEST_P(OrderedContacts, RecordsEachContactOnceAsTheBatchedLoopSeesIt) {
+  // The contacts recorded by two "ranks" (halves of the bed, each with the other's particles as
+  // ghosts) together against the batched loop's record (contact_forces.hpp, an independent
+  // implementation): the same contacts, each once, keyed by ids, with the same overlap, the
+  // smaller diameter and the contact point x_i + (r_i - overlap/2) n (from either body: the
+  // same point) to round-off, 1e-12 of a diameter.
+  const CaseSpec spec = jittered_bed_spec(2, GetParam());
+  const ParticleStore p = jittered_bed(2, 2, true);
+  const ContactTable table(spec);
+  NeighbourList nl(test::box_of(spec), kSkin, contact_history_width(table));
+  nl.build(p);
+  ContactScratch nc;
+  ContactRecord batched;
+  batched.enabled = true;
+  for (int c = 0; c < 3; ++c) compute_contact_forces(p, nl, table, kDt, nc, &batched);
+  std::map<std::pair<std::int64_t, std::int64_t>, ContactSample> expected;
+  for (const ContactSample& c : batched.samples)
+    expected[c.j >= 0 ? std::pair{std::min(c.id_i, c.id_j), std::max(c.id_i, c.id_j)}
+                      : std::pair{c.id_i, c.id_j}] = c;
+  ASSERT_GT(expected.size(), 100u);
+  std::vector<bool> left(p.size()), right(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    left[i] = p.x[i] < 0.5 * test::kJitteredL;
+    right[i] = !left[i];
+  }
+  std::vector<KeyedContact> got = ordered_record(spec, p, left);
+  const std::vector<KeyedContact> other = ordered_record(spec, p, right);
+  got.insert(got.end(), other.begin(), other.end());
+  ASSERT_EQ(got.size(), expected.size()); // each contact once over the two halves
+  std::size_t walls = 0;
+  for (const KeyedContact& k : got) {
+    const auto it = expected.find({k.a, k.b});
+    ASSERT_NE(it, expected.end()) << k.a << " " << k.b;
+    const ContactSample& c = it->second;
+    walls += k.b < 0 ? 1 : 0;
+    if (k.b >= 0) {
+      EXPECT_LT(k.a, k.b);
+    }
+    EXPECT_NEAR(k.overlap, c.overlap, 1e-12 * kD);
+    const double d = k.b < 0 ? 2.0 * p.radius[static_cast<std::size_t>(c.i)]
+                             : 2.0 * std::min(p.radius[static_cast<std::size_t>(c.i)],
+                                              p.radius[static_cast<std::size_t>(c.j)]);
+    EXPECT_EQ(k.diameter, d);
+    EXPECT_NEAR(norm(k.contact_point - c.contact_point), 0.0, 1e-12 * kD) << k.a << " " << k.b;
+  }
+  EXPECT_GT(walls, 0u);
+}
+
 INSTANTIATE_TEST_SUITE_P(Models, OrderedContacts,
                          ::testing::Values("hertz", "linear", "walton_braun", "jkr"));
 
