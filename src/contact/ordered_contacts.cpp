@@ -152,7 +152,8 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
         add_contact(st, c.overlap / (2.0 * std::min(ri, rj)), id_i, out.force);
         if (rec) [[unlikely]]
           rec->push_back({id_i, p.id[j], c.overlap, 2.0 * std::min(ri, rj),
-                          Vec3{p.x[ia], p.y[ia], p.z[ia]} + c.n * (ri - 0.5 * c.overlap)});
+                          Vec3{p.x[ia], p.y[ia], p.z[ia]} + c.n * (ri - 0.5 * c.overlap), c.n,
+                          out.force, out.torque_roll});
       }
     }
     // Walls: a partner of infinite mass and radius at rest whose normal never turns.
@@ -193,7 +194,8 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
       released += out.spring_loss;
       add_contact(st, c.overlap / (2.0 * ri), id_i, out.force);
       if (rec) [[unlikely]] // the contact point on the wall
-        rec->push_back({id_i, -1 - f, c.overlap, 2.0 * ri, Vec3{xw[0], xw[1], xw[2]} + c.n * gap});
+        rec->push_back({id_i, -1 - f, c.overlap, 2.0 * ri, Vec3{xw[0], xw[1], xw[2]} + c.n * gap,
+                        c.n, out.force, out.torque_roll});
     }
     sums.elastic[i] = elastic;
     sums.released[i] = released;

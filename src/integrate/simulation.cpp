@@ -196,7 +196,6 @@ bool Simulation::choose_rank_independent() const {
                               "without mpirun and with parallel.rank_independent = false");
   };
   refuse(spec_.noncontact.liquid_bridge.has_value(), "liquid_bridge", "liquid bridges");
-  refuse(spec_.output.continuum.has_value(), "output.continuum", "the continuum averages");
   return true;
 }
 
@@ -213,7 +212,7 @@ void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_f
     d.balance_interval = spec_.parallel.balance_interval;
     d.body = spec_.body_force ? &*spec_.body_force : nullptr;
     d.noncontact = spec_.noncontact.any_conservative() ? &spec_.noncontact : nullptr;
-    d.record_contacts = collisions_ != nullptr;
+    d.record_contacts = collisions_ != nullptr || continuum_ != nullptr;
     if (spec_.gas && spec_.coupling.forces.any()) { // their state travels with the particles
       d.held_torques = spec_.coupling.forces.torque != "off";
       d.attached_width = static_cast<int>(FluidForces::width(spec_.coupling.forces));
@@ -345,21 +344,13 @@ void Simulation::flow_step() {
 }
 
 void Simulation::feed_analyses(bool sampled_continuum) {
+  if (dist_) {
+    feed_analyses_on_ranks(sampled_continuum);
+    return;
+  }
   if (sampled_continuum) // positions and contacts of the step, full-step velocities
     continuum_->accumulate(p_, record_.samples);
   if (!collisions_) return;
-  if (dist_) {
-    // The ranks' contacts (each pair once, from its lower id's row) and the particles in the
-    // regions go to the root, which keeps the statistics: sorted by ids there, so the same
-    // bits on any number of ranks (docs/parallel.md).
-    const std::vector<KeyedContact> contacts = dist_->gather_contacts();
-    const ParticleStore in_regions =
-        collisions_->settings().regions.empty()
-            ? ParticleStore{}
-            : dist_->gather_where([&](const Vec3& x) { return collisions_->in_a_region(x); });
-    if (comm_->root()) collisions_->add_keyed_step(contacts, in_regions, time_);
-    return;
-  }
   if (hard_) {
     instant_.clear();
     for (const HardSphereCollision& c : hard_->engine().last_step_collisions())
@@ -368,6 +359,44 @@ void Simulation::feed_analyses(bool sampled_continuum) {
   } else {
     collisions_->add_step(record_, p_, time_);
   }
+}
+
+// The ranks' contacts (each pair once, from its lower id's row), the particles in the
+// collision regions and, on the continuum averages' sampled steps, all particles go to the root,
+// which keeps both analyses: contacts sorted by ids and particles in id order there, so the same
+// bits on any number of ranks (docs/parallel.md).
+void Simulation::feed_analyses_on_ranks(bool sampled_continuum) {
+  if (!collisions_ && !sampled_continuum) return;
+  std::vector<KeyedContact> contacts = dist_->gather_contacts();
+  if (comm_->root())
+    std::sort(contacts.begin(), contacts.end(), [](const KeyedContact& x, const KeyedContact& y) {
+      return x.a != y.a ? x.a < y.a : x.b < y.b;
+    });
+  if (sampled_continuum) { // positions and contacts of the step, full-step velocities
+    const DistributedState all = dist_->gather();
+    if (comm_->root()) {
+      const ParticleStore& q = all.particles;
+      const auto index_of = [&](std::int64_t id) {
+        return static_cast<std::int32_t>(std::lower_bound(q.id.begin(), q.id.end(), id) -
+                                         q.id.begin());
+      };
+      record_.samples.clear();
+      for (const KeyedContact& k : contacts) {
+        ContactSample& c = record_.samples.emplace_back();
+        c.id_i = k.a, c.id_j = k.b;
+        c.i = index_of(k.a), c.j = k.b >= 0 ? index_of(k.b) : -1;
+        c.overlap = k.overlap, c.normal = k.normal, c.force = k.force;
+        c.torque_roll = k.torque_roll, c.contact_point = k.contact_point;
+      }
+      continuum_->accumulate(q, record_.samples);
+    }
+  }
+  if (!collisions_) return;
+  const ParticleStore in_regions =
+      collisions_->settings().regions.empty()
+          ? ParticleStore{}
+          : dist_->gather_where([&](const Vec3& x) { return collisions_->in_a_region(x); });
+  if (comm_->root()) collisions_->add_keyed_step(contacts, in_regions, time_);
 }
 
 bool Simulation::continuum_samples_next_step() const {

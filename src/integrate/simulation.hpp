@@ -268,6 +268,9 @@ private:
   void set_up_fluid_forces();
   /// The analyses fed by the step just taken.
   void feed_analyses(bool sampled_continuum);
+  /// feed_analyses of the rank-independent engine: the contacts and particles gathered on the
+  /// root.
+  void feed_analyses_on_ranks(bool sampled_continuum);
   /// Finishes a pending half kick, then the stability guard (InstabilityError).
   void check_stability();
   /// The step at which the run ends: the first at or after simulation.end_time.

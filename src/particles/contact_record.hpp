@@ -31,6 +31,9 @@ struct KeyedContact {
   double overlap = 0.0;  ///< m, > 0
   double diameter = 0.0; ///< m: the smaller of the pair's (a wall contact: its particle's)
   Vec3 contact_point;    ///< m: x_a + (r_a - overlap/2) n (n from a to b), on the wall for walls
+  Vec3 normal;           ///< unit normal from a towards b (the wall)
+  Vec3 force;            ///< total contact force on a, N (b: -force)
+  Vec3 torque_roll;      ///< rolling torque on a, N m (b: -torque_roll)
 };
 
 /// The record the contact loop fills when `enabled`; cleared by the loop at each call.

@@ -634,16 +634,68 @@ TEST(MpiRun, WhatTheRanksDoNotTakeIsRefused) {
   // The message is printed once (by the root), not once per rank.
   EXPECT_EQ(grid.err.find("error:"), grid.err.rfind("error:")) << grid.err;
   // What the rank-independent engine does not take yet (docs/parallel.md), named, on one
-  // process as on ranks.
-  for (const char* key : {"output.continuum"}) {
-    const std::string set = std::string(key) + ".cells=[2, 1, 2]";
-    const Result r = test::fluidem({"run", bed.string(), "--out", "r", "--set",
-                                    "parallel.rank_independent=true", "--set", set},
-                                   tmp.path);
-    EXPECT_EQ(r.code, 2) << key << ": " << r.err;
-    EXPECT_TRUE(contains(r.err, key)) << r.err;
-    EXPECT_TRUE(contains(r.err, "does not run on the rank-independent engine yet")) << r.err;
+  // process as on ranks: liquid bridges.
+  std::string wet = kBed;
+  wet.replace(wet.find("rolling_friction = 0.05"), 23, "liquid_fraction = 0.001");
+  const auto wet_bed = tmp.write("wet.toml", wet + "[liquid_bridge]\nsurface_tension = 0.07\n");
+  const Result r = test::fluidem(
+      {"run", wet_bed.string(), "--out", "r", "--set", "parallel.rank_independent=true"}, tmp.path);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, "liquid_bridge")) << r.err;
+  EXPECT_TRUE(contains(r.err, "does not run on the rank-independent engine yet")) << r.err;
+}
+
+TEST(MpiRun, ContinuumAveragesOnRanksWriteTheFilesOfOneProcess) {
+  // The settling bed with output.continuum (volume averages on 3 x 1 x 4 cells, every 5th
+  // step): 2 and 3 ranks write one process's continuum.h5, bit for bit (its datasets), and so
+  // does a run continued from a 2-rank checkpoint on 3 ranks; the stresses are not all zero.
+  TempDir tmp;
+  const auto bed = tmp.write("bed.toml", std::string(kBed) + R"(
+[output.continuum]
+cells = [3, 1, 4]
+stride = 5
+interval = 0.003
+)");
+  const Result one = test::fluidem(
+      {"run", bed.string(), "--out", "one", "--set", "parallel.rank_independent=true"}, tmp.path);
+  ASSERT_EQ(one.code, 0) << one.err;
+  const auto one_h5 = tmp.path / "one" / "continuum.h5";
+  ASSERT_TRUE(test::fs::exists(one_h5)) << one.out;
+  // Every dataset of /fields, each number printed with 17 digits (h5dump; the first line, the
+  // file's name, dropped).
+  const auto fields_of = [&](const test::fs::path& h5) {
+    const Result d =
+        test::run_command("h5dump -m %.17g -g /fields " + test::quote(h5.string()), tmp.path);
+    EXPECT_EQ(d.code, 0) << d.err;
+    return d.out.substr(d.out.find('\n') + 1);
+  };
+  const std::string fields = fields_of(one_h5);
+  // The contact stress is there and not all zero (the settling bed has contacts).
+  const std::size_t zz = fields.find("DATASET \"contact_stress_zz\"");
+  ASSERT_NE(zz, std::string::npos) << fields.substr(0, 400);
+  bool nonzero = false;
+  for (std::size_t at = fields.find("): ", zz); at < fields.find("DATASET", zz + 7);
+       at = fields.find("): ", at + 3))
+    nonzero = nonzero || std::stod(fields.substr(at + 3, 30)) != 0.0;
+  EXPECT_TRUE(nonzero);
+  const auto same_datasets = [&](const test::fs::path& other, const std::string& what) {
+    EXPECT_TRUE(fields_of(other) == fields) << what;
+  };
+  for (int p : {2, 3}) {
+    const std::string out = "p" + std::to_string(p);
+    const Result r = mpirun(p, {"run", bed.string(), "--out", out}, tmp.path);
+    ASSERT_EQ(r.code, 0) << r.err << r.out;
+    same_datasets(tmp.path / out / "continuum.h5", std::to_string(p) + " ranks");
   }
+  const Result half = mpirun(
+      2, {"run", bed.string(), "--out", "half", "--set", "simulation.end_time=0.006"}, tmp.path);
+  ASSERT_EQ(half.code, 0) << half.err;
+  const Result cont = mpirun(3,
+                             {"run", "--restart", (tmp.path / "half" / "checkpoint.h5").string(),
+                              "--set", "simulation.end_time=0.012"},
+                             tmp.path);
+  ASSERT_EQ(cont.code, 0) << cont.err;
+  same_datasets(tmp.path / "half" / "continuum.h5", "2 -> 3 ranks");
 }
 
 } // namespace

@@ -149,7 +149,8 @@ TEST_P(OrderedContacts, RecordsEachContactOnceAsTheBatchedLoopSeesIt) {
   // ghosts) together against the batched loop's record (contact_forces.hpp, an independent
   // implementation): the same contacts, each once, keyed by ids, with the same overlap, the
   // smaller diameter and the contact point x_i + (r_i - overlap/2) n (from either body: the
-  // same point) to round-off, 1e-12 of a diameter.
+  // same point) to round-off, 1e-12 of a diameter, and the same force, normal and rolling
+  // torque (on the lower id) to 1e-12 relative.
   const CaseSpec spec = jittered_bed_spec(2, GetParam());
   const ParticleStore p = jittered_bed(2, 2, true);
   const ContactTable table(spec);
@@ -188,6 +189,12 @@ TEST_P(OrderedContacts, RecordsEachContactOnceAsTheBatchedLoopSeesIt) {
                                               p.radius[static_cast<std::size_t>(c.j)]);
     EXPECT_EQ(k.diameter, d);
     EXPECT_NEAR(norm(k.contact_point - c.contact_point), 0.0, 1e-12 * kD) << k.a << " " << k.b;
+    // Force, normal and rolling torque on a (the batched loop's are on its i: a or b).
+    const double s = c.id_i == k.a ? 1.0 : -1.0;
+    EXPECT_NEAR(norm(k.force - c.force * s), 0.0, 1e-12 * norm(c.force)) << k.a << " " << k.b;
+    EXPECT_NEAR(norm(k.normal - c.normal * s), 0.0, 1e-14) << k.a << " " << k.b;
+    EXPECT_NEAR(norm(k.torque_roll - c.torque_roll * s), 0.0, 1e-12 * norm(c.torque_roll) + 1e-300)
+        << k.a << " " << k.b;
   }
   EXPECT_GT(walls, 0u);
 }
