@@ -55,7 +55,9 @@ template <bool Tangential, bool Rolling>
   }
 }
 
-template <class Normal, class Tangential, class Rolling>
+// Record: whether the contacts are recorded (a template argument, so that the loop without the
+// record is the loop as it was, without the record's code in it).
+template <class Normal, class Tangential, class Rolling, bool Record>
 OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const ContactTable& table,
                             double dt, OrderedContactSums& sums,
                             std::vector<KeyedContact>* record) {
@@ -150,7 +152,7 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
         elastic += out.elastic;
         released += out.spring_loss;
         add_contact(st, c.overlap / (2.0 * std::min(ri, rj)), id_i, out.force);
-        if (rec) [[unlikely]]
+        if constexpr (Record)
           rec->push_back({id_i, p.id[j], c.overlap, 2.0 * std::min(ri, rj),
                           Vec3{p.x[ia], p.y[ia], p.z[ia]} + c.n * (ri - 0.5 * c.overlap), c.n,
                           out.force, out.torque_roll});
@@ -193,7 +195,7 @@ OrderedContactStats compute(const ParticleStore& p, OrderedRows& rows, const Con
       elastic += out.elastic;
       released += out.spring_loss;
       add_contact(st, c.overlap / (2.0 * ri), id_i, out.force);
-      if (rec) [[unlikely]] // the contact point on the wall
+      if constexpr (Record) // the contact point on the wall
         rec->push_back({id_i, -1 - f, c.overlap, 2.0 * ri, Vec3{xw[0], xw[1], xw[2]} + c.n * gap,
                         c.n, out.force, out.torque_roll});
     }
@@ -235,7 +237,8 @@ OrderedContactStats compute_ordered_contact_forces(const ParticleStore& p, Order
   const Chosen& m = table.models();
   return with_chosen_models<OrderedContactStats>(
       m.normal->index, m.tangential->index, m.rolling->index, [&]<class N, class T, class R>() {
-        return compute<N, T, R>(p, rows, table, dt, sums, record);
+        return record ? compute<N, T, R, true>(p, rows, table, dt, sums, record)
+                      : compute<N, T, R, false>(p, rows, table, dt, sums, nullptr);
       });
 }
 
