@@ -284,8 +284,9 @@ void DistributedSoftSphere::step() {
     exchange_->update_ghosts(p_, owned_);
   seconds_.neighbour += seconds_since(t0);
   t0 = WallClock::now();
+  contacts_.clear();
   stats_ = compute_ordered_contact_forces(p_, *rows_, *table_, dt, sums_,
-                                          s_.record_contacts ? &contacts_ : nullptr);
+                                          record_ ? &contacts_ : nullptr);
   if (nc_rows_) compute_noncontact();
   observed_stats_.max_overlap_ratio = comm_.max(stats_.max_overlap_ratio);
   seconds_.contacts += seconds_since(t0);

@@ -76,9 +76,6 @@ public:
     /// [coupling.forces] state: the Basset history and the last step's impulses), gathered in
     /// its checkpoints; the source reads and writes them through attached().
     int attached_width = 0;
-    /// Record each step's touching contacts keyed by ids (the collision statistics):
-    /// gather_contacts().
-    bool record_contacts = false;
   };
   /// Every rank passes the same particles `all` (each keeps those it owns) and the same
   /// settings; the first contact forces are computed. Collective.
@@ -96,7 +93,12 @@ public:
   void advance(long steps);
 
   // ParticleStepper (collective: every rank calls them alike).
-  void step(double, const StepNeeds&) override { step(); }
+  /// StepNeeds::record_contacts: the step's touching contacts are recorded, keyed by ids
+  /// (gather_contacts()).
+  void step(double, const StepNeeds& needs) override {
+    record_ = needs.record_contacts;
+    step();
+  }
   void finish_kick() override {}
   /// As of the last observe().
   double dissipated_energy() const override { return observed_dissipated_; }
@@ -110,7 +112,7 @@ public:
   /// Every particle, sorted by id, on the root (empty elsewhere); their contact histories too
   /// when `with_history`. Collective.
   DistributedState gather(bool with_history = false) const;
-  /// The touching contacts of the last step (Settings::record_contacts) of all ranks, each
+  /// The touching contacts of the last step (when it recorded them) of all ranks, each
   /// once (a pair from its lower id's row), on the root in no particular order (empty
   /// elsewhere). Collective.
   std::vector<KeyedContact> gather_contacts() const;
@@ -226,7 +228,8 @@ private:
   std::vector<double> x0_; ///< own particles' positions at the last build (x y z)
   OrderedContactSums sums_;
   OrderedContactStats stats_;
-  std::vector<KeyedContact> contacts_; ///< Settings::record_contacts: the last step's
+  std::vector<KeyedContact> contacts_; ///< the last step's, when it recorded them
+  bool record_ = false;                ///< the next step records its contacts
   long builds_ = 0;
   double observed_dissipated_ = 0.0;
   double observed_noncontact_ = 0.0;

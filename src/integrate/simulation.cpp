@@ -212,7 +212,6 @@ void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_f
     d.balance_interval = spec_.parallel.balance_interval;
     d.body = spec_.body_force ? &*spec_.body_force : nullptr;
     d.noncontact = spec_.noncontact.any_conservative() ? &spec_.noncontact : nullptr;
-    d.record_contacts = collisions_ != nullptr || continuum_ != nullptr;
     if (spec_.gas && spec_.coupling.forces.any()) { // their state travels with the particles
       d.held_torques = spec_.coupling.forces.torque != "off";
       d.attached_width = static_cast<int>(FluidForces::width(spec_.coupling.forces));

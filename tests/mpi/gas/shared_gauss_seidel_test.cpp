@@ -13,6 +13,7 @@
 //    (tests/common/stencil_residual.hpp) is <= the tolerance 1e-10 (+ round-off);
 //  - a control: another right-hand side gives another solution.
 #define OMPI_SKIP_MPICXX 1
+#include "../../common/mpi_bits.hpp"
 #include "../../common/stencil_residual.hpp"
 #include "gas/gauss_seidel.hpp"
 #include <cmath>
@@ -23,6 +24,10 @@
 #include <random>
 
 using namespace fluidem::gas;
+using fluidem::test::bits_hash;
+using fluidem::test::same_on_every_rank;
+using fluidem::test::world_rank;
+using fluidem::test::world_size;
 
 namespace {
 
@@ -36,17 +41,6 @@ struct Box {
   }
   std::size_t size() const { return static_cast<std::size_t>(n[0] + 2) * (n[1] + 2) * (n[2] + 2); }
 };
-
-int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int world_size() {
-  int s = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &s);
-  return s;
-}
 
 // Links -c with c in [0.1, 1] (x 3 on the upwind side: convection), 0 where the neighbour is
 // outside a non-periodic box; diag = 1.2 x the sum of |links| (diagonally dominant, as the
@@ -78,24 +72,6 @@ StencilSystem momentum_like_system(const Box& b, unsigned seed) {
   return s;
 }
 
-std::uint64_t hash(const std::vector<double>& v) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (const double d : v) {
-    std::uint64_t u = 0;
-    std::memcpy(&u, &d, sizeof u);
-    h = (h ^ u) * 1099511628211ull;
-  }
-  return h;
-}
-
-bool same_on_every_rank(std::uint64_t h) {
-  std::vector<std::uint64_t> all(static_cast<std::size_t>(world_size()));
-  MPI_Allgather(&h, 1, MPI_UINT64_T, all.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
-  for (const auto a : all)
-    if (a != h) return false;
-  return true;
-}
-
 constexpr double kTol = 1e-10;
 
 struct Solved {
@@ -123,8 +99,8 @@ void check_box(const Box& b) {
   EXPECT_EQ(shared.stats.iterations, alone.stats.iterations);
   EXPECT_EQ(shared.stats.converged, alone.stats.converged);
   EXPECT_EQ(shared.stats.relative_residual, alone.stats.relative_residual);
-  EXPECT_EQ(hash(shared.x), hash(alone.x)) << "P = " << world_size();
-  EXPECT_TRUE(same_on_every_rank(hash(shared.x)));
+  EXPECT_EQ(bits_hash(shared.x), bits_hash(alone.x)) << "P = " << world_size();
+  EXPECT_TRUE(same_on_every_rank(bits_hash(shared.x)));
   // It solves the system: the residual measured here.
   EXPECT_LE(fluidem::test::stencil_relative_residual(b.padded(), b.lo, b.n, b.periodic,
                                                      momentum_like_system(b, 5), shared.x),
@@ -133,9 +109,9 @@ void check_box(const Box& b) {
   const Solved short_alone = solve(b, 5, false, 3), short_shared = solve(b, 5, true, 3);
   EXPECT_FALSE(short_shared.stats.converged);
   EXPECT_EQ(short_shared.stats.iterations, short_alone.stats.iterations);
-  EXPECT_EQ(hash(short_shared.x), hash(short_alone.x));
+  EXPECT_EQ(bits_hash(short_shared.x), bits_hash(short_alone.x));
   // Control: another right-hand side, another solution.
-  EXPECT_NE(hash(solve(b, 9, true, 200).x), hash(shared.x));
+  EXPECT_NE(bits_hash(solve(b, 9, true, 200).x), bits_hash(shared.x));
 }
 
 class SharedGaussSeidel : public ::testing::Test {

@@ -13,6 +13,7 @@
 //  - a second system through the same solver (its multigrid set-up reused) keeps both;
 //  - a control: another right-hand side gives another solution.
 #define OMPI_SKIP_MPICXX 1
+#include "../../common/mpi_bits.hpp"
 #include "../../common/stencil_residual.hpp"
 #include "gas/pressure_solver.hpp"
 #include <cmath>
@@ -23,6 +24,10 @@
 #include <random>
 
 using namespace fluidem::gas;
+using fluidem::test::bits_hash;
+using fluidem::test::same_on_every_rank;
+using fluidem::test::world_rank;
+using fluidem::test::world_size;
 
 namespace {
 
@@ -35,17 +40,6 @@ struct Box {
   }
   std::size_t size() const { return static_cast<std::size_t>(n[0] + 2) * (n[1] + 2) * (n[2] + 2); }
 };
-
-int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int world_size() {
-  int s = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &s);
-  return s;
-}
 
 // Links -c (c in [0.1, 1] times an axis weight 1, 4, 0.25: anisotropic), the same on both rows
 // of a link; links leaving a walled box are 0; diag = sum of |links| + shift.
@@ -85,24 +79,6 @@ StencilSystem spd_system(const Box& b, unsigned seed, double shift) {
 // ||b - A x|| / ||b||, neighbours read explicitly (periodic axes wrapped).
 double relative_residual(const Box& b, const StencilSystem& s, const std::vector<double>& x) {
   return fluidem::test::stencil_relative_residual(b.padded(), {1, 1, 1}, b.n, b.periodic, s, x);
-}
-
-std::uint64_t hash(const std::vector<double>& v) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (const double d : v) {
-    std::uint64_t u = 0;
-    std::memcpy(&u, &d, sizeof u);
-    h = (h ^ u) * 1099511628211ull;
-  }
-  return h;
-}
-
-bool same_on_every_rank(std::uint64_t h) {
-  std::vector<std::uint64_t> all(static_cast<std::size_t>(world_size()));
-  MPI_Allgather(&h, 1, MPI_UINT64_T, all.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
-  for (const auto a : all)
-    if (a != h) return false;
-  return true;
 }
 
 StructSolverOptions iterative() {
@@ -146,9 +122,9 @@ void check_box(const Box& b) {
   for (const auto& parts : cuts) {
     const Solved shared = solve_two(b, 7, {world, rank, P, parts});
     EXPECT_EQ(shared.iterations, alone.iterations) << "parts " << parts[0] << parts[2];
-    EXPECT_EQ(hash(shared.x), hash(alone.x))
+    EXPECT_EQ(bits_hash(shared.x), bits_hash(alone.x))
         << "P = " << P << ", parts " << parts[0] << " x " << parts[1] << " x " << parts[2];
-    EXPECT_TRUE(same_on_every_rank(hash(shared.x)));
+    EXPECT_TRUE(same_on_every_rank(bits_hash(shared.x)));
   }
   // It solves the systems: the residual measured here, and (walled) the direct solution.
   for (unsigned s = 7; s < 9; ++s) {
@@ -173,7 +149,7 @@ void check_box(const Box& b) {
   }
   // Control: another right-hand side, another solution.
   const Solved other = solve_two(b, 11, {world, rank, P, {0, 0, 0}});
-  EXPECT_NE(hash(other.x), hash(alone.x));
+  EXPECT_NE(bits_hash(other.x), bits_hash(alone.x));
 }
 
 class SharedPressureSolve : public ::testing::Test {

@@ -32,32 +32,43 @@ constexpr double kD = test::kJitteredD;
 constexpr double kSkin = 0.1 * kD;
 constexpr double kDt = 1e-5;
 
+/// A rank's view of p: the particles `own` first (in p's order), the others behind them as
+/// ghosts (in reverse order), and the rows of the own particles built on them.
+struct RankView {
+  ParticleStore local;
+  std::size_t owned = 0;
+  ContactTable table;
+  OrderedRows rows;
+  RankView(const CaseSpec& spec, const ParticleStore& p, const std::vector<bool>& own)
+      : table(spec), rows(test::box_of(spec), contact_history_width(table), 0.0) {
+    std::vector<std::uint32_t> order;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (own[i]) order.push_back(static_cast<std::uint32_t>(i));
+    owned = order.size();
+    for (std::size_t i = p.size(); i-- > 0;)
+      if (!own[i]) order.push_back(static_cast<std::uint32_t>(i));
+    local = p;
+    local.permute(order);
+    rows.build(local, owned, kSkin, KeptHistory{});
+  }
+};
+
 /// Per particle id: its twelve sums after `calls` calls of the ordered loop on the particles
 /// `own` of p (the others as ghosts behind them, in reverse order).
 std::map<std::int64_t, std::vector<double>> ordered_sums(const CaseSpec& spec,
                                                          const ParticleStore& p,
                                                          const std::vector<bool>& own, int calls,
                                                          OrderedContactStats* stats = nullptr) {
-  std::vector<std::uint32_t> order;
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (own[i]) order.push_back(static_cast<std::uint32_t>(i));
-  const std::size_t owned = order.size();
-  for (std::size_t i = p.size(); i-- > 0;)
-    if (!own[i]) order.push_back(static_cast<std::uint32_t>(i));
-  ParticleStore local = p;
-  local.permute(order);
-  const ContactTable table(spec);
-  OrderedRows rows(test::box_of(spec), contact_history_width(table), 0.0);
-  rows.build(local, owned, kSkin, KeptHistory{});
+  RankView r(spec, p, own);
   OrderedContactSums sums;
   OrderedContactStats st;
   for (int c = 0; c < calls; ++c)
-    st = compute_ordered_contact_forces(local, rows, table, kDt, sums);
+    st = compute_ordered_contact_forces(r.local, r.rows, r.table, kDt, sums);
   if (stats) *stats = st;
   std::map<std::int64_t, std::vector<double>> out;
-  for (std::size_t i = 0; i < owned; ++i)
-    out[local.id[i]].assign(sums.acc.begin() + static_cast<std::ptrdiff_t>(12 * i),
-                            sums.acc.begin() + static_cast<std::ptrdiff_t>(12 * i + 12));
+  for (std::size_t i = 0; i < r.owned; ++i)
+    out[r.local.id[i]].assign(sums.acc.begin() + static_cast<std::ptrdiff_t>(12 * i),
+                              sums.acc.begin() + static_cast<std::ptrdiff_t>(12 * i + 12));
   return out;
 }
 
@@ -126,21 +137,11 @@ TEST_P(OrderedContacts, ThreadsGiveTheSameBits) {
 /// the third call.
 std::vector<KeyedContact> ordered_record(const CaseSpec& spec, const ParticleStore& p,
                                          const std::vector<bool>& own) {
-  std::vector<std::uint32_t> order;
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (own[i]) order.push_back(static_cast<std::uint32_t>(i));
-  const std::size_t owned = order.size();
-  for (std::size_t i = p.size(); i-- > 0;)
-    if (!own[i]) order.push_back(static_cast<std::uint32_t>(i));
-  ParticleStore local = p;
-  local.permute(order);
-  const ContactTable table(spec);
-  OrderedRows rows(test::box_of(spec), contact_history_width(table), 0.0);
-  rows.build(local, owned, kSkin, KeptHistory{});
+  RankView r(spec, p, own);
   OrderedContactSums sums;
   std::vector<KeyedContact> record;
   for (int c = 0; c < 3; ++c)
-    compute_ordered_contact_forces(local, rows, table, kDt, sums, c == 2 ? &record : nullptr);
+    compute_ordered_contact_forces(r.local, r.rows, r.table, kDt, sums, c == 2 ? &record : nullptr);
   return record;
 }
 
