@@ -179,6 +179,23 @@ void expect_same_checkpoints(const test::fs::path& a, const test::fs::path& b, b
   EXPECT_GT(compared, 20);
 }
 
+/// `bed` run on `first` ranks to `split` s into cwd/half (with `extra` arguments), then continued
+/// from its checkpoint on `second` ranks to `end` s: the files in cwd/half are the whole run's.
+void run_and_continue(const test::fs::path& cwd, const test::fs::path& bed, int first, int second,
+                      const std::string& split, const std::string& end,
+                      const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> args{"run",  bed.string(), "--out",
+                                "half", "--set",      "simulation.end_time=" + split};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const Result half = mpirun(first, args, cwd);
+  ASSERT_EQ(half.code, 0) << half.err;
+  const Result cont = mpirun(second,
+                             {"run", "--restart", (cwd / "half" / "checkpoint.h5").string(),
+                              "--set", "simulation.end_time=" + end},
+                             cwd);
+  ASSERT_EQ(cont.code, 0) << cont.err;
+}
+
 TEST(MpiRun, RanksWriteTheFilesOfOneProcess) {
   TempDir tmp;
   const auto bed = tmp.write("bed.toml", kBed);
@@ -229,14 +246,7 @@ TEST(MpiRun, CoupledBedOnRanksWritesTheFilesOfOneProcess) {
       mpirun(2, {"run", bed.string(), "--out", "seed", "--set", "insert[0].seed=5"}, tmp.path);
   ASSERT_EQ(other.code, 0) << other.err;
   EXPECT_NE(test::read_file(tmp.path / "seed" / "series.csv"), series);
-  const Result half = mpirun(
-      3, {"run", bed.string(), "--out", "half", "--set", "simulation.end_time=0.004"}, tmp.path);
-  ASSERT_EQ(half.code, 0) << half.err;
-  const Result cont = mpirun(2,
-                             {"run", "--restart", (tmp.path / "half" / "checkpoint.h5").string(),
-                              "--set", "simulation.end_time=0.012"},
-                             tmp.path);
-  ASSERT_EQ(cont.code, 0) << cont.err;
+  ASSERT_NO_FATAL_FAILURE(run_and_continue(tmp.path, bed, 3, 2, "0.004", "0.012"));
   EXPECT_EQ(test::read_file(tmp.path / "half" / "series.csv"), series);
   expect_same_checkpoints(tmp.path / "one" / "checkpoint.h5", tmp.path / "half" / "checkpoint.h5");
 }
@@ -266,16 +276,8 @@ TEST(MpiRun, FluidForcesOnRanksWriteTheFilesOfOneProcess) {
   EXPECT_FALSE(contains(p3.out, " 0 moves of the cut planes")) << p3.out;
   EXPECT_EQ(test::read_file(tmp.path / "p3" / "series.csv"), series);
   expect_same_checkpoints(tmp.path / "one" / "checkpoint.h5", tmp.path / "p3" / "checkpoint.h5");
-  const Result half = mpirun(2,
-                             {"run", bed.string(), "--out", "half", "--set",
-                              "simulation.end_time=0.01", "--set", "parallel.balance_interval=1"},
-                             tmp.path);
-  ASSERT_EQ(half.code, 0) << half.err;
-  const Result cont = mpirun(3,
-                             {"run", "--restart", (tmp.path / "half" / "checkpoint.h5").string(),
-                              "--set", "simulation.end_time=0.02"},
-                             tmp.path);
-  ASSERT_EQ(cont.code, 0) << cont.err;
+  ASSERT_NO_FATAL_FAILURE(run_and_continue(tmp.path, bed, 2, 3, "0.01", "0.02",
+                                           {"--set", "parallel.balance_interval=1"}));
   EXPECT_EQ(test::read_file(tmp.path / "half" / "series.csv"), series);
   expect_same_checkpoints(tmp.path / "one" / "checkpoint.h5", tmp.path / "half" / "checkpoint.h5");
   const Result plain = test::fluidem(
@@ -604,14 +606,7 @@ radius = 0.006
     EXPECT_EQ(test::read_file(tmp.path / out / "collisions.csv"), rows) << p << " ranks";
     EXPECT_EQ(test::read_file(tmp.path / out / "collision_overlap.csv"), histogram) << p;
   }
-  const Result half = mpirun(
-      2, {"run", bed.string(), "--out", "half", "--set", "simulation.end_time=0.006"}, tmp.path);
-  ASSERT_EQ(half.code, 0) << half.err;
-  const Result cont = mpirun(3,
-                             {"run", "--restart", (tmp.path / "half" / "checkpoint.h5").string(),
-                              "--set", "simulation.end_time=0.012"},
-                             tmp.path);
-  ASSERT_EQ(cont.code, 0) << cont.err;
+  ASSERT_NO_FATAL_FAILURE(run_and_continue(tmp.path, bed, 2, 3, "0.006", "0.012"));
   EXPECT_EQ(test::read_file(tmp.path / "half" / "collisions.csv"), rows);
   EXPECT_EQ(test::read_file(tmp.path / "half" / "collision_overlap.csv"), histogram);
 }
@@ -687,14 +682,7 @@ interval = 0.003
     ASSERT_EQ(r.code, 0) << r.err << r.out;
     same_datasets(tmp.path / out / "continuum.h5", std::to_string(p) + " ranks");
   }
-  const Result half = mpirun(
-      2, {"run", bed.string(), "--out", "half", "--set", "simulation.end_time=0.006"}, tmp.path);
-  ASSERT_EQ(half.code, 0) << half.err;
-  const Result cont = mpirun(3,
-                             {"run", "--restart", (tmp.path / "half" / "checkpoint.h5").string(),
-                              "--set", "simulation.end_time=0.012"},
-                             tmp.path);
-  ASSERT_EQ(cont.code, 0) << cont.err;
+  ASSERT_NO_FATAL_FAILURE(run_and_continue(tmp.path, bed, 2, 3, "0.006", "0.012"));
   same_datasets(tmp.path / "half" / "continuum.h5", "2 -> 3 ranks");
 }
 

@@ -72,17 +72,26 @@ std::map<std::int64_t, std::vector<double>> ordered_sums(const CaseSpec& spec,
   return out;
 }
 
+/// The batched half-list loop (contact_forces.hpp) on p, three calls (the later ones read the
+/// histories the earlier ones left): the last call's stats, its sums in nc, its contacts in
+/// `record` (when given).
+ContactStats batched_loop(const CaseSpec& spec, const ParticleStore& p, ContactScratch& nc,
+                          ContactRecord* record = nullptr) {
+  const ContactTable table(spec);
+  NeighbourList nl(test::box_of(spec), kSkin, contact_history_width(table));
+  nl.build(p);
+  ContactStats st;
+  for (int c = 0; c < 3; ++c) st = compute_contact_forces(p, nl, table, kDt, nc, record);
+  return st;
+}
+
 class OrderedContacts : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(OrderedContacts, AgreesWithTheBatchedLoop) {
   const CaseSpec spec = jittered_bed_spec(2, GetParam());
   const ParticleStore p = jittered_bed(2, 2, true);
-  const ContactTable table(spec);
-  NeighbourList nl(test::box_of(spec), kSkin, contact_history_width(table));
-  nl.build(p);
   ContactScratch nc;
-  ContactStats fast;
-  for (int c = 0; c < 3; ++c) fast = compute_contact_forces(p, nl, table, kDt, nc);
+  const ContactStats fast = batched_loop(spec, p, nc);
   OrderedContactStats st;
   const auto ordered = ordered_sums(spec, p, std::vector<bool>(p.size(), true), 3, &st);
   ASSERT_GT(fast.n_contacts, 100);
@@ -154,13 +163,10 @@ TEST_P(OrderedContacts, RecordsEachContactOnceAsTheBatchedLoopSeesIt) {
   // torque (on the lower id) to 1e-12 relative.
   const CaseSpec spec = jittered_bed_spec(2, GetParam());
   const ParticleStore p = jittered_bed(2, 2, true);
-  const ContactTable table(spec);
-  NeighbourList nl(test::box_of(spec), kSkin, contact_history_width(table));
-  nl.build(p);
   ContactScratch nc;
   ContactRecord batched;
   batched.enabled = true;
-  for (int c = 0; c < 3; ++c) compute_contact_forces(p, nl, table, kDt, nc, &batched);
+  batched_loop(spec, p, nc, &batched);
   std::map<std::pair<std::int64_t, std::int64_t>, ContactSample> expected;
   for (const ContactSample& c : batched.samples)
     expected[c.j >= 0 ? std::pair{std::min(c.id_i, c.id_j), std::max(c.id_i, c.id_j)}
