@@ -1,4 +1,5 @@
 #include "integrate/distributed_soft_sphere.hpp"
+#include "noncontact/liquid_bridges.hpp"
 #include "noncontact/ordered_noncontact.hpp"
 #include "noncontact/pair_forces.hpp"
 
@@ -35,28 +36,31 @@ auto DistributedSoftSphere::carried_fields(Self& self) {
   using V =
       std::conditional_t<std::is_const_v<Self>, const std::vector<double>, std::vector<double>>;
   const std::size_t nc = self.s_.noncontact ? 1 : 0, tw = self.s_.held_torques ? 3 : 0,
-                    aw = static_cast<std::size_t>(self.s_.attached_width);
+                    aw = static_cast<std::size_t>(self.s_.attached_width),
+                    bw = self.s_.liquid_bridge ? 3 : 0;
   // Its dissipated energy, its last contact sums and elastic energy (a build between steps, by
   // rebalance(), keeps them for the next kick), the held gas force, its build position, its
-  // non-contact force and potential share, its held torque and attached numbers.
-  return std::array<std::pair<V*, std::size_t>, 9>{{{&self.dissipated_, 1},
-                                                    {&self.sums_.elastic, 1},
-                                                    {&self.sums_.acc, OrderedContactSums::kAcc},
-                                                    {&self.held_, 3},
-                                                    {&self.x0_, 3},
-                                                    {&self.nc_force_, 3 * nc},
-                                                    {&self.nc_potential_, nc},
-                                                    {&self.held_torque_, tw},
-                                                    {&self.attached_, aw}}};
+  // non-contact force and potential share, its held torque and attached numbers, its bridges'
+  // force.
+  return std::array<std::pair<V*, std::size_t>, 10>{{{&self.dissipated_, 1},
+                                                     {&self.sums_.elastic, 1},
+                                                     {&self.sums_.acc, OrderedContactSums::kAcc},
+                                                     {&self.held_, 3},
+                                                     {&self.x0_, 3},
+                                                     {&self.nc_force_, 3 * nc},
+                                                     {&self.nc_potential_, nc},
+                                                     {&self.held_torque_, tw},
+                                                     {&self.attached_, aw},
+                                                     {&self.bridge_force_, bw}}};
 }
 
 template <class State>
 auto DistributedSoftSphere::state_fields(State& g) {
   using V =
       std::conditional_t<std::is_const_v<State>, const std::vector<double>, std::vector<double>>;
-  return std::array<V*, 9>{&g.dissipated, &g.elastic,     &g.contact, &g.held, &g.x0,
-                           nullptr, // the non-contact force: not kept, recomputed
-                           &g.noncontact, &g.held_torque, &g.attached};
+  return std::array<V*, 10>{&g.dissipated, &g.elastic,     &g.contact,  &g.held,        &g.x0,
+                            nullptr, // the non-contact force: not kept, recomputed
+                            &g.noncontact, &g.held_torque, &g.attached, &g.bridge_force};
 }
 
 namespace {
@@ -120,11 +124,17 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
   // last build saw them, then half a skin from there, before the next build).
   // The non-contact forces' own rows reach farther (their range); the ghosts cover both.
   const double reach = table_->attached_reach(r_max);
+  // So do the liquid bridges' (the longest rupture distance).
   const double nc_reach = s_.noncontact ? noncontact_reach(*s_.noncontact, all) : 0.0;
+  const double bridge_reach =
+      s_.liquid_bridge ? longest_rupture_distance(*s_.liquid_bridge, s_.liquid_fraction, all) : 0.0;
   exchange_ = std::make_unique<ParticleExchange>(
-      comm_, map_, 2.0 * r_max + std::max(reach, nc_reach) + 2.0 * s_.skin);
+      comm_, map_, 2.0 * r_max + std::max({reach, nc_reach, bridge_reach}) + 2.0 * s_.skin);
   rows_ = std::make_unique<OrderedRows>(box_, table_->history_width(), reach);
   if (s_.noncontact) nc_rows_ = std::make_unique<OrderedRows>(box_, 0, nc_reach);
+  if (s_.liquid_bridge)
+    bridges_ = std::make_unique<OrderedLiquidBridges>(box_, *s_.liquid_bridge, s_.liquid_fraction,
+                                                      bridge_reach);
   // Each rank keeps the particles whose centres its cells hold, with what they carry.
   std::vector<std::uint32_t> mine;
   for (std::size_t i = 0; i < all.size(); ++i)
@@ -135,18 +145,19 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
   p_.resize(mine.size());
   owned_ = p_.size();
   total_ = static_cast<std::int64_t>(all.size());
-  KeptHistory kept;
+  KeptHistory kept, kept_bridges;
   kept.width = rows_->history_width();
   kept.offset.assign(1, 0);
+  kept_bridges.width = 1;
+  kept_bridges.offset.assign(1, 0);
   dissipated_.assign(owned_, 0.0);
+  bridge_force_.assign(bridges_ ? 3 * owned_ : 0, 0.0);
   held_.assign(3 * owned_, 0.0);
   const auto aw = static_cast<std::size_t>(s_.attached_width);
   held_torque_.assign(s_.held_torques ? 3 * owned_ : 0, 0.0);
   attached_.assign(aw * owned_, 0.0);
   x0_.resize(3 * owned_);
   if (state) {
-    const auto hw = static_cast<std::size_t>(kept.width);
-    const KeptHistory& h = state->history;
     sums_.acc.resize(OrderedContactSums::kAcc * owned_);
     sums_.elastic.resize(owned_);
     sums_.released.assign(owned_, 0.0);
@@ -163,19 +174,27 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
         std::copy_n(from[f]->begin() + static_cast<std::ptrdiff_t>(w * mine[k]), w,
                     to.begin() + static_cast<std::ptrdiff_t>(w * k));
     }
-    for (std::size_t k = 0; k < owned_; ++k) {
-      const std::size_t i = mine[k];
-      for (std::uint32_t m = h.offset[i]; m < h.offset[i + 1]; ++m) {
-        kept.key.push_back(h.key[m]);
-        kept.values.insert(kept.values.end(),
-                           h.values.begin() + static_cast<std::ptrdiff_t>(m * hw),
-                           h.values.begin() + static_cast<std::ptrdiff_t>((m + 1) * hw));
+    // The own particles' entries of the state's histories (a state without bridges: none).
+    const auto select = [&](const KeptHistory& h, KeptHistory& to) {
+      const auto hw = static_cast<std::size_t>(to.width);
+      for (std::size_t k = 0; k < owned_; ++k) {
+        const std::size_t i = mine[k];
+        if (h.offset.size() == all.size() + 1)
+          for (std::uint32_t m = h.offset[i]; m < h.offset[i + 1]; ++m) {
+            to.key.push_back(h.key[m]);
+            to.values.insert(to.values.end(),
+                             h.values.begin() + static_cast<std::ptrdiff_t>(m * hw),
+                             h.values.begin() + static_cast<std::ptrdiff_t>((m + 1) * hw));
+          }
+        to.offset.push_back(static_cast<std::uint32_t>(to.key.size()));
       }
-      kept.offset.push_back(static_cast<std::uint32_t>(kept.key.size()));
-    }
+    };
+    select(state->history, kept);
+    select(state->bridges, kept_bridges);
     builds_ = state->builds;
   } else {
     kept.offset.assign(owned_ + 1, 0);
+    kept_bridges.offset.assign(owned_ + 1, 0);
     builds_ = 1; // the first build, below
   }
   // The first list. A restarted run's: the checkpoint holds every loaded history, and the rows'
@@ -188,10 +207,13 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
     nc_rows_->build(p_, owned_, state ? 2.0 * s_.skin : s_.skin, {});
     compute_noncontact();
   }
+  if (bridges_) // (a restarted run's forces: the state's, those of its last step)
+    bridges_->rows().build(p_, owned_, state ? 2.0 * s_.skin : s_.skin, kept_bridges);
   if (!state)
     for (std::size_t k = 0; k < owned_; ++k)
       x0_[3 * k] = p_.x[k], x0_[3 * k + 1] = p_.y[k], x0_[3 * k + 2] = p_.z[k];
   if (!state) stats_ = compute_ordered_contact_forces(p_, *rows_, *table_, s_.dt, sums_);
+  if (!state && bridges_) compute_bridges();
   observed_stats_.max_overlap_ratio = comm_.max(stats_.max_overlap_ratio);
 }
 
@@ -203,8 +225,11 @@ std::size_t DistributedSoftSphere::bytes() const {
          (rows_->history.capacity() + rows_->wall_history.capacity() + sums_.acc.capacity() +
           sums_.elastic.capacity() + sums_.released.capacity() + x0_.capacity() +
           dissipated_.capacity() + held_.capacity() + held_torque_.capacity() +
-          attached_.capacity()) *
-             sizeof(double);
+          attached_.capacity() + bridge_force_.capacity()) *
+             sizeof(double) +
+         (bridges_ ? bridges_->rows().partner.capacity() * sizeof(std::uint32_t) +
+                         bridges_->rows().history.capacity() * sizeof(double)
+                   : 0);
 }
 
 namespace {
@@ -213,6 +238,18 @@ constexpr std::array<double, 3> kNoForce{};
 
 void DistributedSoftSphere::compute_noncontact() {
   ordered_noncontact_forces(*s_.noncontact, *nc_rows_, p_, nc_force_, nc_potential_);
+}
+
+void DistributedSoftSphere::compute_bridges() {
+  bridges_->compute(
+      p_, [&](std::vector<double>& v) { exchange_->update_ghost_values(v, owned_); },
+      bridge_force_);
+}
+
+std::vector<KeptHistory> DistributedSoftSphere::keep_histories() const {
+  std::vector<KeptHistory> kept{rows_->keep(p_)};
+  if (bridges_) kept.push_back(bridges_->rows().keep(p_));
+  return kept;
 }
 
 void DistributedSoftSphere::kick() {
@@ -231,9 +268,14 @@ void DistributedSoftSphere::kick() {
       a[0] += b[0], a[1] += b[1], a[2] += b[2];
     }
     if (im == 0.0) a = {0.0, 0.0, 0.0};
-    p_.vx[i] += h * ((f[0] + fh[0] + fn[0]) * im + a[0]);
-    p_.vy[i] += h * ((f[1] + fh[1] + fn[1]) * im + a[1]);
-    p_.vz[i] += h * ((f[2] + fh[2] + fn[2]) * im + a[2]);
+    std::array<double, 3> force{f[0] + fh[0] + fn[0], f[1] + fh[1] + fn[1], f[2] + fh[2] + fn[2]};
+    if (bridges_) {
+      const double* fb = bridge_force_.data() + 3 * i;
+      force[0] += fb[0], force[1] += fb[1], force[2] += fb[2];
+    }
+    p_.vx[i] += h * (force[0] * im + a[0]);
+    p_.vy[i] += h * (force[1] * im + a[1]);
+    p_.vz[i] += h * (force[2] * im + a[2]);
     if (s_.held_torques) {
       const double* th = held_torque_.data() + 3 * i;
       p_.wx[i] += h * (f[3] + th[0]) * ii;
@@ -288,6 +330,7 @@ void DistributedSoftSphere::step() {
   stats_ = compute_ordered_contact_forces(p_, *rows_, *table_, dt, sums_,
                                           record_ ? &contacts_ : nullptr);
   if (nc_rows_) compute_noncontact();
+  if (bridges_) compute_bridges();
   observed_stats_.max_overlap_ratio = comm_.max(stats_.max_overlap_ratio);
   seconds_.contacts += seconds_since(t0);
   t0 = WallClock::now();
@@ -301,6 +344,15 @@ void DistributedSoftSphere::step() {
     dissipated_[i] += -w * dt;
     dissipated_[i] += sums_.released[i];
   }
+  // The liquid bridges' work with the full-step velocities (a fixed particle does none): their
+  // capillary force loses the bridge energy over a form-rupture cycle, their viscous force
+  // dissipates (integrate/liquid_bridge_source.hpp).
+  if (bridges_)
+    for (std::size_t i = 0; i < owned_; ++i) {
+      if (p_.inv_mass[i] == 0.0) continue;
+      const double* fb = bridge_force_.data() + 3 * i;
+      dissipated_[i] += -dt * (fb[0] * p_.vx[i] + fb[1] * p_.vy[i] + fb[2] * p_.vz[i]);
+    }
   seconds_.integration += seconds_since(t0);
 }
 
@@ -383,15 +435,17 @@ void DistributedSoftSphere::rebuild(ParticleExchange* migration) {
     return;
   }
   // The own particles' histories leave the rows keyed by partner id; the ghosts are dropped.
-  KeptHistory kept = rows_->keep(p_);
+  std::vector<KeptHistory> kept = keep_histories();
+  std::vector<KeptHistory*> travelling;
+  for (KeptHistory& h : kept) travelling.push_back(&h);
   p_.resize(owned_);
   // What travels with each particle (carried_fields).
   const auto fields = carried_fields(*this);
   std::vector<double> carried = pack_fields(fields, owned_);
   const std::vector<ParticleTooFar> lost =
       (migration ? *migration : *exchange_)
-          .migrate(p_, kept, carried, static_cast<int>(packed_width(fields)));
-  std::array<std::vector<double>*, 9> to{};
+          .migrate(p_, travelling, carried, static_cast<int>(packed_width(fields)));
+  std::array<std::vector<double>*, std::tuple_size_v<decltype(fields)>> to{};
   for (std::size_t f = 0; f < fields.size(); ++f) to[f] = fields[f].first;
   unpack_fields(fields, carried, to, p_.size());
   const double first_lost = comm_.min(lost.empty() ? std::numeric_limits<double>::infinity()
@@ -406,8 +460,9 @@ void DistributedSoftSphere::rebuild(ParticleExchange* migration) {
     throw InstabilityError("the ranks hold " + std::to_string(count) + " particles, the run has " +
                            std::to_string(total_) + ": a particle was lost or duplicated");
   exchange_->fill_ghosts(p_);
-  rows_->build(p_, owned_, s_.skin, kept);
+  rows_->build(p_, owned_, s_.skin, kept[0]);
   if (nc_rows_) nc_rows_->build(p_, owned_, s_.skin, {});
+  if (bridges_) bridges_->rows().build(p_, owned_, s_.skin, kept[1]);
   x0_.resize(3 * owned_);
   for (std::size_t i = 0; i < owned_; ++i)
     x0_[3 * i] = p_.x[i], x0_[3 * i + 1] = p_.y[i], x0_[3 * i + 2] = p_.z[i];
@@ -420,11 +475,10 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
   const auto kExtra = packed_width(fields);
   const std::vector<double> extra = pack_fields(fields, owned_);
   const auto parts = comm_.gather(pack_particles(p_, owned_, extra, static_cast<int>(kExtra)));
-  KeptHistory kept_mine;
-  std::vector<std::vector<char>> history_parts;
+  std::vector<std::vector<char>> history_parts, bridge_parts;
   if (with_history) {
-    kept_mine = rows_->keep(p_);
-    history_parts = comm_.gather(pack_history(kept_mine));
+    history_parts = comm_.gather(pack_history(rows_->keep(p_)));
+    if (bridges_) bridge_parts = comm_.gather(pack_history(bridges_->rows().keep(p_)));
   }
   DistributedState g;
   g.builds = builds_;
@@ -445,6 +499,13 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
   unpack_fields(fields, all_extra, state_fields(g), n, order);
   if (g.noncontact.empty()) g.noncontact.assign(n, 0.0); // without non-contact forces: 0 each
   if (with_history) g.history = reorder(all_kept, order);
+  if (with_history && bridges_) {
+    KeptHistory all_bridges;
+    all_bridges.width = 1;
+    all_bridges.offset.assign(1, 0);
+    for (const auto& b : bridge_parts) unpack_history(b, all_bridges);
+    g.bridges = reorder(all_bridges, order);
+  }
   return g;
 }
 
@@ -604,6 +665,7 @@ DistributedSoftSphere::Totals DistributedSoftSphere::totals_of(const Distributed
   out.elastic = t[3], out.dissipated = t[4], out.noncontact = t[5];
   out.contacts = comm_.sum(stats_.contacts);
   out.particles = comm_.sum(static_cast<std::int64_t>(owned_));
+  out.bridges = bridges_ ? comm_.sum(bridges_->bridges(p_)) : 0;
   out.max_overlap_ratio = comm_.max(stats_.max_overlap_ratio);
   return out;
 }

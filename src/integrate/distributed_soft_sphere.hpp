@@ -22,6 +22,7 @@
 #include "integrate/particle_stepper.hpp"
 #include "neighbour/box_geometry.hpp"
 #include "neighbour/ordered_rows.hpp"
+#include "noncontact/ordered_liquid_bridges.hpp"
 #include "parallel/communicator.hpp"
 #include "parallel/decomposition.hpp"
 #include "parallel/particle_exchange.hpp"
@@ -48,6 +49,10 @@ struct DistributedState {
   std::vector<double> attached;
   /// Per particle: its share of the non-contact forces' potential energy, J (0 without them)
   std::vector<double> noncontact;
+  /// With liquid bridges: per particle, its bridges keyed by partner id (-1 - face: a wall),
+  /// value 1 (empty when not gathered), and 3 per particle their force of the last step, N
+  KeptHistory bridges;
+  std::vector<double> bridge_force;
   std::int64_t builds = 0; ///< neighbour-list builds so far
 };
 
@@ -69,6 +74,11 @@ public:
     /// over rows of their own reach (noncontact/ordered_noncontact.hpp); null: none. Must
     /// outlive the engine.
     const NonContactSpec* noncontact = nullptr;
+    /// The liquid bridges, evaluated every step over rows of their own reach
+    /// (noncontact/ordered_liquid_bridges.hpp), with the liquid fraction of each species; null:
+    /// none. Must outlive the engine.
+    const LiquidBridgeSpec* liquid_bridge = nullptr;
+    std::vector<double> liquid_fraction;
     /// Torques held over the flow step beside the forces (the fluid torque of
     /// [coupling.forces]).
     bool held_torques = false;
@@ -174,6 +184,7 @@ public:
     double elastic = 0.0, dissipated = 0.0;                  ///< J
     double noncontact = 0.0; ///< J: the non-contact forces' potential energy
     std::int64_t contacts = 0, particles = 0;
+    std::int64_t bridges = 0; ///< liquid bridges (pairs and walls)
     double max_overlap_ratio = 0.0;
   };
   /// Collective.
@@ -208,6 +219,12 @@ private:
   std::vector<double> nc_potential_;     ///< per own particle: its share of their potential, J
   /// The non-contact forces of the own particles at their current positions.
   void compute_noncontact();
+  std::unique_ptr<OrderedLiquidBridges> bridges_; ///< Settings::liquid_bridge
+  std::vector<double> bridge_force_;              ///< 3 per own particle: the bridges' force, N
+  /// The liquid bridges of the own particles at their current positions and velocities.
+  void compute_bridges();
+  /// The own particles' histories: the contacts', then (with bridges) the bridges'.
+  std::vector<KeptHistory> keep_histories() const;
   ParticleStore p_; ///< own particles [0, owned_), then ghosts
   std::size_t owned_ = 0;
   std::int64_t total_ = 0;          ///< particles on all ranks

@@ -186,17 +186,7 @@ bool Simulation::choose_rank_independent() const {
                      "false cannot run on " + std::to_string(world.size()) +
                          " ranks (the single-process engine does not share out); set it true "
                          "or \"auto\", or run without mpirun");
-  if (!ri) return false;
-  // What the rank-independent engine does not take yet (docs/parallel.md).
-  const auto refuse = [&](bool present, const std::string& key, const std::string& what) {
-    if (present)
-      throw InputError(spec_.where(key), key,
-                       what + " does not run on the rank-independent engine yet (it runs under "
-                              "mpirun, or with parallel.rank_independent = true); run this case "
-                              "without mpirun and with parallel.rank_independent = false");
-  };
-  refuse(spec_.noncontact.liquid_bridge.has_value(), "liquid_bridge", "liquid bridges");
-  return true;
+  return ri;
 }
 
 void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_first, double skin,
@@ -212,6 +202,10 @@ void Simulation::set_up_stepper(std::unique_ptr<ContactTable> table, bool sort_f
     d.balance_interval = spec_.parallel.balance_interval;
     d.body = spec_.body_force ? &*spec_.body_force : nullptr;
     d.noncontact = spec_.noncontact.any_conservative() ? &spec_.noncontact : nullptr;
+    if (const auto& b = spec_.noncontact.liquid_bridge) {
+      d.liquid_bridge = &*b;
+      d.liquid_fraction = liquid_fractions(spec_);
+    }
     if (spec_.gas && spec_.coupling.forces.any()) { // their state travels with the particles
       d.held_torques = spec_.coupling.forces.torque != "off";
       d.attached_width = static_cast<int>(FluidForces::width(spec_.coupling.forces));
@@ -288,7 +282,7 @@ void Simulation::set_up_noncontact(double skin) {
   } catch (const std::invalid_argument& e) {
     throw InputError(spec_.where(key), key, e.what());
   }
-  if (nc.liquid_bridge) {
+  if (nc.liquid_bridge && !dist_) { // (the rank-independent engine evaluates them itself)
     auto source = std::make_unique<LiquidBridgeSource>(limits_.box, *nc.liquid_bridge,
                                                        liquid_fractions(spec_), p_, skin);
     bridges_ = &source->bridges();

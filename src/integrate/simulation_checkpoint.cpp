@@ -294,6 +294,12 @@ void Simulation::write_checkpoint(const std::string& path) {
     w.put_view("rank_independent/history/key", gathered.history.key);
     w.put_view("rank_independent/history/values", gathered.history.values);
     w.put_scalar("rank_independent/builds", gathered.builds);
+    if (!gathered.bridge_force.empty()) { // the liquid bridges, keyed as the contact histories
+      w.put_view("rank_independent/bridge_force", gathered.bridge_force);
+      w.put_view("rank_independent/bridges/offset", gathered.bridges.offset);
+      w.put_view("rank_independent/bridges/key", gathered.bridges.key);
+      w.put_view("rank_independent/bridges/values", gathered.bridges.values);
+    }
   }
   if (soft_) // the list's own arrays, unchanged until commit
     put_list(w, "neighbour", soft_->list().state_view());
@@ -393,6 +399,18 @@ std::unique_ptr<Simulation> Simulation::restart(const std::string& checkpoint,
       throw CheckpointError("checkpoint '" + checkpoint +
                             "': its rank-independent state does not match its particles");
     state->history.width = h.key.empty() ? 0 : static_cast<int>(h.values.size() / h.key.size());
+    if (r.has("rank_independent/bridge_force")) {
+      state->bridge_force = r.doubles("rank_independent/bridge_force");
+      KeptHistory& b = state->bridges;
+      b.width = 1;
+      b.offset = r.uint32s("rank_independent/bridges/offset");
+      b.key = r.int64s("rank_independent/bridges/key");
+      b.values = r.doubles("rank_independent/bridges/values");
+      if (state->bridge_force.size() != 3 * n || b.offset.size() != n + 1 ||
+          b.offset.back() != b.key.size() || b.values.size() != b.key.size())
+        throw CheckpointError("checkpoint '" + checkpoint +
+                              "': its liquid bridges do not match its particles");
+    }
   }
   // "auto" continues on the engine that wrote the checkpoint.
   if (!spec.parallel.rank_independent) spec.parallel.rank_independent = state.has_value();

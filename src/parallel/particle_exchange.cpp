@@ -36,11 +36,12 @@ void take_particle(const std::vector<char>& b, std::size_t& at, ParticleStore& p
 }
 
 /// Keeps particles `stay` (ascending) of p, kept and extra.
-void keep_only(ParticleStore& p, KeptHistory& kept, std::vector<double>& extra, int width,
-               const std::vector<std::uint32_t>& stay) {
+void keep_only(ParticleStore& p, std::span<KeptHistory* const> kept, std::vector<double>& extra,
+               int width, const std::vector<std::uint32_t>& stay) {
   p.permute(stay);
   p.resize(stay.size());
-  if (!kept.offset.empty()) kept = reorder(kept, stay);
+  for (KeptHistory* h : kept)
+    if (!h->offset.empty()) *h = reorder(*h, stay);
   const auto w = static_cast<std::size_t>(width);
   std::vector<double> e;
   e.reserve(stay.size() * w);
@@ -110,12 +111,14 @@ ParticleExchange::ParticleExchange(const Communicator& comm, const Decomposition
     throw std::logic_error("ParticleExchange: the decomposition is not of this run's ranks");
 }
 
-std::vector<ParticleTooFar> ParticleExchange::migrate(ParticleStore& p, KeptHistory& kept,
+std::vector<ParticleTooFar> ParticleExchange::migrate(ParticleStore& p,
+                                                      std::span<KeptHistory* const> kept,
                                                       std::vector<double>& extra, int width) {
   const std::size_t n = p.size();
-  if (!kept.offset.empty() && kept.particles() != n)
-    throw std::logic_error("ParticleExchange::migrate: histories of other particles");
-  const auto w = static_cast<std::size_t>(width), hw = static_cast<std::size_t>(kept.width);
+  for (const KeptHistory* h : kept)
+    if (!h->offset.empty() && h->particles() != n)
+      throw std::logic_error("ParticleExchange::migrate: histories of other particles");
+  const auto w = static_cast<std::size_t>(width);
   std::vector<ParticleTooFar> too_far;
   std::vector<std::uint32_t> stay;
   out_.assign(neighbours_.size(), {});
@@ -134,12 +137,15 @@ std::vector<ParticleTooFar> ParticleExchange::migrate(ParticleStore& p, KeptHist
     std::vector<char>& b = out_[static_cast<std::size_t>(it - neighbours_.begin())];
     put_particle(b, p, i);
     for (std::size_t m = 0; m < w; ++m) put(b, extra[i * w + m]);
-    const std::uint32_t h0 = kept.offset.empty() ? 0 : kept.offset[i];
-    const std::uint32_t h1 = kept.offset.empty() ? 0 : kept.offset[i + 1];
-    put(b, h1 - h0);
-    for (std::uint32_t m = h0; m < h1; ++m) {
-      put(b, kept.key[m]);
-      for (std::size_t v = 0; v < hw; ++v) put(b, kept.values[m * hw + v]);
+    for (const KeptHistory* h : kept) {
+      const auto hw = static_cast<std::size_t>(h->width);
+      const std::uint32_t h0 = h->offset.empty() ? 0 : h->offset[i];
+      const std::uint32_t h1 = h->offset.empty() ? 0 : h->offset[i + 1];
+      put(b, h1 - h0);
+      for (std::uint32_t m = h0; m < h1; ++m) {
+        put(b, h->key[m]);
+        for (std::size_t v = 0; v < hw; ++v) put(b, h->values[m * hw + v]);
+      }
     }
   }
   keep_only(p, kept, extra, width, stay);
@@ -150,12 +156,16 @@ std::vector<ParticleTooFar> ParticleExchange::migrate(ParticleStore& p, KeptHist
     while (at < b.size()) {
       take_particle(b, at, p);
       for (std::size_t m = 0; m < w; ++m) extra.push_back(take<double>(b, at));
-      const auto count = take<std::uint32_t>(b, at);
-      for (std::uint32_t m = 0; m < count; ++m) {
-        kept.key.push_back(take<std::int64_t>(b, at));
-        for (std::size_t v = 0; v < hw; ++v) kept.values.push_back(take<double>(b, at));
+      for (KeptHistory* h : kept) {
+        const auto hw = static_cast<std::size_t>(h->width);
+        if (h->offset.empty()) h->offset.push_back(0);
+        const auto count = take<std::uint32_t>(b, at);
+        for (std::uint32_t m = 0; m < count; ++m) {
+          h->key.push_back(take<std::int64_t>(b, at));
+          for (std::size_t v = 0; v < hw; ++v) h->values.push_back(take<double>(b, at));
+        }
+        h->offset.push_back(static_cast<std::uint32_t>(h->key.size()));
       }
-      kept.offset.push_back(static_cast<std::uint32_t>(kept.key.size()));
     }
   }
   return too_far;
@@ -202,6 +212,24 @@ void ParticleExchange::update_ghosts(ParticleStore& p, std::size_t owned) {
     for (std::size_t m = 0; m < received_[k]; ++m, ++g)
       for (std::vector<double>* a : {&p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.wx, &p.wy, &p.wz})
         (*a)[g] = take<double>(in[k], at);
+  }
+}
+
+void ParticleExchange::update_ghost_values(std::vector<double>& values, std::size_t owned) {
+  out_.assign(neighbours_.size(), {});
+  for (std::size_t k = 0; k < neighbours_.size(); ++k) {
+    out_[k].reserve(sent_[k].size() * sizeof(double));
+    for (const std::uint32_t i : sent_[k]) put(out_[k], values[i]);
+  }
+  count_sent();
+  const auto in = comm_.exchange(neighbours_, out_, neighbours_);
+  std::size_t g = owned;
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    if (in[k].size() != received_[k] * sizeof(double))
+      throw std::logic_error("ParticleExchange::update_ghost_values: the ghosts changed without "
+                             "a fill");
+    std::size_t at = 0;
+    for (std::size_t m = 0; m < received_[k]; ++m, ++g) values.at(g) = take<double>(in[k], at);
   }
 }
 

@@ -44,7 +44,9 @@ public:
   /// of `extra`. The rank keeps its staying particles in their order, then appends the arrivals
   /// (by source rank, in the sender's order). Returns the particles that went to a rank that is
   /// not a neighbour (they are not moved; empty on success).
-  std::vector<ParticleTooFar> migrate(ParticleStore& p, KeptHistory& kept,
+  /// Several histories (`kept`, each one entry list per particle of p: the contacts', the liquid
+  /// bridges') travel alike.
+  std::vector<ParticleTooFar> migrate(ParticleStore& p, std::span<KeptHistory* const> kept,
                                       std::vector<double>& extra, int width);
   /// Appends to p (own particles only) the ghosts of the neighbours within the halo of this
   /// rank's box, remembering what went where for update_ghosts.
@@ -52,6 +54,9 @@ public:
   /// The ghosts' positions and velocities from their owners (p: own particles, then the ghosts of
   /// the last fill_ghosts).
   void update_ghosts(ParticleStore& p, std::size_t owned);
+  /// One number per particle of the store (own particles, then the ghosts of the last
+  /// fill_ghosts): the ghosts' from their owners.
+  void update_ghost_values(std::vector<double>& values, std::size_t owned);
 
   /// Bytes and messages this rank sent since it was made (migrations, ghost fills and updates).
   double bytes_sent() const { return bytes_total_; }
