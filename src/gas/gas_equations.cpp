@@ -346,8 +346,14 @@ void GasSolver::solve_momentum(int d, double dt) {
 void GasSolver::solve_pressure_correction(double dt) {
   const double V = g_.cell_volume();
   const double area[3] = {g_.face_area(0), g_.face_area(1), g_.face_area(2)};
+  // The rows the solve reads: all, or (shared by ranks, docs/parallel.md) this rank's part.
+  std::array<int, 3> rows_lo{1, 1, 1}, rows_hi{g_.n[0], g_.n[1], g_.n[2]};
+  if (!pressure_solver_->reads_whole_system()) {
+    rows_lo = pressure_solver_->part_lo();
+    rows_hi = pressure_solver_->part_hi();
+  }
   const auto assemble = [&](int k, int j) {
-    for (int i = 1; i <= g_.n[0]; ++i) {
+    for (int i = rows_lo[0]; i <= rows_hi[0]; ++i) {
       const long q = g_.idx(i, j, k);
       double R = V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
       double diag = psi_ * eps_[q] * V / dt;
@@ -375,13 +381,15 @@ void GasSolver::solve_pressure_correction(double dt) {
   };
   if (parallel_) { // unthreaded: no OpenMP region at all
 #pragma omp parallel for collapse(2) schedule(static)
-    for (int k = 1; k <= g_.n[2]; ++k)
-      for (int j = 1; j <= g_.n[1]; ++j) assemble(k, j);
+    for (int k = rows_lo[2]; k <= rows_hi[2]; ++k)
+      for (int j = rows_lo[1]; j <= rows_hi[1]; ++j) assemble(k, j);
   } else {
-    for (int k = 1; k <= g_.n[2]; ++k)
-      for (int j = 1; j <= g_.n[1]; ++j) assemble(k, j);
+    for (int k = rows_lo[2]; k <= rows_hi[2]; ++k)
+      for (int j = rows_lo[1]; j <= rows_hi[1]; ++j) assemble(k, j);
   }
-  if (!compressible_ && !bc_.any_pressure()) {
+  const bool assembled_first = rows_lo[0] == 1 && rows_lo[1] == 1 && rows_lo[2] == 1 &&
+                               rows_hi[0] >= 1 && rows_hi[1] >= 1 && rows_hi[2] >= 1; // (1, 1, 1)
+  if (!compressible_ && !bc_.any_pressure() && assembled_first) {
     // Pressure fixed up to a constant: pin the level by doubling one diagonal (the system is
     // consistent, so its solution with p'(1,1,1) = 0 is unchanged).
     const long q0 = g_.idx(1, 1, 1);

@@ -326,14 +326,25 @@ struct StructLinearSolver::Impl {
     const std::array<const std::vector<double>*, 6> off{&sys.xm, &sys.xp, &sys.ym,
                                                         &sys.yp, &sys.zm, &sys.zp};
     const long sy = padded[0], sz = static_cast<long>(padded[0]) * padded[1];
+    // The sums of |links| per axis over the whole box, from this rank's part summed over the
+    // ranks in fixed point (rank_dot.hpp): the same bits for any parts, and no rank reads rows
+    // outside its part.
     std::array<double, 3> c{};
-    for (int k = lo[2]; k <= hi[2]; ++k)
-      for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i) {
-          const auto p = static_cast<std::size_t>(i + j * sy + k * sz);
-          for (int d = 0; d < 3; ++d)
-            c[d] += std::abs((*off[2 * d])[p]) + std::abs((*off[2 * d + 1])[p]);
-        }
+    std::vector<double> links;
+    links.reserve(2 * static_cast<std::size_t>(part_cells));
+    for (int d = 0; d < 3; ++d) {
+      links.clear();
+      for (int k = plo[2]; k <= phi[2]; ++k)
+        for (int j = plo[1]; j <= phi[1]; ++j)
+          for (int i = plo[0]; i <= phi[0]; ++i) {
+            const auto p = static_cast<std::size_t>(i + j * sy + k * sz);
+            links.push_back(std::abs((*off[2 * d])[p]));
+            links.push_back(std::abs((*off[2 * d + 1])[p]));
+          }
+      const std::vector<double> ones(links.size(), 1.0);
+      c[static_cast<std::size_t>(d)] =
+          rank_dot(sh.comm, 2 * cells, links.data(), ones.data(), links.size());
+    }
     const auto axis = axis_of_hypre();
     dxyz = {1.0, 1.0, 1.0};
     for (int h = 0; h < ndim; ++h) {
@@ -664,6 +675,12 @@ void StructLinearSolver::share(const SharedSolve& shared) {
   m.shared = true;
   m.sh = shared;
   m.cut_into_parts();
+}
+
+bool StructLinearSolver::reads_whole_system() const {
+  const Impl& m = *impl_;
+  return !m.shared ||
+         (m.band_possible && m.opt.direct_max_work > 0.0 && m.band_work <= m.opt.direct_max_work);
 }
 
 std::array<int, 3> StructLinearSolver::part_lo() const {

@@ -92,6 +92,10 @@ public:
   /// every solve must then be made by all ranks. The direct path, when it applies, stays a
   /// solve of the whole system on each rank (the same bits everywhere).
   void share(const SharedSolve& shared);
+  /// Whether a solve reads rows of the system outside this rank's part (part_lo() .. part_hi()):
+  /// not shared, or solved whole by the direct solver on every rank. When false, the caller
+  /// need only assemble the part's rows.
+  bool reads_whole_system() const;
   /// This rank's part of the box (inclusive padded indices; hi < lo along some axis: empty).
   std::array<int, 3> part_lo() const;
   std::array<int, 3> part_hi() const;
