@@ -1,7 +1,10 @@
 #include "analysis/collision_statistics.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -78,29 +81,37 @@ void CollisionStatistics::sample_regions(const ParticleStore& p) {
 
 void CollisionStatistics::add_step(const ContactRecord& record, const ParticleStore& p,
                                    double time) {
-  keyed_.clear();
-  keyed_.reserve(record.samples.size());
-  for (const ContactSample& c : record.samples) {
-    KeyedContact k;
+  const std::size_t n = record.samples.size();
+  entries_.resize(n);
+  ab_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const ContactSample& c = record.samples[k];
+    const auto i = static_cast<std::size_t>(c.i);
     if (c.j >= 0) {
-      k.a = std::min(c.id_i, c.id_j), k.b = std::max(c.id_i, c.id_j);
-      k.diameter = 2.0 * std::min(p.radius[static_cast<std::size_t>(c.i)],
-                                  p.radius[static_cast<std::size_t>(c.j)]);
+      const auto j = static_cast<std::size_t>(c.j);
+      ab_[k] = {std::min(c.id_i, c.id_j), std::max(c.id_i, c.id_j)};
+      entries_[k] = {0, static_cast<std::uint32_t>(k), c.overlap,
+                     2.0 * std::min(p.radius[i], p.radius[j])};
     } else {
-      k.a = c.id_i, k.b = c.id_j;
-      k.diameter = 2.0 * p.radius[static_cast<std::size_t>(c.i)];
+      ab_[k] = {c.id_i, c.id_j};
+      entries_[k] = {0, static_cast<std::uint32_t>(k), c.overlap, 2.0 * p.radius[i]};
     }
-    k.overlap = c.overlap;
-    k.contact_point = c.contact_point;
-    keyed_.push_back(k);
   }
-  merge(keyed_, time);
+  merge(time, [&](std::size_t k) { return record.samples[k].contact_point; });
   sample_regions(p);
 }
 
 void CollisionStatistics::add_keyed_step(const std::vector<KeyedContact>& contacts,
                                          const ParticleStore& in_regions, double time) {
-  merge(contacts, time);
+  const std::size_t n = contacts.size();
+  entries_.resize(n);
+  ab_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const KeyedContact& c = contacts[k];
+    ab_[k] = {c.a, c.b};
+    entries_[k] = {0, static_cast<std::uint32_t>(k), c.overlap, c.diameter};
+  }
+  merge(time, [&](std::size_t k) { return contacts[k].contact_point; });
   sample_regions(in_regions);
 }
 
@@ -110,27 +121,75 @@ bool CollisionStatistics::in_a_region(const Vec3& x) const {
   return false;
 }
 
-void CollisionStatistics::merge(const std::vector<KeyedContact>& contacts, double time) {
-  current_.clear();
-  current_.reserve(contacts.size());
-  for (const KeyedContact& c : contacts)
-    current_.push_back({c.a, c.b, time, c.overlap, c.diameter});
+void CollisionStatistics::merge(double time, const std::function<Vec3(std::size_t)>& point) {
+  // The step's contacts (entries_, their keys ab_, in the record's order: slab order, or the
+  // ranks' order) sorted by key; equal keys (the same pair twice in one record: never from one
+  // contact loop) keep their order in the record, so that the result does not depend on the
+  // sort. The keys, less their minima, are packed into one integer and sorted by an LSD radix
+  // sort (stable), or compared whole when they span more than 64 bits.
+  const std::size_t n = entries_.size();
+  std::array<std::int64_t, 2> lo{0, 0}, hi{0, 0};
+  if (n > 0) lo = hi = ab_[0];
+  for (const auto& ab : ab_)
+    for (int m = 0; m < 2; ++m) lo[m] = std::min(lo[m], ab[m]), hi[m] = std::max(hi[m], ab[m]);
+  // (a - a_min, b - b_min) packed into one integer whose order is the pairs' (a first).
+  const auto span = [&](int m) {
+    return static_cast<std::uint64_t>(hi[m]) - static_cast<std::uint64_t>(lo[m]);
+  };
+  const int bits_a = static_cast<int>(std::bit_width(span(0))),
+            bits_b = static_cast<int>(std::bit_width(span(1)));
+  const bool packed = bits_a + bits_b <= 64;
+  const std::uint64_t mask_b = bits_b == 0 ? 0 : ~std::uint64_t{0} >> (64 - bits_b);
+  const auto offset = [&](std::int64_t v, int m) {
+    return static_cast<std::uint64_t>(v) - static_cast<std::uint64_t>(lo[m]);
+  };
+  if (packed)
+    for (Entry& e : entries_)
+      e.key = bits_b == 0 ? offset(ab_[e.k][0], 0)
+                          : offset(ab_[e.k][0], 0) << bits_b | offset(ab_[e.k][1], 1);
+  const int bits = bits_a + bits_b;
+  if (packed && n >= 4096) { // (below, the buckets would cost more than the keys)
+    // As few passes of at most 16 bits as the keys' bits need (2^17 ids: 34 bits, 3 passes).
+    const int passes = (bits + 15) / 16;
+    const int digit = passes > 0 ? (bits + passes - 1) / passes : 0;
+    const std::size_t buckets = std::size_t{1} << digit;
+    entries_tmp_.resize(n);
+    std::vector<std::uint32_t>& count = radix_count_;
+    count.resize(buckets);
+    for (int shift = 0; shift < bits; shift += digit) {
+      std::fill(count.begin(), count.end(), 0u);
+      for (const Entry& e : entries_) ++count[(e.key >> shift) & (buckets - 1)];
+      if (count[(entries_[0].key >> shift) & (buckets - 1)] == n) continue; // one digit
+      std::uint32_t at = 0;
+      for (std::uint32_t& c : count) at += std::exchange(c, at);
+      for (const Entry& e : entries_) entries_tmp_[count[(e.key >> shift) & (buckets - 1)]++] = e;
+      std::swap(entries_, entries_tmp_);
+    }
+  } else if (packed) {
+    std::sort(entries_.begin(), entries_.end(), [](const Entry& x, const Entry& y) {
+      return x.key != y.key ? x.key < y.key : x.k < y.k;
+    });
+  } else {
+    std::sort(entries_.begin(), entries_.end(), [&](const Entry& x, const Entry& y) {
+      return ab_[x.k] != ab_[y.k] ? ab_[x.k] < ab_[y.k] : x.k < y.k;
+    });
+  }
   auto key_less = [](const Ongoing& x, const Ongoing& y) {
     return x.a != y.a ? x.a < y.a : x.b < y.b;
   };
-  // The record is in slab order; sort by key, keeping the samples' order among equal keys
-  // (cannot happen for one contact loop, but the result must not depend on the sort).
-  std::vector<std::size_t> order(current_.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
-    return key_less(current_[x], current_[y]);
-  });
   // Merge with the ongoing contacts (sorted): new keys begin, missing keys end.
   merged_.clear();
-  merged_.reserve(current_.size());
+  merged_.reserve(n);
   std::size_t io = 0;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const Ongoing& c = current_[order[k]];
+  for (const Entry& e : entries_) {
+    const std::int64_t a = packed
+                               ? static_cast<std::int64_t>((bits_b == 0 ? e.key : e.key >> bits_b) +
+                                                           static_cast<std::uint64_t>(lo[0]))
+                               : ab_[e.k][0];
+    const std::int64_t b =
+        packed ? static_cast<std::int64_t>((e.key & mask_b) + static_cast<std::uint64_t>(lo[1]))
+               : ab_[e.k][1];
+    const Ongoing c{a, b, time, e.overlap, e.diameter};
     if (!merged_.empty() && merged_.back().a == c.a && merged_.back().b == c.b) {
       merged_.back().max_overlap = std::max(merged_.back().max_overlap, c.max_overlap);
       continue; // a duplicate key (same pair twice in one record): one contact
@@ -140,8 +199,8 @@ void CollisionStatistics::merge(const std::vector<KeyedContact>& contacts, doubl
       Ongoing o = ongoing_[io++];
       o.max_overlap = std::max(o.max_overlap, c.max_overlap);
       merged_.push_back(o);
-    } else { // begins
-      begin(c.b, contacts[order[k]].contact_point);
+    } else { // begins (the contact point only counts in a region)
+      begin(c.b, s_.regions.empty() ? Vec3{} : point(e.k));
       merged_.push_back(c);
     }
   }

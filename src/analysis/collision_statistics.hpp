@@ -34,6 +34,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -146,8 +147,9 @@ private:
     long samples = 0;
     double sum_count = 0.0, sum_volume = 0.0;
   };
-  /// A step's contacts merged with the ongoing ones: new keys begin, missing keys end.
-  void merge(const std::vector<KeyedContact>& contacts, double time);
+  /// A step's contacts (entries_ and ab_) merged with the ongoing ones: new keys begin, missing
+  /// keys end; point(k): the contact point of the record's k-th contact.
+  void merge(double time, const std::function<Vec3(std::size_t)>& point);
   void begin(std::int64_t b, const Vec3& point);
   void end(const Ongoing& c, double time);
   void sample_regions(const ParticleStore& p);
@@ -157,8 +159,17 @@ private:
   double t0_;
   Acc interval_, total_;
   std::vector<RegionAcc> region_;
-  std::vector<Ongoing> ongoing_, current_, merged_;
-  std::vector<KeyedContact> keyed_; ///< add_step's record, keyed
+  std::vector<Ongoing> ongoing_, merged_;
+  /// A step's contacts for merge(): the packed key, the place in the record, the overlap and
+  /// the smaller diameter; their keys (a, b) by place in the record.
+  struct Entry {
+    std::uint64_t key;
+    std::uint32_t k;
+    double overlap, diameter;
+  };
+  std::vector<Entry> entries_, entries_tmp_;
+  std::vector<std::array<std::int64_t, 2>> ab_;
+  std::vector<std::uint32_t> radix_count_;
   std::vector<std::int64_t> hist_;
 };
 

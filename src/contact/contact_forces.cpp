@@ -849,7 +849,12 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   auto chunk_start = [&](std::size_t k) { return wall_chunk_start(nl.wall_particle, k); };
   auto& wall_stats = nc.wall_stats;
   wall_stats.assign(nchunk, ContactStats{});
-  std::vector<std::vector<ContactSample>> chunk_samples(recording ? nchunk : 0);
+  std::vector<std::vector<ContactSample>> no_samples;
+  auto& chunk_samples = recording ? rec->chunk_parts : no_samples;
+  if (recording) {
+    chunk_samples.resize(nchunk);
+    for (auto& b : chunk_samples) b.clear();
+  }
   // Wall chunk k. With threads, each thread of the pairs' region runs the chunks of its own
   // particles after its pairs, in the same region (one fork and join per step fewer), so they
   // are threaded when the pairs are, by particle count, not by wall entries: in a bed one
@@ -886,7 +891,11 @@ ContactStats compute(const ParticleStore& p, NeighbourList& nl, const ContactTab
   auto& slab_stats = nc.slab_stats; // kept between steps: no allocation per step
   slab_stats.assign(nslab, ContactStats{});
   // Recording: one buffer per slab (a slab runs on one thread), concatenated in slab order.
-  std::vector<std::vector<ContactSample>> slab_samples(recording ? nslab : 0);
+  auto& slab_samples = recording ? rec->slab_parts : no_samples;
+  if (recording) {
+    slab_samples.resize(static_cast<std::size_t>(nslab));
+    for (auto& b : slab_samples) b.clear();
+  }
   // Below the threading threshold the slabs run on one thread whatever the thread count: then
   // one batch runs through all of them (a slab of a small bed holds a few contacts, too few to
   // fill the vector lanes), its statistics in the first slab's entry. The record keeps the

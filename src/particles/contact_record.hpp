@@ -42,6 +42,9 @@ struct ContactRecord {
   /// Pair contacts in the contact loop's slab order, then wall contacts (contact_forces.hpp): the
   /// order does not depend on the number of threads.
   std::vector<ContactSample> samples;
+  /// The contact loop's buffers per slab and per wall chunk, concatenated into `samples`; kept
+  /// between steps so that a step allocates nothing.
+  std::vector<std::vector<ContactSample>> slab_parts, chunk_parts;
 };
 
 } // namespace fluidem

@@ -6,8 +6,12 @@
 // and the checkpoint state (restore mid-contact continues identically).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include "analysis/collision_statistics.hpp"
 
@@ -87,6 +91,85 @@ TEST(CollisionStatistics, BirthsEndsDurationsAndExtents) {
   EXPECT_EQ(next.frequency, 0.0);
   EXPECT_TRUE(std::isinf(next.mean_free_time));
   EXPECT_TRUE(std::isnan(next.mean_overlap));
+}
+
+/// Steps of many keyed contacts, each step's in a shuffled order: the statistics must be those a
+/// map from key to the ongoing contact gives (contacts begin when a key appears, end when it is
+/// missing, ended in key order: the same sums in the same order). `id_base`: the ids start
+/// there; `wide`: some ids are that plus 2^40 (keys spanning more than 2^32: the comparison
+/// sort), else within 2^17 (the radix sort, above 4096 contacts a step).
+void expect_map_statistics(std::int64_t id_base, bool wide) {
+  CollisionStatistics c(settings(), 0.0);
+  struct Ref {
+    double begin, max_overlap, diameter;
+  };
+  std::map<std::pair<std::int64_t, std::int64_t>, Ref> ongoing;
+  long pairs = 0, walls = 0, ended = 0;
+  double sum_extent = 0.0, sum_duration = 0.0;
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<std::int64_t> id(0, 60000);
+  std::uniform_real_distribution<double> overlap(1e-6, 1e-4);
+  const auto shifted = [&](std::int64_t v) {
+    return id_base + (wide && v % 7 == 0 ? v + (std::int64_t{1} << 40) : v);
+  };
+  for (int step = 1; step <= 6; ++step) {
+    const double t = 1e-5 * step;
+    std::map<std::pair<std::int64_t, std::int64_t>, std::size_t> seen;
+    std::vector<KeyedContact> rec;
+    for (int k = 0; k < 8000; ++k) {
+      // Half of the keys carry over from the step before (ongoing contacts).
+      KeyedContact kc;
+      if (k % 2 == 0 && !ongoing.empty() && step > 1) {
+        auto it = ongoing.begin();
+        std::advance(it, static_cast<long>(rng() % std::min<std::size_t>(ongoing.size(), 5000)));
+        kc.a = it->first.first, kc.b = it->first.second;
+      } else {
+        const std::int64_t x = shifted(id(rng)), y = rng() % 10 == 0
+                                                         ? -1 - static_cast<std::int64_t>(rng() % 6)
+                                                         : shifted(id(rng));
+        if (y >= 0 && x == y) continue;
+        kc.a = y < 0 ? x : std::min(x, y), kc.b = y < 0 ? y : std::max(x, y);
+      }
+      if (seen.count({kc.a, kc.b})) continue; // one contact loop lists a contact once
+      seen[{kc.a, kc.b}] = rec.size();
+      kc.overlap = overlap(rng), kc.diameter = 0.004;
+      rec.push_back(kc);
+    }
+    std::shuffle(rec.begin(), rec.end(), rng);
+    for (auto it = ongoing.begin(); it != ongoing.end();) {
+      if (seen.count(it->first)) {
+        ++it;
+        continue;
+      }
+      if (it->first.second >= 0) {
+        ++ended;
+        sum_extent += it->second.max_overlap / it->second.diameter;
+        sum_duration += t - it->second.begin;
+      }
+      it = ongoing.erase(it);
+    }
+    for (const KeyedContact& kc : rec) {
+      auto [it, fresh] = ongoing.try_emplace({kc.a, kc.b}, Ref{t, kc.overlap, kc.diameter});
+      if (fresh)
+        ++(kc.b < 0 ? walls : pairs);
+      else
+        it->second.max_overlap = std::max(it->second.max_overlap, kc.overlap);
+    }
+    c.add_keyed_step(rec, ParticleStore{}, t);
+  }
+  ASSERT_GT(pairs, 20000);
+  EXPECT_EQ(c.pair_collisions(), pairs);
+  EXPECT_EQ(c.wall_collisions(), walls);
+  EXPECT_EQ(c.pair_collisions_ended(), ended);
+  EXPECT_EQ(c.ongoing(), ongoing.size());
+  EXPECT_EQ(c.mean_overlap(), sum_extent / static_cast<double>(ended));
+  EXPECT_EQ(c.mean_duration(), sum_duration / static_cast<double>(ended));
+}
+
+TEST(CollisionStatistics, ManyContactsInAnyOrderAsAMapOfOngoingContacts) {
+  expect_map_statistics(0, false);
+  expect_map_statistics(-5, false); // (no pair has a negative id, but the packing must not care)
+  expect_map_statistics(1000, true);
 }
 
 TEST(CollisionStatistics, OverflowBin) {
