@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/parallel.hpp"
+#include "noncontact/bridge_separation.hpp"
 #include "noncontact/kernels/liquid_bridge.hpp"
 
 namespace fluidem {
@@ -14,29 +15,6 @@ namespace {
 
 double sphere_volume(double r) {
   return 4.0 / 3.0 * std::numbers::pi * r * r * r;
-}
-
-/// The surface gap of particles i and j, the unit normal from i to j and the rate of the gap
-/// (> 0 separating).
-struct Separation {
-  double gap;
-  Vec3 n;
-  double rate;
-};
-
-Separation separation(const NeighbourList& nl, const ParticleStore& p, std::size_t i,
-                      std::size_t j) {
-  const Vec3 d = centre_to_centre(nl, p, i, j);
-  const double r = std::sqrt(norm2(d));
-  const Vec3 n = d * (1.0 / r);
-  return {r - p.radius[i] - p.radius[j], n, dot(p.velocity(j) - p.velocity(i), n)};
-}
-
-/// Particle i and wall face f: the gap, the unit normal towards the wall, the gap's rate.
-Separation wall_separation(const BoxGeometry& box, const ParticleStore& p, std::size_t i, int f) {
-  const WallDistance w = wall_distance(box, p, i, f);
-  // The gap's rate: minus the velocity towards the wall.
-  return {w.centre - p.radius[i], w.normal, -dot(p.velocity(i), w.normal)};
 }
 
 } // namespace
@@ -122,12 +100,12 @@ void LiquidBridges::compute(const ParticleStore& p, std::array<std::vector<doubl
     for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
       const std::uint32_t j = nl_.partner[e];
       if (nl_.history[e] == 0.0 && (liquid(p, i) > 0.0 || liquid(p, j) > 0.0) &&
-          separation(nl_, p, i, j).gap <= 0.0)
+          bridge_separation(nl_, p, i, j).gap <= 0.0)
         nl_.history[e] = 1.0;
     }
     for (std::uint32_t k = rows_.wall_begin(i); k < rows_.wall_end(i); ++k)
       if (spec_.walls && nl_.wall_history[k] == 0.0 && liquid(p, i) > 0.0 &&
-          wall_separation(box_, p, i, nl_.wall_face[k]).gap <= 0.0)
+          wall_bridge_separation(box_, p, i, nl_.wall_face[k]).gap <= 0.0)
         nl_.wall_history[k] = 1.0;
   });
   count_bridges(n);
@@ -138,20 +116,21 @@ void LiquidBridges::compute(const ParticleStore& p, std::array<std::vector<doubl
       if (nl_.history[e] == 0.0) continue;
       const std::uint32_t j = nl_.partner[e];
       const double s_c = kernels::liquid_bridge_rupture_distance(pair_volume(p, i, j), theta);
-      if (separation(nl_, p, i, j).gap >= s_c) nl_.history[e] = 0.0;
+      if (bridge_separation(nl_, p, i, j).gap >= s_c) nl_.history[e] = 0.0;
     }
     for (std::uint32_t k = rows_.wall_begin(i); k < rows_.wall_end(i); ++k) {
       if (nl_.wall_history[k] == 0.0) continue;
       const double volume = kernels::liquid_bridge_volume(liquid(p, i), count_[i], 0.0, 1);
       const double s_c = kernels::liquid_bridge_rupture_distance(volume, theta);
-      if (wall_separation(box_, p, i, nl_.wall_face[k]).gap >= s_c) nl_.wall_history[k] = 0.0;
+      if (wall_bridge_separation(box_, p, i, nl_.wall_face[k]).gap >= s_c)
+        nl_.wall_history[k] = 0.0;
     }
   });
   count_bridges(n);
   for (auto& a : f) a.resize(n);
   const double inf = std::numeric_limits<double>::infinity();
   // The force of a bridge along n (from i towards the partner), > 0 repelling.
-  auto bridge_force = [&](double r_i, double r_j, double volume, const Separation& s) {
+  auto bridge_force = [&](double r_i, double r_j, double volume, const BridgeSeparation& s) {
     double fn = kernels::liquid_bridge_capillary_force(r_i, r_j, volume, theta,
                                                        spec_.surface_tension, s.gap);
     if (spec_.viscosity > 0.0)
@@ -163,12 +142,12 @@ void LiquidBridges::compute(const ParticleStore& p, std::array<std::vector<doubl
     for (std::uint32_t k = rows_.begin(i); k < rows_.end(i); ++k) {
       if (nl_.history[rows_.entry(k)] == 0.0) continue;
       const std::uint32_t j = rows_.partner(k);
-      const Separation s = separation(nl_, p, i, j);
+      const BridgeSeparation s = bridge_separation(nl_, p, i, j);
       sum += s.n * (-bridge_force(p.radius[i], p.radius[j], pair_volume(p, i, j), s));
     }
     for (std::uint32_t k = rows_.wall_begin(i); k < rows_.wall_end(i); ++k) {
       if (nl_.wall_history[k] == 0.0) continue;
-      const Separation s = wall_separation(box_, p, i, nl_.wall_face[k]);
+      const BridgeSeparation s = wall_bridge_separation(box_, p, i, nl_.wall_face[k]);
       const double volume = kernels::liquid_bridge_volume(liquid(p, i), count_[i], 0.0, 1);
       sum += s.n * (-bridge_force(p.radius[i], inf, volume, s));
     }

@@ -5,34 +5,13 @@
 #include <numbers>
 
 #include "core/parallel.hpp"
+#include "noncontact/bridge_separation.hpp"
 #include "noncontact/kernels/liquid_bridge.hpp"
 #include "noncontact/pair_rows.hpp"
 
 namespace fluidem {
 
 namespace {
-
-/// From particle a to particle b: the surface gap, the unit normal and the rate of the gap
-/// (> 0 separating), as noncontact/liquid_bridges.cpp evaluates them.
-struct Separation {
-  double gap;
-  Vec3 n;
-  double rate;
-};
-
-Separation separation(const OrderedRows& rows, const ParticleStore& p, std::size_t a,
-                      std::size_t b) {
-  const Vec3 d{rows.min_image(p.x[b] - p.x[a], 0), rows.min_image(p.y[b] - p.y[a], 1),
-               rows.min_image(p.z[b] - p.z[a], 2)};
-  const double r = std::sqrt(norm2(d));
-  const Vec3 n = d * (1.0 / r);
-  return {r - p.radius[a] - p.radius[b], n, dot(p.velocity(b) - p.velocity(a), n)};
-}
-
-Separation wall_separation(const BoxGeometry& box, const ParticleStore& p, std::size_t i, int f) {
-  const WallDistance w = wall_distance(box, p, i, f);
-  return {w.centre - p.radius[i], w.normal, -dot(p.velocity(i), w.normal)};
-}
 
 /// The pair (i, j) seen from its lower id: that particle first.
 struct Oriented {
@@ -79,12 +58,13 @@ void OrderedLiquidBridges::compute(const ParticleStore& p, const ShareWithGhosts
     for (std::uint32_t k = rows_.offset[i]; k < rows_.offset[i + 1]; ++k) {
       if (rows_.history[k] != 0.0) continue;
       const auto [lo, hi] = oriented(p, i, rows_.partner[k]);
-      if ((liquid(p, lo) > 0.0 || liquid(p, hi) > 0.0) && separation(rows_, p, lo, hi).gap <= 0.0)
+      if ((liquid(p, lo) > 0.0 || liquid(p, hi) > 0.0) &&
+          bridge_separation(rows_, p, lo, hi).gap <= 0.0)
         rows_.history[k] = 1.0;
     }
     for (std::uint32_t k = rows_.wall_offset[i]; k < rows_.wall_offset[i + 1]; ++k)
       if (spec_.walls && rows_.wall_history[k] == 0.0 && liquid(p, i) > 0.0 &&
-          wall_separation(box, p, i, rows_.wall_face[k]).gap <= 0.0)
+          wall_bridge_separation(box, p, i, rows_.wall_face[k]).gap <= 0.0)
         rows_.wall_history[k] = 1.0;
   });
   count(p, share);
@@ -102,17 +82,18 @@ void OrderedLiquidBridges::compute(const ParticleStore& p, const ShareWithGhosts
       if (rows_.history[k] == 0.0) continue;
       const Oriented o = oriented(p, i, rows_.partner[k]);
       const double s_c = kernels::liquid_bridge_rupture_distance(volume(o), theta);
-      if (separation(rows_, p, o.lo, o.hi).gap >= s_c) rows_.history[k] = 0.0;
+      if (bridge_separation(rows_, p, o.lo, o.hi).gap >= s_c) rows_.history[k] = 0.0;
     }
     for (std::uint32_t k = rows_.wall_offset[i]; k < rows_.wall_offset[i + 1]; ++k) {
       if (rows_.wall_history[k] == 0.0) continue;
       const double s_c = kernels::liquid_bridge_rupture_distance(wall_volume(i), theta);
-      if (wall_separation(box, p, i, rows_.wall_face[k]).gap >= s_c) rows_.wall_history[k] = 0.0;
+      if (wall_bridge_separation(box, p, i, rows_.wall_face[k]).gap >= s_c)
+        rows_.wall_history[k] = 0.0;
     }
   });
   count(p, share);
   // The force of a bridge along n (from the first particle towards the second), > 0 repelling.
-  const auto bridge_force = [&](double r_a, double r_b, double v, const Separation& s) {
+  const auto bridge_force = [&](double r_a, double r_b, double v, const BridgeSeparation& s) {
     double fn =
         kernels::liquid_bridge_capillary_force(r_a, r_b, v, theta, spec_.surface_tension, s.gap);
     if (spec_.viscosity > 0.0)
@@ -126,13 +107,13 @@ void OrderedLiquidBridges::compute(const ParticleStore& p, const ShareWithGhosts
     for (std::uint32_t k = rows_.offset[i]; k < rows_.offset[i + 1]; ++k) {
       if (rows_.history[k] == 0.0) continue;
       const Oriented o = oriented(p, i, rows_.partner[k]);
-      const Separation s = separation(rows_, p, o.lo, o.hi);
+      const BridgeSeparation s = bridge_separation(rows_, p, o.lo, o.hi);
       const double fn = bridge_force(p.radius[o.lo], p.radius[o.hi], volume(o), s);
       sum += s.n * (o.lo == i ? -fn : fn); // the lower id pushed along -n, the other along n
     }
     for (std::uint32_t k = rows_.wall_offset[i]; k < rows_.wall_offset[i + 1]; ++k) {
       if (rows_.wall_history[k] == 0.0) continue;
-      const Separation s = wall_separation(box, p, i, rows_.wall_face[k]);
+      const BridgeSeparation s = wall_bridge_separation(box, p, i, rows_.wall_face[k]);
       sum += s.n * (-bridge_force(p.radius[i], inf, wall_volume(i), s));
     }
     f[3 * i] = sum.x, f[3 * i + 1] = sum.y, f[3 * i + 2] = sum.z;
