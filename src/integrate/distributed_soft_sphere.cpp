@@ -174,12 +174,16 @@ DistributedSoftSphere::DistributedSoftSphere(const Communicator& comm,
         std::copy_n(from[f]->begin() + static_cast<std::ptrdiff_t>(w * mine[k]), w,
                     to.begin() + static_cast<std::ptrdiff_t>(w * k));
     }
-    // The own particles' entries of the state's histories (a state without bridges: none).
+    // The own particles' entries of the state's histories (none kept, as gather() without
+    // histories or a run without bridges leaves them: none).
     const auto select = [&](const KeptHistory& h, KeptHistory& to) {
+      if (!h.offset.empty() && h.offset.size() != all.size() + 1)
+        throw std::logic_error("DistributedSoftSphere: a state's histories are not of its " +
+                               std::to_string(all.size()) + " particles");
       const auto hw = static_cast<std::size_t>(to.width);
       for (std::size_t k = 0; k < owned_; ++k) {
         const std::size_t i = mine[k];
-        if (h.offset.size() == all.size() + 1)
+        if (!h.offset.empty())
           for (std::uint32_t m = h.offset[i]; m < h.offset[i + 1]; ++m) {
             to.key.push_back(h.key[m]);
             to.values.insert(to.values.end(),
