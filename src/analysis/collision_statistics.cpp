@@ -138,15 +138,13 @@ void CollisionStatistics::merge(double time, const std::function<Vec3(std::size_
   };
   const int bits_a = static_cast<int>(std::bit_width(span(0))),
             bits_b = static_cast<int>(std::bit_width(span(1)));
-  const bool packed = bits_a + bits_b <= 64;
+  const bool packed = bits_a + bits_b <= 64 && bits_b < 64; // (a shift by 64 is undefined)
   const std::uint64_t mask_b = bits_b == 0 ? 0 : ~std::uint64_t{0} >> (64 - bits_b);
   const auto offset = [&](std::int64_t v, int m) {
     return static_cast<std::uint64_t>(v) - static_cast<std::uint64_t>(lo[m]);
   };
   if (packed)
-    for (Entry& e : entries_)
-      e.key = bits_b == 0 ? offset(ab_[e.k][0], 0)
-                          : offset(ab_[e.k][0], 0) << bits_b | offset(ab_[e.k][1], 1);
+    for (Entry& e : entries_) e.key = offset(ab_[e.k][0], 0) << bits_b | offset(ab_[e.k][1], 1);
   const int bits = bits_a + bits_b;
   if (packed && n >= 4096) { // (below, the buckets would cost more than the keys)
     // As few passes of at most 16 bits as the keys' bits need (2^17 ids: 34 bits, 3 passes).
@@ -182,10 +180,9 @@ void CollisionStatistics::merge(double time, const std::function<Vec3(std::size_
   merged_.reserve(n);
   std::size_t io = 0;
   for (const Entry& e : entries_) {
-    const std::int64_t a = packed
-                               ? static_cast<std::int64_t>((bits_b == 0 ? e.key : e.key >> bits_b) +
-                                                           static_cast<std::uint64_t>(lo[0]))
-                               : ab_[e.k][0];
+    const std::int64_t a =
+        packed ? static_cast<std::int64_t>((e.key >> bits_b) + static_cast<std::uint64_t>(lo[0]))
+               : ab_[e.k][0];
     const std::int64_t b =
         packed ? static_cast<std::int64_t>((e.key & mask_b) + static_cast<std::uint64_t>(lo[1]))
                : ab_[e.k][1];

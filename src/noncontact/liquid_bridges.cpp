@@ -11,21 +11,12 @@
 
 namespace fluidem {
 
-namespace {
-
-double sphere_volume(double r) {
-  return 4.0 / 3.0 * std::numbers::pi * r * r * r;
-}
-
-} // namespace
-
 double longest_rupture_distance(const LiquidBridgeSpec& spec,
                                 const std::vector<double>& liquid_fraction,
                                 const ParticleStore& p) {
   double v_max = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i)
-    v_max = std::max(v_max, liquid_fraction[static_cast<std::size_t>(p.species[i])] *
-                                sphere_volume(p.radius[i]));
+    v_max = std::max(v_max, particle_liquid(liquid_fraction, p, i));
   return v_max > 0.0 ? kernels::liquid_bridge_rupture_distance(2.0 * v_max, spec.contact_angle())
                      : 0.0;
 }
@@ -34,8 +25,7 @@ double shortest_bridge_time(const LiquidBridgeSpec& spec,
                             const std::vector<double>& liquid_fraction, const ParticleStore& p) {
   double t = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const double v =
-        liquid_fraction[static_cast<std::size_t>(p.species[i])] * sphere_volume(p.radius[i]);
+    const double v = particle_liquid(liquid_fraction, p, i);
     if (v <= 0.0 || p.fixed(i)) continue;
     const double r = p.radius[i], m_eff = 0.5 * p.mass[i];
     // Between two such particles, the bridge volumes of one to twelve bridges each: the stiffness
@@ -63,7 +53,7 @@ LiquidBridges::LiquidBridges(const BoxGeometry& box, const LiquidBridgeSpec& spe
       nl_(box, skin, 1, longest_rupture_distance(spec, liquid_fraction_, p)) {}
 
 double LiquidBridges::liquid(const ParticleStore& p, std::size_t i) const {
-  return liquid_fraction_[static_cast<std::size_t>(p.species[i])] * sphere_volume(p.radius[i]);
+  return particle_liquid(liquid_fraction_, p, i);
 }
 
 double LiquidBridges::pair_volume(const ParticleStore& p, std::size_t i, std::size_t j) const {

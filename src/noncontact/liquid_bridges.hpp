@@ -13,6 +13,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 #include "core/noncontact_settings.hpp"
@@ -53,6 +54,15 @@ private:
   PendingOrder order_;
   std::vector<int> count_; ///< bridges per particle
 };
+
+/// Particle i's liquid, m^3: its species' liquid fraction (liquid volume / particle volume) of
+/// its volume.
+inline double particle_liquid(const std::vector<double>& liquid_fraction, const ParticleStore& p,
+                              std::size_t i) {
+  const double r = p.radius[i];
+  return liquid_fraction[static_cast<std::size_t>(p.species[i])] *
+         (4.0 / 3.0 * std::numbers::pi * r * r * r);
+}
 
 /// The longest rupture distance a bridge of these particles can reach, m (both partners' whole
 /// liquid in one bridge): the bridges' list reach.

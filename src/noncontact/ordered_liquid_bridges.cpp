@@ -2,12 +2,11 @@
 
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "core/parallel.hpp"
 #include "noncontact/bridge_separation.hpp"
 #include "noncontact/kernels/liquid_bridge.hpp"
-#include "noncontact/pair_rows.hpp"
+#include "noncontact/liquid_bridges.hpp"
 
 namespace fluidem {
 
@@ -28,9 +27,7 @@ OrderedLiquidBridges::OrderedLiquidBridges(const BoxGeometry& box, const LiquidB
     : spec_(spec), liquid_fraction_(std::move(liquid_fraction)), rows_(box, 1, reach) {}
 
 double OrderedLiquidBridges::liquid(const ParticleStore& p, std::size_t i) const {
-  const double r = p.radius[i];
-  return liquid_fraction_[static_cast<std::size_t>(p.species[i])] *
-         (4.0 / 3.0 * std::numbers::pi * r * r * r);
+  return particle_liquid(liquid_fraction_, p, i);
 }
 
 void OrderedLiquidBridges::count(const ParticleStore& p, const ShareWithGhosts& share) {
