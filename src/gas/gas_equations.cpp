@@ -57,19 +57,21 @@ void GasSolver::compute_mass_fluxes() {
     const long sd = g_.stride[d];
     std::array<int, 3> lo{1, 1, 1};
     lo[d] = 0;
-    const int ny = g_.n[1] - lo[1] + 1, rows = ny * (g_.n[2] - lo[2] + 1);
+    const auto [k0, k1] = dist_ ? own_planes(d) : std::array<int, 2>{lo[2], g_.n[2]};
+    const int ny = g_.n[1] - lo[1] + 1, rows = ny * std::max(k1 - k0 + 1, 0);
     for (int r = 0; r < rows; ++r) {
-      const long row = g_.idx(0, lo[1] + r % ny, lo[2] + r / ny);
+      const long row = g_.idx(0, lo[1] + r % ny, k0 + r / ny);
       for (long q = row + lo[0]; q <= row + g_.n[0]; ++q) {
         const long up = u[q] >= 0.0 ? q : q + sd;
         F[q] = role[q] == none ? 0.0 : A * eps_[up] * rho_[up] * u[q];
       }
     }
-    fill_periodic(F_[d]);
+    fill_periodic_and_halo(F_[d]);
   }
 }
 
-double GasSolver::mass_residual(double dt, double& out_rate) const {
+double GasSolver::mass_residual(double dt, double& out_rate) {
+  if (shared_) return plane_mass_residual(dt, out_rate);
   const double V = g_.cell_volume();
   double sum_abs = 0.0, mass = 0.0;
   for (int k = 1; k <= g_.n[2]; ++k)
@@ -83,6 +85,43 @@ double GasSolver::mass_residual(double dt, double& out_rate) const {
       }
   out_rate = 0.0;
   for (const DomainFace& f : domain_faces_) out_rate += f.sign * F_[f.d][f.q];
+  return sum_abs * dt / mass;
+}
+
+// The same sums per z plane (each in the order of the whole-grid loop), then over the planes in
+// order: the same bits whichever ranks computed the planes.
+double GasSolver::plane_mass_residual(double dt, double& out_rate) {
+  const double V = g_.cell_volume();
+  const auto planes = static_cast<std::size_t>(g_.padded[2]);
+  plane_sums_.assign(3 * planes, 0.0);
+  const auto [c0, c1] = own_planes(-1);
+  for (int k = c0; k <= c1; ++k) {
+    double sum_abs = 0.0, mass = 0.0;
+    for (int j = 1; j <= g_.n[1]; ++j)
+      for (int i = 1; i <= g_.n[0]; ++i) {
+        const long q = g_.idx(i, j, k);
+        double R = V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
+        for (int e = 0; e < 3; ++e) R += F_[e][q] - F_[e][q - g_.stride[e]];
+        sum_abs += std::abs(R);
+        mass += eps_[q] * rho_[q] * V;
+      }
+    plane_sums_[3 * static_cast<std::size_t>(k)] = sum_abs;
+    plane_sums_[3 * static_cast<std::size_t>(k) + 1] = mass;
+  }
+  const std::array<std::array<int, 2>, 3> own{own_planes(0), own_planes(1), own_planes(2)};
+  for (const DomainFace& f : domain_faces_) {
+    const long k = f.q / g_.stride[2];
+    if (k >= own[f.d][0] && k <= own[f.d][1])
+      plane_sums_[3 * static_cast<std::size_t>(k) + 2] += f.sign * F_[f.d][f.q];
+  }
+  slabs_.gather(plane_sums_.data(), 3);
+  double sum_abs = 0.0, mass = 0.0;
+  out_rate = 0.0;
+  for (std::size_t k = 0; k < planes; ++k) {
+    sum_abs += plane_sums_[3 * k];
+    mass += plane_sums_[3 * k + 1];
+    out_rate += plane_sums_[3 * k + 2];
+  }
   return sum_abs * dt / mass;
 }
 
@@ -315,7 +354,7 @@ void GasSolver::solve_momentum(int d, double dt) {
   } else {
     for (int r = r_begin; r < r_end; ++r) assemble_row(r);
   }
-  gs.gather_planes(dcoef_[d]);
+  if (!dist_) gs.gather_planes(dcoef_[d]);
   LinearSolveStats st;
   if (lin_.momentum == LinearSolverOptions::Momentum::gauss_seidel) {
     st = gs.solve(sys_, u, s_.linear_tolerance, lin_.momentum_max_sweeps);
@@ -327,6 +366,7 @@ void GasSolver::solve_momentum(int d, double dt) {
     for (auto* a :
          {&sys_.diag, &sys_.xm, &sys_.xp, &sys_.ym, &sys_.yp, &sys_.zm, &sys_.zp, &sys_.rhs})
       gs.gather_planes(*a);
+    if (dist_) gs.gather_planes(u); // the guess: where Gauss-Seidel stopped, on every plane
     if (!momentum_solver_[d]) {
       StructSolverOptions o;
       o.relax_type = 3; // red-black Gauss-Seidel, non-symmetric
@@ -339,8 +379,8 @@ void GasSolver::solve_momentum(int d, double dt) {
   }
   if (!st.converged)
     throw_linear_failure("momentum equation of velocity component " + std::string(1, "xyz"[d]), st);
-  fill_periodic(u);
-  fill_periodic(dcoef_[d]);
+  fill_periodic_and_halo(u);
+  fill_periodic_and_halo(dcoef_[d]);
 }
 
 void GasSolver::solve_pressure_correction(double dt) {
@@ -407,9 +447,10 @@ void GasSolver::solve_pressure_correction(double dt) {
   if (!st.converged) throw_linear_failure("pressure-correction equation", st);
   // Ghost corrections: prescribed pressure -> -p'_interior, otherwise copy (unused).
   for (const FaceCopy& c : pc_ghosts_) pc_[c.dst] = c.factor * pc_[c.src];
-  fill_periodic(pc_);
+  fill_periodic_and_halo(pc_);
   const double ap = s_.pressure_relaxation;
-  for (int k = 1; k <= g_.n[2]; ++k)
+  const auto [c0, c1] = own_planes(-1);
+  for (int k = c0; k <= c1; ++k)
     for (int j = 1; j <= g_.n[1]; ++j)
       for (int i = 1; i <= g_.n[0]; ++i) p_[g_.idx(i, j, k)] += ap * pc_[g_.idx(i, j, k)];
   for (int d = 0; d < 3; ++d) { // solved and pressure faces: c[d] = 0..n_d, other axes 1..n
@@ -419,13 +460,14 @@ void GasSolver::solve_pressure_correction(double dt) {
     const unsigned char* role = role_[d].data();
     std::array<int, 3> lo{1, 1, 1};
     lo[d] = 0;
-    for (int k = lo[2]; k <= g_.n[2]; ++k)
+    const auto [k0, k1] = dist_ ? own_planes(d) : std::array<int, 2>{lo[2], g_.n[2]};
+    for (int k = k0; k <= k1; ++k)
       for (int j = lo[1]; j <= g_.n[1]; ++j) {
         const long row = g_.idx(0, j, k);
         for (long q = row + lo[0]; q <= row + g_.n[0]; ++q)
           if (role[q] == solved || role[q] == pressure_face) u[q] += dc[q] * (pc_[q] - pc_[q + sd]);
       }
-    fill_periodic(u_[d]);
+    fill_periodic_and_halo(u_[d]);
   }
 }
 

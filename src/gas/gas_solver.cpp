@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace fluidem::gas {
 
@@ -54,6 +55,7 @@ GasSolver::GasSolver(const GasSettings& settings) : s_(settings) {
   const std::array<int, 3> one{1, 1, 1};
   pressure_solver_ =
       std::make_unique<StructLinearSolver>(g_.padded, one, g_.n, per, true, lin_.pressure);
+  slabs_ = PlaneSlabs(kThisProcessAlone, 0, 1, g_.n[2], per[2], g_.stride[2]);
   set_parallel_cells(default_parallel_cells);
 }
 
@@ -65,15 +67,53 @@ void GasSolver::set_parallel_cells(long assembly, long gauss_seidel) {
     if (g_.dimension == 2 && d == 1) continue;
     momentum_gs_[d] = std::make_unique<RedBlackGaussSeidel>(g_.padded, momentum_box_lo(d), g_.n,
                                                             per, cells >= gauss_seidel);
-    if (momentum_ranks_.comm != kThisProcessAlone)
-      momentum_gs_[d]->share(momentum_ranks_.comm, momentum_ranks_.rank, momentum_ranks_.size);
+    share_momentum_gs(d);
   }
 }
 
-void GasSolver::share_momentum_solves(const SharedSolve& ranks) {
+void GasSolver::share_momentum_gs(int d) {
+  RedBlackGaussSeidel* gs = momentum_gs_[d].get();
+  if (!gs || momentum_ranks_.comm == kThisProcessAlone) return;
+  if (dist_) {
+    gs->share(momentum_ranks_.comm, momentum_ranks_.rank, slabs_.plane_begin());
+    gs->set_whole_solution(false);
+  } else {
+    gs->share(momentum_ranks_.comm, momentum_ranks_.rank, momentum_ranks_.size);
+  }
+}
+
+void GasSolver::share(const SharedSolve& ranks) {
+  shared_ = true;
+  const bool scale_outflow = !compressible_ && !bc_.any_pressure() && bc_.any_outflow();
+  const bool slabs = ranks.size <= g_.n[2] && !scale_outflow;
+  SharedSolve pressure = ranks;
+  if (slabs) pressure.parts = {1, 1, ranks.size}; // the parts are the ranks' z planes
+  pressure_solver_->share(pressure);
+  dist_ = slabs && !pressure_solver_->reads_whole_system();
+  if (dist_) {
+    pressure.whole_solution = false;
+    pressure_solver_->share(pressure);
+    slabs_ = PlaneSlabs(ranks.comm, ranks.rank, ranks.size, g_.n[2], bc_.periodic(2), g_.stride[2]);
+    if (slabs_.lo() != pressure_solver_->part_lo()[2] ||
+        slabs_.hi() != pressure_solver_->part_hi()[2])
+      throw std::logic_error("GasSolver::share: the pressure parts are not the ranks' planes");
+  }
   momentum_ranks_ = ranks;
-  for (auto& gs : momentum_gs_)
-    if (gs && ranks.comm != kThisProcessAlone) gs->share(ranks.comm, ranks.rank, ranks.size);
+  for (int d = 0; d < 3; ++d) share_momentum_gs(d);
+}
+
+std::array<int, 2> GasSolver::own_planes(int d) const {
+  const int box_lo = d == 2 && !bc_.periodic(2) ? 0 : 1;
+  return {slabs_.lo() == 1 ? box_lo : slabs_.lo(), slabs_.hi()};
+}
+
+void GasSolver::fill_periodic_and_halo(std::vector<double>& a) const {
+  if (!dist_) {
+    fill_periodic(a);
+    return;
+  }
+  fill_periodic_ghosts(g_, {bc_.periodic(0), bc_.periodic(1), false}, a);
+  slabs_.exchange(a);
 }
 
 std::array<int, 3> GasSolver::momentum_box_lo(int d) const {
@@ -100,7 +140,12 @@ double GasSolver::rho_of_p(double p) const {
 }
 
 void GasSolver::update_density() {
-  for (std::size_t q = 0; q < rho_.size(); ++q) rho_[q] = rho_of_p(p_[q]);
+  std::size_t q0 = 0, q1 = rho_.size();
+  if (dist_) { // the own planes and their halo planes
+    q0 = static_cast<std::size_t>(std::max(slabs_.lo() - 1, 0) * g_.stride[2]);
+    q1 = static_cast<std::size_t>(std::min(slabs_.hi() + 2, g_.padded[2]) * g_.stride[2]);
+  }
+  for (std::size_t q = q0; q < q1; ++q) rho_[q] = rho_of_p(p_[q]);
 }
 
 void GasSolver::init_roles() {
@@ -268,8 +313,8 @@ void GasSolver::apply_scalar_bcs() {
     eps_[g.q] = b.porosity_rule == GhostRule::prescribed ? b.porosity : eps_[g.in];
     p_[g.q] = b.pressure_rule == GhostRule::prescribed ? 2.0 * b.pressure - p_[g.in] : p_[g.in];
   }
-  fill_periodic(eps_);
-  fill_periodic(p_);
+  fill_periodic(eps_); // every rank's porosity is whole
+  fill_periodic_and_halo(p_);
 }
 
 void GasSolver::apply_velocity_bcs(double t_new, bool set_inflow) {
@@ -284,7 +329,7 @@ void GasSolver::apply_velocity_bcs(double t_new, bool set_inflow) {
       }
     // Tangential ghost velocities (used only by interpolation): factor * interior.
     for (const FaceCopy& c : tangential_ghosts_[d]) u[c.dst] = c.factor * u[c.src];
-    fill_periodic(u);
+    fill_periodic_and_halo(u);
   }
 }
 
@@ -326,9 +371,13 @@ void GasSolver::step(double time, double dt) {
     compute_mass_fluxes();
     res = mass_residual(dt, out_rate);
     dv = 0.0;
-    for (int d = 0; d < 3; ++d)
-      for (std::size_t q = 0; q < u_[d].size(); ++q)
+    for (int d = 0; d < 3; ++d) {
+      const auto [k0, k1] = dist_ ? own_planes(d) : std::array<int, 2>{0, g_.padded[2] - 1};
+      const auto q1 = static_cast<std::size_t>((k1 + 1) * g_.stride[2]);
+      for (auto q = static_cast<std::size_t>(k0 * g_.stride[2]); q < q1; ++q)
         if (role_[d][q] != none) dv = std::max(dv, std::abs(u_[d][q] - u_iter_[d][q]));
+    }
+    if (dist_) dv = slabs_.max(dv);
     if (!std::isfinite(res) || !std::isfinite(dv)) {
       std::ostringstream m;
       m << "gas: NaN in the flow solution in the step from t = " << time << " s to " << t_new
@@ -362,6 +411,12 @@ void GasSolver::step(double time, double dt) {
     throw InstabilityError(m.str());
   }
   set_inflow_ghost_pressures();
+  if (dist_) { // the one gather of the step: every rank's planes of the fields kept
+    for (std::vector<double>* a : {&u_[0], &u_[1], &u_[2], &p_, &rho_}) {
+      slabs_.gather(a->data(), g_.stride[2]);
+      fill_periodic(*a);
+    }
+  }
   eps_old_ = eps_;
 }
 

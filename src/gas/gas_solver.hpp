@@ -21,6 +21,7 @@
 #include "gas/gas_boundary.hpp"
 #include "gas/gas_grid.hpp"
 #include "gas/gauss_seidel.hpp"
+#include "gas/plane_slabs.hpp"
 #include "gas/pressure_solver.hpp"
 #include <array>
 #include <cstdint>
@@ -159,14 +160,19 @@ public:
   const LinearSolverOptions& linear_solver_options() const { return lin_; }
   /// Changes the linear solvers (results stay within the linear tolerance).
   void set_linear_solver_options(const LinearSolverOptions& options);
-  /// Solves the pressure correction together with the ranks of `ranks`, with the same bits
-  /// for any number of them (StructLinearSolver::share); before the first step only.
-  void share_pressure_solve(const SharedSolve& ranks) { pressure_solver_->share(ranks); }
-  /// Solves the momentum equations together with the ranks of `ranks`, with the same bits for
-  /// any number of them: each rank assembles and sweeps its z planes of each component
-  /// (RedBlackGaussSeidel::share), and the solution and SIMPLEC coefficients are gathered on
-  /// every rank after each component; before the first step only.
-  void share_momentum_solves(const SharedSolve& ranks);
+  /// Steps the gas together with the ranks of `ranks`, with the same bits for any number of
+  /// them (docs/parallel.md, "The gas on several ranks"); before the first step only,
+  /// collective from then on. The pressure correction is solved in parts (StructLinearSolver::
+  /// share) and the momentum equations by planes (RedBlackGaussSeidel::share). When the pressure
+  /// solve is shared by parts (not the direct solver), every rank has at least one z plane
+  /// and the outflow is not rescaled (balance_outflow), each rank also does the rest of the
+  /// step on its own z planes (PlaneSlabs) with halo planes, and the fields are gathered once at
+  /// the end of the step; otherwise the rest is repeated on every rank. Either way the sums of
+  /// the convergence test are taken per plane and then over the planes in order.
+  void share(const SharedSolve& ranks);
+  /// Whether each rank steps only its own z planes (share()).
+  bool distributed() const { return dist_; }
+  const PlaneSlabs& slabs() const { return slabs_; }
   const LinearSolverCounters& linear_counters() const { return counters_; }
 
   /// Face roles (internal, exposed for tests and coupling): solved, fixed, ...
@@ -193,6 +199,14 @@ private:
   void set_inflow_ghost_pressures();
   void apply_velocity_bcs(double t_new, bool set_inflow);
   void fill_periodic(std::vector<double>& a) const;
+  /// Distributed (dist_): the periodic x and y images, then the halo planes (z's images
+  /// across the period among them); otherwise fill_periodic.
+  void fill_periodic_and_halo(std::vector<double>& a) const;
+  /// The range of z planes of component d's faces (or cells, d = -1) this rank computes:
+  /// its own planes within the box of rows with a role (faces c[d] = 0..n_d, others 1..n).
+  std::array<int, 2> own_planes(int d) const;
+  /// The momentum Gauss-Seidel solver of component d shared as share() decided.
+  void share_momentum_gs(int d);
   void update_density();
   double rho_of_p(double p) const;
   // gas_equations.cpp
@@ -202,7 +216,9 @@ private:
   /// Lower corner of the box of momentum unknowns of component d (upper: n).
   std::array<int, 3> momentum_box_lo(int d) const;
   void solve_pressure_correction(double dt);
-  double mass_residual(double dt, double& out_rate) const;
+  double mass_residual(double dt, double& out_rate);
+  /// shared_: the sums by z plane, then over the planes (the same bits on any ranks).
+  double plane_mass_residual(double dt, double& out_rate);
   /// InstabilityError: a linear solve did not reach gas.solver.linear_tolerance.
   [[noreturn]] void throw_linear_failure(const std::string& what, const LinearSolveStats& st) const;
 
@@ -246,7 +262,11 @@ private:
   LinearSolverOptions lin_;
   LinearSolverCounters counters_;
   std::array<std::unique_ptr<RedBlackGaussSeidel>, 3> momentum_gs_;
-  SharedSolve momentum_ranks_; ///< comm kThisProcessAlone: the momentum solves are not shared
+  SharedSolve momentum_ranks_;     ///< comm kThisProcessAlone: the momentum solves are not shared
+  bool shared_ = false;            ///< share() called: the rank-independent sums
+  bool dist_ = false;              ///< each rank steps its own z planes (share())
+  PlaneSlabs slabs_;               ///< the planes of this rank (all of them unless dist_)
+  std::vector<double> plane_sums_; ///< per plane: |mass imbalance|, mass, outflow
   std::array<std::unique_ptr<StructLinearSolver>, 3> momentum_solver_; ///< made when needed
   std::unique_ptr<StructLinearSolver> pressure_solver_;
   double step_time_ = 0.0; ///< start of the step being taken (for messages)

@@ -25,12 +25,22 @@ RedBlackGaussSeidel::RedBlackGaussSeidel(std::array<int, 3> padded, std::array<i
 }
 
 void RedBlackGaussSeidel::share(int comm, int rank, int size) {
+  const int planes = hi_[2] - lo_[2] + 1;
+  const int active = std::min(size, planes);
+  std::vector<int> begin(static_cast<std::size_t>(size) + 1, hi_[2] + 1);
+  for (int r = 0; r <= active; ++r) begin[r] = lo_[2] + r * planes / active;
+  share(comm, rank, begin);
+}
+
+void RedBlackGaussSeidel::share(int comm, int rank, const std::vector<int>& plane_begin) {
   comm_ = comm;
   rank_ = rank;
-  const int planes = hi_[2] - lo_[2] + 1;
-  active_ = std::min(size, planes);
-  plane_begin_.assign(static_cast<std::size_t>(size) + 1, hi_[2] + 1);
-  for (int r = 0; r <= active_; ++r) plane_begin_[r] = lo_[2] + r * planes / active_;
+  plane_begin_ = plane_begin;
+  plane_begin_.front() = lo_[2];
+  active_ = 0;
+  while (active_ + 1 < static_cast<int>(plane_begin_.size()) &&
+         plane_begin_[active_ + 1] > plane_begin_[active_])
+    ++active_;
   k_lo_ = plane_begin_[rank];
   k_hi_ = plane_begin_[rank + 1] - 1;
   r_begin_ = std::min((k_lo_ - lo_[2]) * ny_, rows_);
@@ -185,8 +195,9 @@ LinearSolveStats RedBlackGaussSeidel::solve(const StencilSystem& s, std::vector<
     return st;
   }
   // Shared: every rank's x holds the whole guess here, so the first half-sweep's z images
-  // are local copies; later ones come from the neighbours (exchange_halo).
-  if (shared() && periodic_[2]) refresh_periodic(x);
+  // are local copies; later ones come from the neighbours (exchange_halo). Without the whole
+  // solution, the guess's halo planes (z images included) are current on entry.
+  if (shared() && whole_solution_ && periodic_[2]) refresh_periodic(x);
   const double target = rel_tol * rel_tol * bb;
   half_sweep(s, x, 0, false);
   half_sweep(s, x, 1, false);
@@ -212,8 +223,12 @@ LinearSolveStats RedBlackGaussSeidel::solve(const StencilSystem& s, std::vector<
     half_sweep(s, x, 1, false);
     ++sweeps;
   }
-  gather_planes(x);
-  if (periodic_[0] || periodic_[1] || periodic_[2]) refresh_periodic(x);
+  if (whole_solution_) {
+    gather_planes(x);
+    if (periodic_[0] || periodic_[1] || periodic_[2]) refresh_periodic(x);
+  } else if (periodic_[0] || periodic_[1]) { // z's images came with the last halo exchange
+    refresh_periodic(x, false);
+  }
   return st;
 }
 

@@ -52,6 +52,13 @@ public:
   /// as the planes allow; ranks beyond the number of planes get none). Every solve is then
   /// collective.
   void share(int comm, int rank, int size);
+  /// The same with the planes given: rank r sweeps planes plane_begin[r] .. plane_begin[r+1] - 1
+  /// (size + 1 entries, non-decreasing, the last hi + 1; the first is taken as the box's lo).
+  void share(int comm, int rank, const std::vector<int>& plane_begin);
+  /// Shared: false leaves x current only on this rank's planes and the halo planes beside them
+  /// (plane_lo() - 1, plane_hi() + 1) on return from solve(), instead of gathering the whole
+  /// solution on every rank; x must then be current there on entry too.
+  void set_whole_solution(bool whole) { whole_solution_ = whole; }
   bool shared() const { return comm_ != kNotShared; }
   /// This rank's planes lo..hi of the box (hi < lo: none); the whole box when not shared.
   int plane_lo() const { return k_lo_; }
@@ -85,6 +92,7 @@ private:
   std::vector<int> plane_begin_; ///< first plane of each rank, and one past the last
   int active_ = 1, rank_ = 0;    ///< ranks that own planes (0..active_-1), this rank
   bool parallel_ = false;
+  bool whole_solution_ = true;
   std::vector<double> row_sum_;
   std::vector<double> zeros_; ///< stands in for the row below a box that starts at index 0
 };

@@ -396,6 +396,14 @@ struct StructLinearSolver::Impl {
   // Shared: the parts of every rank into x (padded layout), the same bits on every rank.
   void gather_into(std::vector<double>& xv) {
     const long sy = padded[0], sz = static_cast<long>(padded[0]) * padded[1];
+    if (!sh.whole_solution) {
+      std::size_t q = 0;
+      for (int k = plo[2]; k <= phi[2]; ++k)
+        for (int j = plo[1]; j <= phi[1]; ++j)
+          for (int i = plo[0]; i <= phi[0]; ++i, ++q)
+            xv[static_cast<std::size_t>(i + j * sy + k * sz)] = buf_x[q];
+      return;
+    }
     gathered.resize(static_cast<std::size_t>(cells));
     if (sh.comm == -1 || sh.size == 1) {
       std::copy(buf_x.begin(), buf_x.end(), gathered.begin());

@@ -66,6 +66,8 @@ struct SharedSolve {
   int rank = 0, size = 1;
   /// Parts per grid axis (product = size), or {0, 0, 0}: chosen (the longest parts cut first).
   std::array<int, 3> parts{0, 0, 0};
+  /// false: a solve writes only this rank's part of the solution (no gather).
+  bool whole_solution = true;
 };
 
 class StructLinearSolver {

@@ -60,12 +60,10 @@ public:
   /// A distributed run: step() is then given this rank's own particles, and the sums over the
   /// particles into the gas are taken over all ranks in fixed point (coupling/rank_sum.hpp), so
   /// that every rank steps the same gas, bit for bit, on any rank count. The ranks share the
-  /// gas's pressure and momentum solves (gas::GasSolver::share_pressure_solve and
-  /// share_momentum_solves; solver: the ranks of `ranks`).
+  /// gas's step (gas::GasSolver::share; solver: the ranks of `ranks`).
   void distribute(coupling::RankSum ranks, const gas::SharedSolve& solver) {
     ranks_ = std::move(ranks);
-    gas_->share_pressure_solve(solver);
-    gas_->share_momentum_solves(solver);
+    gas_->share(solver);
   }
   /// Distributed runs: the bytes of the fixed-point sums reduced over the ranks so far, and
   /// their reductions (the grid-sized ones).
