@@ -2,6 +2,7 @@
 #define OMPI_SKIP_MPICXX 1
 #define MPICH_SKIP_MPICXX 1
 #include "gas/gauss_seidel.hpp"
+#include "gas/plane_slabs.hpp"
 #include <algorithm>
 #include <cmath>
 #include <mpi.h>
@@ -63,31 +64,7 @@ void RedBlackGaussSeidel::gather_planes(std::vector<double>& a) const {
 // above; along a periodic z the first rank's ghost plane lo - 1 is the last rank's plane hi and
 // the last rank's ghost plane hi + 1 the first rank's plane lo (refresh_periodic's images).
 void RedBlackGaussSeidel::exchange_halo(std::vector<double>& x) const {
-  if (rank_ >= active_) return;
-  const bool per = periodic_[2];
-  const int below = rank_ > 0 ? rank_ - 1 : (per ? active_ - 1 : -1);
-  const int above = rank_ + 1 < active_ ? rank_ + 1 : (per ? 0 : -1);
-  const int plane = static_cast<int>(sz_);
-  if (active_ == 1) { // alone on the box: the periodic images are local copies
-    if (per) {
-      std::copy_n(x.begin() + hi_[2] * sz_, sz_, x.begin() + (lo_[2] - 1) * sz_);
-      std::copy_n(x.begin() + lo_[2] * sz_, sz_, x.begin() + (hi_[2] + 1) * sz_);
-    }
-    return;
-  }
-  const MPI_Comm c = MPI_Comm_f2c(comm_);
-  MPI_Request req[4];
-  int n = 0;
-  // Tag 0: a plane sent upwards (it lands below the receiver's part), 1: downwards.
-  if (below >= 0) {
-    MPI_Irecv(x.data() + (k_lo_ - 1) * sz_, plane, MPI_DOUBLE, below, 0, c, &req[n++]);
-    MPI_Isend(x.data() + k_lo_ * sz_, plane, MPI_DOUBLE, below, 1, c, &req[n++]);
-  }
-  if (above >= 0) {
-    MPI_Irecv(x.data() + (k_hi_ + 1) * sz_, plane, MPI_DOUBLE, above, 1, c, &req[n++]);
-    MPI_Isend(x.data() + k_hi_ * sz_, plane, MPI_DOUBLE, above, 0, c, &req[n++]);
-  }
-  MPI_Waitall(n, req, MPI_STATUSES_IGNORE);
+  exchange_halo_planes(comm_, rank_, active_, k_lo_, k_hi_, lo_[2], hi_[2], periodic_[2], sz_, x);
 }
 
 double RedBlackGaussSeidel::sum_rows() {

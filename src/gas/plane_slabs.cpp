@@ -21,31 +21,37 @@ PlaneSlabs::PlaneSlabs(int comm, int rank, int size, int n, bool periodic_z, lon
   hi_ = begin_[static_cast<std::size_t>(rank) + 1] - 1;
 }
 
-void PlaneSlabs::exchange(std::vector<double>& a) const {
-  const long sz = plane_size_;
-  if (size_ == 1) { // alone: the periodic images are local copies
-    if (periodic_) {
-      std::copy_n(a.begin() + n_ * sz, sz, a.begin());
-      std::copy_n(a.begin() + sz, sz, a.begin() + (n_ + 1) * sz);
+void exchange_halo_planes(int comm, int rank, int active, int k_lo, int k_hi, int lo, int hi,
+                          bool periodic_z, long plane_size, std::vector<double>& a) {
+  if (rank >= active) return;
+  const long sz = plane_size;
+  if (active == 1) { // alone: the periodic images are local copies
+    if (periodic_z) {
+      std::copy_n(a.begin() + hi * sz, sz, a.begin() + (lo - 1) * sz);
+      std::copy_n(a.begin() + lo * sz, sz, a.begin() + (hi + 1) * sz);
     }
     return;
   }
-  const int below = rank_ > 0 ? rank_ - 1 : (periodic_ ? size_ - 1 : -1);
-  const int above = rank_ + 1 < size_ ? rank_ + 1 : (periodic_ ? 0 : -1);
-  const MPI_Comm c = MPI_Comm_f2c(comm_);
+  const int below = rank > 0 ? rank - 1 : (periodic_z ? active - 1 : -1);
+  const int above = rank + 1 < active ? rank + 1 : (periodic_z ? 0 : -1);
+  const MPI_Comm c = MPI_Comm_f2c(comm);
   const int count = static_cast<int>(sz);
   MPI_Request req[4];
   int m = 0;
   // Tag 0: a plane sent upwards (it lands below the receiver's planes), 1: downwards.
   if (below >= 0) {
-    MPI_Irecv(a.data() + (lo_ - 1) * sz, count, MPI_DOUBLE, below, 0, c, &req[m++]);
-    MPI_Isend(a.data() + lo_ * sz, count, MPI_DOUBLE, below, 1, c, &req[m++]);
+    MPI_Irecv(a.data() + (k_lo - 1) * sz, count, MPI_DOUBLE, below, 0, c, &req[m++]);
+    MPI_Isend(a.data() + k_lo * sz, count, MPI_DOUBLE, below, 1, c, &req[m++]);
   }
   if (above >= 0) {
-    MPI_Irecv(a.data() + (hi_ + 1) * sz, count, MPI_DOUBLE, above, 1, c, &req[m++]);
-    MPI_Isend(a.data() + hi_ * sz, count, MPI_DOUBLE, above, 0, c, &req[m++]);
+    MPI_Irecv(a.data() + (k_hi + 1) * sz, count, MPI_DOUBLE, above, 1, c, &req[m++]);
+    MPI_Isend(a.data() + k_hi * sz, count, MPI_DOUBLE, above, 0, c, &req[m++]);
   }
   MPI_Waitall(m, req, MPI_STATUSES_IGNORE);
+}
+
+void PlaneSlabs::exchange(std::vector<double>& a) const {
+  exchange_halo_planes(comm_, rank_, size_, lo_, hi_, 1, n_, periodic_, plane_size_, a);
 }
 
 void PlaneSlabs::gather(double* a, long per_plane) const {

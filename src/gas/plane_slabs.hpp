@@ -10,6 +10,13 @@
 
 namespace fluidem::gas {
 
+/// Collective over the `active` ranks of `comm` whose contiguous slabs of z planes cover lo .. hi
+/// in rank order (ranks >= active hold none and return): this rank (planes k_lo .. k_hi) receives
+/// planes k_lo - 1 and k_hi + 1 from its neighbours (along a periodic z, across the period: the
+/// images of planes hi and lo in lo - 1 and hi + 1; local copies when active is 1).
+void exchange_halo_planes(int comm, int rank, int active, int k_lo, int k_hi, int lo, int hi,
+                          bool periodic_z, long plane_size, std::vector<double>& a);
+
 class PlaneSlabs {
 public:
   /// One process holding every plane (no MPI call is made).
