@@ -289,18 +289,16 @@ void GasSolver::fill_periodic(std::vector<double>& a) const {
 
 void fill_periodic_ghosts(const GasGrid& g, const std::array<bool, 3>& periodic,
                           std::vector<double>& a) {
-  for (int d = 0; d < 3; ++d) {
+  for (int d = 0; d < 3; ++d) { // the ghost layer c[d] = 0 and n + 1 (whole layers: edges too)
     if (!periodic[d]) continue;
     const long sd = g.stride[d], nd = g.n[d];
-    for (int k = 0; k < g.padded[2]; ++k)
-      for (int j = 0; j < g.padded[1]; ++j)
-        for (int i = 0; i < g.padded[0]; ++i) {
-          const int c[3] = {i, j, k};
-          if (c[d] != 0) continue;
-          const long q = g.idx(i, j, k);
-          a[q] = a[q + nd * sd];
-          a[q + (nd + 1) * sd] = a[q + sd];
-        }
+    const int a1 = d == 0 ? 1 : 0, a2 = d == 2 ? 1 : 2; // the other two axes
+    for (int c2 = 0; c2 < g.padded[a2]; ++c2)
+      for (int c1 = 0; c1 < g.padded[a1]; ++c1) {
+        const long q = c1 * g.stride[a1] + c2 * g.stride[a2];
+        a[q] = a[q + nd * sd];
+        a[q + (nd + 1) * sd] = a[q + sd];
+      }
   }
 }
 
@@ -352,7 +350,14 @@ void GasSolver::step(double time, double dt) {
   bool converged = false;
   while (it < s_.max_iterations && !converged) {
     ++it;
-    u_iter_ = u_;
+    if (dist_) { // the own planes (and halos) are all the convergence test reads
+      const long q0 = std::max(slabs_.lo() - 1, 0) * g_.stride[2],
+                 q1 = std::min(slabs_.hi() + 2, g_.padded[2]) * g_.stride[2];
+      for (int d = 0; d < 3; ++d)
+        std::copy(u_[d].begin() + q0, u_[d].begin() + q1, u_iter_[d].begin() + q0);
+    } else {
+      u_iter_ = u_;
+    }
     // From the second iteration on, the fluxes of the last one's end still hold: u, eps and
     // rho have not changed since.
     if (it == 1) compute_mass_fluxes();
