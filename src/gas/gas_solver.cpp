@@ -85,7 +85,7 @@ void GasSolver::share_momentum_gs(int d) {
 void GasSolver::share(const SharedSolve& ranks) {
   shared_ = true;
   const bool scale_outflow = !compressible_ && !bc_.any_pressure() && bc_.any_outflow();
-  const bool slabs = ranks.size <= g_.n[2] && !scale_outflow;
+  const bool slabs = !scale_outflow;
   SharedSolve pressure = ranks;
   if (slabs) pressure.parts = {1, 1, ranks.size}; // the parts are the ranks' z planes
   pressure_solver_->share(pressure);
@@ -104,7 +104,7 @@ void GasSolver::share(const SharedSolve& ranks) {
 
 std::array<int, 2> GasSolver::own_planes(int d) const {
   const int box_lo = d == 2 && !bc_.periodic(2) ? 0 : 1;
-  return {slabs_.lo() == 1 ? box_lo : slabs_.lo(), slabs_.hi()};
+  return {slabs_.first() == 0 ? box_lo : slabs_.lo(), slabs_.hi()};
 }
 
 void GasSolver::fill_periodic_and_halo(std::vector<double>& a) const {

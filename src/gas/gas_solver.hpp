@@ -164,9 +164,9 @@ public:
   /// them (docs/parallel.md, "The gas on several ranks"); before the first step only,
   /// collective from then on. The pressure correction is solved in parts (StructLinearSolver::
   /// share) and the momentum equations by planes (RedBlackGaussSeidel::share). When the pressure
-  /// solve is shared by parts (not the direct solver), every rank has at least one z plane
-  /// and the outflow is not rescaled (balance_outflow), each rank also does the rest of the
-  /// step on its own z planes (PlaneSlabs) with halo planes, and the fields are gathered once at
+  /// solve is shared by parts (not the direct solver) and the outflow is not rescaled
+  /// (balance_outflow), each rank also does the rest of the step on its own z planes
+  /// (PlaneSlabs; with more ranks than planes some have none) with halo planes, and the fields are gathered once at
   /// the end of the step; otherwise the rest is repeated on every rank. Either way the sums of
   /// the convergence test are taken per plane and then over the planes in order.
   void share(const SharedSolve& ranks);

@@ -37,11 +37,10 @@ void RedBlackGaussSeidel::share(int comm, int rank, const std::vector<int>& plan
   comm_ = comm;
   rank_ = rank;
   plane_begin_ = plane_begin;
-  plane_begin_.front() = lo_[2];
-  active_ = 0;
-  while (active_ + 1 < static_cast<int>(plane_begin_.size()) &&
-         plane_begin_[active_ + 1] > plane_begin_[active_])
-    ++active_;
+  // The box starts at lo: the planes below the first rank's go to the first rank with planes.
+  const int first = plane_begin_.front();
+  for (int& b : plane_begin_)
+    if (b == first) b = lo_[2];
   k_lo_ = plane_begin_[rank];
   k_hi_ = plane_begin_[rank + 1] - 1;
   r_begin_ = std::min((k_lo_ - lo_[2]) * ny_, rows_);
@@ -64,7 +63,7 @@ void RedBlackGaussSeidel::gather_planes(std::vector<double>& a) const {
 // above; along a periodic z the first rank's ghost plane lo - 1 is the last rank's plane hi and
 // the last rank's ghost plane hi + 1 the first rank's plane lo (refresh_periodic's images).
 void RedBlackGaussSeidel::exchange_halo(std::vector<double>& x) const {
-  exchange_halo_planes(comm_, rank_, active_, k_lo_, k_hi_, lo_[2], hi_[2], periodic_[2], sz_, x);
+  exchange_halo_planes(comm_, rank_, plane_begin_, periodic_[2], sz_, x);
 }
 
 double RedBlackGaussSeidel::sum_rows() {

@@ -90,7 +90,7 @@ private:
   int k_lo_ = 0, k_hi_ = -1;     ///< this rank's planes
   int r_begin_ = 0, r_end_ = 0;  ///< this rank's rows
   std::vector<int> plane_begin_; ///< first plane of each rank, and one past the last
-  int active_ = 1, rank_ = 0;    ///< ranks that own planes (0..active_-1), this rank
+  int rank_ = 0;
   bool parallel_ = false;
   bool whole_solution_ = true;
   std::vector<double> row_sum_;

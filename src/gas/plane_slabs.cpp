@@ -11,8 +11,8 @@ namespace fluidem::gas {
 
 PlaneSlabs::PlaneSlabs(int comm, int rank, int size, int n, bool periodic_z, long plane_size)
     : comm_(comm), rank_(rank), size_(size), n_(n), periodic_(periodic_z), plane_size_(plane_size) {
-  if (size < 1 || size > n || rank < 0 || rank >= size || (comm == kThisProcessAlone && size > 1))
-    throw std::logic_error("PlaneSlabs: needs 1 <= size <= planes and 0 <= rank < size");
+  if (size < 1 || rank < 0 || rank >= size || (comm == kThisProcessAlone && size > 1))
+    throw std::logic_error("PlaneSlabs: needs size >= 1 and 0 <= rank < size");
   begin_.resize(static_cast<std::size_t>(size) + 1);
   for (int r = 0; r <= size; ++r)
     begin_[static_cast<std::size_t>(r)] =
@@ -21,19 +21,28 @@ PlaneSlabs::PlaneSlabs(int comm, int rank, int size, int n, bool periodic_z, lon
   hi_ = begin_[static_cast<std::size_t>(rank) + 1] - 1;
 }
 
-void exchange_halo_planes(int comm, int rank, int active, int k_lo, int k_hi, int lo, int hi,
-                          bool periodic_z, long plane_size, std::vector<double>& a) {
-  if (rank >= active) return;
+void exchange_halo_planes(int comm, int rank, const std::vector<int>& plane_begin, bool periodic_z,
+                          long plane_size, std::vector<double>& a) {
+  const auto r = static_cast<std::size_t>(rank);
+  const int k_lo = plane_begin[r], k_hi = plane_begin[r + 1] - 1;
+  if (k_hi < k_lo) return; // no planes
+  const int lo = plane_begin.front(), hi = plane_begin.back() - 1;
+  // The rank holding plane k (the last whose first plane is at or below k: empty ranks share
+  // their first plane with the next one).
+  const auto owner = [&](int k) {
+    return static_cast<int>(std::upper_bound(plane_begin.begin(), plane_begin.end() - 1, k) -
+                            plane_begin.begin()) -
+           1;
+  };
+  const int below = k_lo > lo ? owner(k_lo - 1) : (periodic_z ? owner(hi) : -1);
+  const int above = k_hi < hi ? owner(k_hi + 1) : (periodic_z ? owner(lo) : -1);
   const long sz = plane_size;
-  if (active == 1) { // alone: the periodic images are local copies
-    if (periodic_z) {
-      std::copy_n(a.begin() + hi * sz, sz, a.begin() + (lo - 1) * sz);
-      std::copy_n(a.begin() + lo * sz, sz, a.begin() + (hi + 1) * sz);
-    }
+  if (below == rank || above == rank) { // alone on the planes: the periodic images are local
+    std::copy_n(a.begin() + hi * sz, sz, a.begin() + (lo - 1) * sz);
+    std::copy_n(a.begin() + lo * sz, sz, a.begin() + (hi + 1) * sz);
     return;
   }
-  const int below = rank > 0 ? rank - 1 : (periodic_z ? active - 1 : -1);
-  const int above = rank + 1 < active ? rank + 1 : (periodic_z ? 0 : -1);
+  if (below < 0 && above < 0) return; // alone on the planes of a non-periodic z
   const MPI_Comm c = MPI_Comm_f2c(comm);
   const int count = static_cast<int>(sz);
   MPI_Request req[4];
@@ -51,15 +60,24 @@ void exchange_halo_planes(int comm, int rank, int active, int k_lo, int k_hi, in
 }
 
 void PlaneSlabs::exchange(std::vector<double>& a) const {
-  exchange_halo_planes(comm_, rank_, size_, lo_, hi_, 1, n_, periodic_, plane_size_, a);
+  exchange_halo_planes(comm_, rank_, begin_, periodic_, plane_size_, a);
+}
+
+int PlaneSlabs::first_of(int r) const {
+  const int lo = begin_[static_cast<std::size_t>(r)],
+            hi = begin_[static_cast<std::size_t>(r) + 1] - 1;
+  return lo == 1 && hi >= lo ? 0 : lo;
+}
+
+int PlaneSlabs::last_of(int r) const {
+  return r == size_ - 1 ? n_ + 1 : begin_[static_cast<std::size_t>(r) + 1] - 1;
 }
 
 void PlaneSlabs::gather(double* a, long per_plane) const {
   if (size_ == 1) return;
   std::vector<int> counts(static_cast<std::size_t>(size_)), displs(counts.size());
   for (int r = 0; r < size_; ++r) {
-    const int f = r == 0 ? 0 : begin_[static_cast<std::size_t>(r)];
-    const int l = r == size_ - 1 ? n_ + 1 : begin_[static_cast<std::size_t>(r) + 1] - 1;
+    const int f = first_of(r), l = last_of(r);
     counts[static_cast<std::size_t>(r)] = static_cast<int>((l - f + 1) * per_plane);
     displs[static_cast<std::size_t>(r)] = static_cast<int>(f * per_plane);
   }
