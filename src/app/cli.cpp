@@ -208,7 +208,10 @@ void print_run_summary(const Simulation& sim, const RunSummary& s, const std::st
       sim.gas()
           ? fmt::format(", gas solver {:.3f} s (pressure solve {:.3f} s{}), coupling {:.3f} s",
                         s.seconds_gas_solver, s.seconds_gas_pressure,
-                        s.ranks > 1 ? "; it and the momentum solves shared by the ranks" : "",
+                        s.ranks <= 1 ? ""
+                        : sim.gas()->solver().distributed()
+                            ? "; the gas step shared by the ranks' z planes"
+                            : "; it and the momentum solves shared by the ranks",
                         s.seconds_gas - s.seconds_gas_solver)
           : "";
   if (sim.hard_sphere())
