@@ -70,19 +70,22 @@ void GasSolver::compute_mass_fluxes() {
   }
 }
 
+void GasSolver::add_plane_sums(int k, double dt, double& sum_abs, double& mass) const {
+  const double V = g_.cell_volume();
+  for (int j = 1; j <= g_.n[1]; ++j)
+    for (int i = 1; i <= g_.n[0]; ++i) {
+      const long q = g_.idx(i, j, k);
+      double R = V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
+      for (int e = 0; e < 3; ++e) R += F_[e][q] - F_[e][q - g_.stride[e]];
+      sum_abs += std::abs(R);
+      mass += eps_[q] * rho_[q] * V;
+    }
+}
+
 double GasSolver::mass_residual(double dt, double& out_rate) {
   if (shared_) return plane_mass_residual(dt, out_rate);
-  const double V = g_.cell_volume();
   double sum_abs = 0.0, mass = 0.0;
-  for (int k = 1; k <= g_.n[2]; ++k)
-    for (int j = 1; j <= g_.n[1]; ++j)
-      for (int i = 1; i <= g_.n[0]; ++i) {
-        const long q = g_.idx(i, j, k);
-        double R = V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
-        for (int e = 0; e < 3; ++e) R += F_[e][q] - F_[e][q - g_.stride[e]];
-        sum_abs += std::abs(R);
-        mass += eps_[q] * rho_[q] * V;
-      }
+  for (int k = 1; k <= g_.n[2]; ++k) add_plane_sums(k, dt, sum_abs, mass);
   out_rate = 0.0;
   for (const DomainFace& f : domain_faces_) out_rate += f.sign * F_[f.d][f.q];
   return sum_abs * dt / mass;
@@ -91,20 +94,12 @@ double GasSolver::mass_residual(double dt, double& out_rate) {
 // The same sums per z plane (each in the order of the whole-grid loop), then over the planes in
 // order: the same bits whichever ranks computed the planes.
 double GasSolver::plane_mass_residual(double dt, double& out_rate) {
-  const double V = g_.cell_volume();
   const auto planes = static_cast<std::size_t>(g_.padded[2]);
   plane_sums_.assign(3 * planes, 0.0);
   const auto [c0, c1] = own_planes(-1);
   for (int k = c0; k <= c1; ++k) {
     double sum_abs = 0.0, mass = 0.0;
-    for (int j = 1; j <= g_.n[1]; ++j)
-      for (int i = 1; i <= g_.n[0]; ++i) {
-        const long q = g_.idx(i, j, k);
-        double R = V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
-        for (int e = 0; e < 3; ++e) R += F_[e][q] - F_[e][q - g_.stride[e]];
-        sum_abs += std::abs(R);
-        mass += eps_[q] * rho_[q] * V;
-      }
+    add_plane_sums(k, dt, sum_abs, mass);
     plane_sums_[3 * static_cast<std::size_t>(k)] = sum_abs;
     plane_sums_[3 * static_cast<std::size_t>(k) + 1] = mass;
   }

@@ -166,9 +166,9 @@ public:
   /// share) and the momentum equations by planes (RedBlackGaussSeidel::share). When the pressure
   /// solve is shared by parts (not the direct solver) and the outflow is not rescaled
   /// (balance_outflow), each rank also does the rest of the step on its own z planes
-  /// (PlaneSlabs; with more ranks than planes some have none) with halo planes, and the fields are gathered once at
-  /// the end of the step; otherwise the rest is repeated on every rank. Either way the sums of
-  /// the convergence test are taken per plane and then over the planes in order.
+  /// (PlaneSlabs; with more ranks than planes some have none) with halo planes, and the fields are
+  /// gathered once at the end of the step; otherwise the rest is repeated on every rank. Either way
+  /// the sums of the convergence test are taken per plane and then over the planes in order.
   void share(const SharedSolve& ranks);
   /// Whether each rank steps only its own z planes (share()).
   bool distributed() const { return dist_; }
@@ -216,6 +216,8 @@ private:
   /// Lower corner of the box of momentum unknowns of component d (upper: n).
   std::array<int, 3> momentum_box_lo(int d) const;
   void solve_pressure_correction(double dt);
+  /// Adds plane k's cells' |mass imbalance| (kg/s) and gas mass (kg) to the sums, in i, j order.
+  void add_plane_sums(int k, double dt, double& sum_abs, double& mass) const;
   double mass_residual(double dt, double& out_rate);
   /// shared_: the sums by z plane, then over the planes (the same bits on any ranks).
   double plane_mass_residual(double dt, double& out_rate);
