@@ -430,11 +430,8 @@ void GasSolver::solve_pressure_correction(double dt) {
     const long q0 = g_.idx(1, 1, 1);
     sys_.diag[q0] = sys_.diag[q0] > 0.0 ? 2.0 * sys_.diag[q0] : 1.0;
   }
-  if (dist_) // the part the solve writes and the halo planes beside it
-    std::fill(pc_.begin() + std::max(slabs_.lo() - 1, 0) * g_.stride[2],
-              pc_.begin() + std::min(slabs_.hi() + 2, g_.padded[2]) * g_.stride[2], 0.0);
-  else
-    std::fill(pc_.begin(), pc_.end(), 0.0);
+  const auto [q0, q1] = current_range(); // the part the solve writes and its halo planes
+  std::fill(pc_.begin() + q0, pc_.begin() + q1, 0.0);
   const auto t0 = std::chrono::steady_clock::now();
   const LinearSolveStats st =
       pressure_solver_->solve(sys_, pc_, s_.linear_tolerance, s_.linear_max_iterations);

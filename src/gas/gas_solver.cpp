@@ -139,13 +139,15 @@ double GasSolver::rho_of_p(double p) const {
   return compressible_ ? psi_ * p : s_.density;
 }
 
+std::array<long, 2> GasSolver::current_range() const {
+  if (!dist_) return {0, static_cast<long>(g_.size())};
+  return {std::max(slabs_.lo() - 1, 0) * g_.stride[2],
+          std::min(slabs_.hi() + 2, g_.padded[2]) * g_.stride[2]};
+}
+
 void GasSolver::update_density() {
-  std::size_t q0 = 0, q1 = rho_.size();
-  if (dist_) { // the own planes and their halo planes
-    q0 = static_cast<std::size_t>(std::max(slabs_.lo() - 1, 0) * g_.stride[2]);
-    q1 = static_cast<std::size_t>(std::min(slabs_.hi() + 2, g_.padded[2]) * g_.stride[2]);
-  }
-  for (std::size_t q = q0; q < q1; ++q) rho_[q] = rho_of_p(p_[q]);
+  const auto [q0, q1] = current_range();
+  for (long q = q0; q < q1; ++q) rho_[q] = rho_of_p(p_[q]);
 }
 
 void GasSolver::init_roles() {
@@ -350,14 +352,9 @@ void GasSolver::step(double time, double dt) {
   bool converged = false;
   while (it < s_.max_iterations && !converged) {
     ++it;
-    if (dist_) { // the own planes (and halos) are all the convergence test reads
-      const long q0 = std::max(slabs_.lo() - 1, 0) * g_.stride[2],
-                 q1 = std::min(slabs_.hi() + 2, g_.padded[2]) * g_.stride[2];
-      for (int d = 0; d < 3; ++d)
-        std::copy(u_[d].begin() + q0, u_[d].begin() + q1, u_iter_[d].begin() + q0);
-    } else {
-      u_iter_ = u_;
-    }
+    const auto [first, last] = current_range(); // all that the convergence test reads
+    for (int d = 0; d < 3; ++d)
+      std::copy(u_[d].begin() + first, u_[d].begin() + last, u_iter_[d].begin() + first);
     // From the second iteration on, the fluxes of the last one's end still hold: u, eps and
     // rho have not changed since.
     if (it == 1) compute_mass_fluxes();

@@ -205,6 +205,9 @@ private:
   /// The range of z planes of component d's faces (or cells, d = -1) this rank computes:
   /// its own planes within the box of rows with a role (faces c[d] = 0..n_d, others 1..n).
   std::array<int, 2> own_planes(int d) const;
+  /// The padded indices [first, last) of the planes current on this rank between exchanges:
+  /// its own planes and the halo planes beside them (distributed), or the whole grid.
+  std::array<long, 2> current_range() const;
   /// The momentum Gauss-Seidel solver of component d shared as share() decided.
   void share_momentum_gs(int d);
   void update_density();
