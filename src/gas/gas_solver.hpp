@@ -172,7 +172,6 @@ public:
   void share(const SharedSolve& ranks);
   /// Whether each rank steps only its own z planes (share()).
   bool distributed() const { return dist_; }
-  const PlaneSlabs& slabs() const { return slabs_; }
   const LinearSolverCounters& linear_counters() const { return counters_; }
 
   /// Face roles (internal, exposed for tests and coupling): solved, fixed, ...

@@ -48,35 +48,18 @@ void RedBlackGaussSeidel::share(int comm, int rank, const std::vector<int>& plan
 }
 
 void RedBlackGaussSeidel::gather_planes(std::vector<double>& a) const {
-  if (!shared()) return;
-  const int size = static_cast<int>(plane_begin_.size()) - 1;
-  std::vector<int> counts(size), displs(size);
-  for (int r = 0; r < size; ++r) {
-    counts[r] = static_cast<int>((plane_begin_[r + 1] - plane_begin_[r]) * sz_);
-    displs[r] = static_cast<int>((plane_begin_[r] - lo_[2]) * sz_);
-  }
-  MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, a.data() + lo_[2] * sz_, counts.data(),
-                 displs.data(), MPI_DOUBLE, MPI_Comm_f2c(comm_));
+  if (shared()) allgather_planes(comm_, plane_begin_, sz_, a.data() + lo_[2] * sz_);
 }
 
-// The planes beside this rank's part: k_lo - 1 from the rank below, k_hi + 1 from the rank
-// above; along a periodic z the first rank's ghost plane lo - 1 is the last rank's plane hi and
-// the last rank's ghost plane hi + 1 the first rank's plane lo (refresh_periodic's images).
+// The planes beside this rank's part, k_lo - 1 and k_hi + 1, from the ranks that hold them;
+// along a periodic z the first rank's ghost plane lo - 1 is the last rank's plane hi and the last
+// rank's ghost plane hi + 1 the first rank's plane lo (refresh_periodic's images).
 void RedBlackGaussSeidel::exchange_halo(std::vector<double>& x) const {
   exchange_halo_planes(comm_, rank_, plane_begin_, periodic_[2], sz_, x);
 }
 
 double RedBlackGaussSeidel::sum_rows() {
-  if (shared()) {
-    const int size = static_cast<int>(plane_begin_.size()) - 1;
-    std::vector<int> counts(size), displs(size);
-    for (int r = 0; r < size; ++r) {
-      counts[r] = (plane_begin_[r + 1] - plane_begin_[r]) * ny_;
-      displs[r] = (plane_begin_[r] - lo_[2]) * ny_;
-    }
-    MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, row_sum_.data(), counts.data(),
-                   displs.data(), MPI_DOUBLE, MPI_Comm_f2c(comm_));
-  }
+  if (shared()) allgather_planes(comm_, plane_begin_, ny_, row_sum_.data());
   double total = 0.0;
   for (int r = 0; r < rows_; ++r) total += row_sum_[r]; // fixed order: thread-independent
   return total;

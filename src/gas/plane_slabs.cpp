@@ -10,7 +10,7 @@
 namespace fluidem::gas {
 
 PlaneSlabs::PlaneSlabs(int comm, int rank, int size, int n, bool periodic_z, long plane_size)
-    : comm_(comm), rank_(rank), size_(size), n_(n), periodic_(periodic_z), plane_size_(plane_size) {
+    : comm_(comm), rank_(rank), size_(size), periodic_(periodic_z), plane_size_(plane_size) {
   if (size < 1 || rank < 0 || rank >= size || (comm == kThisProcessAlone && size > 1))
     throw std::logic_error("PlaneSlabs: needs size >= 1 and 0 <= rank < size");
   begin_.resize(static_cast<std::size_t>(size) + 1);
@@ -19,6 +19,12 @@ PlaneSlabs::PlaneSlabs(int comm, int rank, int size, int n, bool periodic_z, lon
         1 + static_cast<int>(static_cast<long>(n) * r / size); // as StructLinearSolver's parts
   lo_ = begin_[static_cast<std::size_t>(rank)];
   hi_ = begin_[static_cast<std::size_t>(rank) + 1] - 1;
+  // The ghost planes go to the owners of planes 1 and n (ranks without planes before the first
+  // owner keep none).
+  held_ = begin_;
+  for (int& b : held_)
+    if (b == 1) b = 0;
+  held_.back() = n + 2;
 }
 
 void exchange_halo_planes(int comm, int rank, const std::vector<int>& plane_begin, bool periodic_z,
@@ -63,26 +69,21 @@ void PlaneSlabs::exchange(std::vector<double>& a) const {
   exchange_halo_planes(comm_, rank_, begin_, periodic_, plane_size_, a);
 }
 
-int PlaneSlabs::first_of(int r) const {
-  const int lo = begin_[static_cast<std::size_t>(r)],
-            hi = begin_[static_cast<std::size_t>(r) + 1] - 1;
-  return lo == 1 && hi >= lo ? 0 : lo;
-}
-
-int PlaneSlabs::last_of(int r) const {
-  return r == size_ - 1 ? n_ + 1 : begin_[static_cast<std::size_t>(r) + 1] - 1;
+void allgather_planes(int comm, const std::vector<int>& plane_begin, long per_plane,
+                      double* first_plane) {
+  const std::size_t size = plane_begin.size() - 1;
+  if (size == 1) return;
+  std::vector<int> counts(size), displs(size);
+  for (std::size_t r = 0; r < size; ++r) {
+    counts[r] = static_cast<int>((plane_begin[r + 1] - plane_begin[r]) * per_plane);
+    displs[r] = static_cast<int>((plane_begin[r] - plane_begin.front()) * per_plane);
+  }
+  MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, first_plane, counts.data(), displs.data(),
+                 MPI_DOUBLE, MPI_Comm_f2c(comm));
 }
 
 void PlaneSlabs::gather(double* a, long per_plane) const {
-  if (size_ == 1) return;
-  std::vector<int> counts(static_cast<std::size_t>(size_)), displs(counts.size());
-  for (int r = 0; r < size_; ++r) {
-    const int f = first_of(r), l = last_of(r);
-    counts[static_cast<std::size_t>(r)] = static_cast<int>((l - f + 1) * per_plane);
-    displs[static_cast<std::size_t>(r)] = static_cast<int>(f * per_plane);
-  }
-  MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, a, counts.data(), displs.data(), MPI_DOUBLE,
-                 MPI_Comm_f2c(comm_));
+  allgather_planes(comm_, held_, per_plane, a);
 }
 
 double PlaneSlabs::max(double v) const {

@@ -19,9 +19,15 @@ namespace fluidem::gas {
 void exchange_halo_planes(int comm, int rank, const std::vector<int>& plane_begin, bool periodic_z,
                           long plane_size, std::vector<double>& a);
 
+/// Collective over the ranks of `comm` (plane_begin.size() - 1 of them; one: nothing to do):
+/// every rank receives the other ranks' planes plane_begin[r] .. plane_begin[r + 1] - 1 of an
+/// array whose planes hold `per_plane` entries each, from `first_plane` (plane_begin.front()) on.
+void allgather_planes(int comm, const std::vector<int>& plane_begin, long per_plane,
+                      double* first_plane);
+
 class PlaneSlabs {
 public:
-  /// One process holding every plane (no MPI call is made).
+  /// No planes yet: assign a split made by the constructor below before use.
   PlaneSlabs() = default;
   /// The n interior planes of `plane_size` entries each split over the `size` ranks of `comm`
   /// (its MPI_Comm_c2f handle, or kThisProcessAlone with size 1).
@@ -31,8 +37,8 @@ public:
   int hi() const { return hi_; }
   /// The own planes with the ghost plane at each end of the grid (0 .. n + 1 on one rank;
   /// last() < first() when the rank owns none).
-  int first() const { return first_of(rank_); }
-  int last() const { return last_of(rank_); }
+  int first() const { return held_[static_cast<std::size_t>(rank_)]; }
+  int last() const { return held_[static_cast<std::size_t>(rank_) + 1] - 1; }
   /// The first interior plane of each rank and n + 1 (size + 1 entries).
   const std::vector<int>& plane_begin() const { return begin_; }
 
@@ -48,13 +54,12 @@ public:
   double max(double v) const;
 
 private:
-  int first_of(int r) const;
-  int last_of(int r) const;
-  int comm_ = -1, rank_ = 0, size_ = 1, n_ = 0;
+  int comm_ = -1, rank_ = 0, size_ = 1;
   bool periodic_ = false;
   long plane_size_ = 0;
   int lo_ = 1, hi_ = 0;
   std::vector<int> begin_;
+  std::vector<int> held_; ///< begin_ with the ghost planes 0 and n + 1 given to their owners
 };
 
 } // namespace fluidem::gas
