@@ -3,6 +3,7 @@
 #include "core/parallel.hpp"
 #include "coupling/interpolation.hpp"
 #include "coupling/particle_mapping.hpp"
+#include "coupling/trilinear.hpp"
 #include <cmath>
 #include <limits>
 
@@ -32,6 +33,29 @@ double cell_gas_velocity(const gas::GasSolver& gs, long q, int d) {
   const std::vector<double>& u = gs.velocity(d);
   const long s = gs.grid().stride[static_cast<std::size_t>(d)];
   return 0.5 * (u[static_cast<std::size_t>(q - s)] + u[static_cast<std::size_t>(q)]);
+}
+
+/// u and grad p at a particle from its face stencils st[0..2] (NY = 1: 2-D, where component 1 is
+/// 0; NY = 2: 3-D) and the face pressure differences dp of face_pressure_differences: the values
+/// of velocity_and_pressure_gradient_at (interpolation.hpp).
+template <int NY>
+[[gnu::always_inline]] inline void
+velocity_and_gradient(const gas::GasSolver& gs, const std::array<std::vector<double>, 3>& dp,
+                      const TrilinearStencil* st, Vec3& u, Vec3& grad_p) {
+  const gas::GasGrid& g = gs.grid();
+  for (int d = 0; d < 3; ++d) {
+    if (NY == 1 && d == 1) {
+      u[1] = 0.0;
+      grad_p[1] = 0.0;
+      continue;
+    }
+    const auto k = static_cast<std::size_t>(d);
+    double uv = 0.0, gv = 0.0;
+    trilinear_sums<NY>(st[d], g.stride[1], g.stride[2], gs.velocity(d).data(), dp[k].data(), uv,
+                       gv);
+    u[d] = uv;
+    grad_p[d] = gv / g.h[k];
+  }
 }
 
 /// Cell averages of schemes 1 and 2 (exchange.hpp): out.cell, cell_coeff, cell_v*; for
@@ -193,59 +217,69 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const Vec3 grav = gs.settings().gravity;
   const bool stencils = c.porosity.method != PorosityMethod::porous_cube;
   const std::array<bool, 3> periodic = periodic_axes(gs);
+  const gas::GasGrid& g = gs.grid();
+  const bool two_d = g.dimension == 2;
   out.face_stencils.resize(stencils ? 3 * n : 0);
   if (stencils) face_pressure_differences(gs, out.face_dp);
   // The closure by name, once per call (a few string comparisons per flow step).
   drag::with_drag_closure(drag::drag_model_named(c.drag), [&](auto closure) {
     using C = decltype(closure);
+    // One particle (NY = 1: 2-D, 2: 3-D stencils).
+    const auto particle = [&]<int NY>(ParticleMapping& map, std::size_t i) {
+      const Vec3 x = p.position(i);
+      drag::DragInput in;
+      const double d = 2.0 * p.radius[i];
+      in.d = d; // the particle's own size for the porous cube's mapping
+      Vec3 u, gp;
+      if (stencils) { // [Hoomans96 eq. 40-41], the stencils kept for the rest of the step
+        TrilinearStencil* st = &out.face_stencils[3 * i];
+        TrilinearStencil cell; // the cell centres' (ParticleMapping::porosity_and_density's)
+        trilinear_stencils(g, x, periodic, st, cell);
+        velocity_and_gradient<NY>(gs, out.face_dp, st, u, gp);
+        trilinear_sums<NY>(cell, g.stride[1], g.stride[2], gs.porosity().data(),
+                           gs.density().data(), in.eps, in.rho);
+      } else {
+        map.velocity_and_pressure_gradient(x, in.d, u, gp);
+        map.porosity_and_density(x, in.d, in.eps, in.rho);
+      }
+      in.mu = mu;
+      in.d_mean = c.d_mean;
+      in.d = d * c.drag_diameter_factor; // a parcel's real particles' (coarse graining)
+      const Vec3 v = p.velocity(i);
+      const Vec3 slip{u[0] - v[0], u[1] - v[1], u[2] - v[2]};
+      in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
+      const double vol = pi * d * d * d / 6.0;
+      double ci = vol * C::k(in);      // [Deen07 eq. 1]: F = V K (u - v)
+      if (divide_by_eps) ci /= in.eps; // Model B: f_d / eps (exchange.hpp)
+      out.coeff[i] = ci;
+      out.eps[i] = in.eps;
+      out.ux[i] = u[0];
+      out.uy[i] = u[1];
+      out.uz[i] = u[2];
+      out.drag_x[i] = ci * slip[0];
+      out.drag_y[i] = ci * slip[1];
+      out.drag_z[i] = ci * slip[2];
+      if (model_a) { // [Zhu07 eq. 5]: -V grad p on the particle
+        out.pres_x[i] = -vol * gp[0];
+        out.pres_y[i] = -vol * gp[1];
+        out.pres_z[i] = -vol * gp[2];
+      } else { // Model B: the buoyancy term -V rho g of f_pf (exchange.hpp)
+        out.pres_x[i] = -vol * in.rho * grav[0];
+        out.pres_y[i] = -vol * in.rho * grav[1];
+        out.pres_z[i] = -vol * in.rho * grav[2];
+      }
+    };
     // Independent per particle: parallel, and the same result for any thread count.
-    parallel_for_with(
-        n, threaded_particles(n),
-        [&] { return ParticleMapping(gs, c.porosity); }, // per thread: scratch space
-        [&](ParticleMapping& map, std::size_t i) {
-          const Vec3 x = p.position(i);
-          drag::DragInput in;
-          const double d = 2.0 * p.radius[i];
-          in.d = d; // the particle's own size for the porous cube's mapping
-          Vec3 u, gp;
-          if (stencils) { // [Hoomans96 eq. 40-41], the stencils kept for the rest of the step
-            Stencil* st = &out.face_stencils[3 * i];
-            Stencil cell; // the cell centres' (ParticleMapping::porosity_and_density's)
-            face_and_cell_stencils(gs.grid(), x, periodic, st, cell);
-            velocity_and_pressure_gradient_on(gs, out.face_dp, st, u, gp);
-            in.eps = interpolate(cell, gs.porosity());
-            in.rho = interpolate(cell, gs.density());
-          } else {
-            map.velocity_and_pressure_gradient(x, in.d, u, gp);
-            map.porosity_and_density(x, in.d, in.eps, in.rho);
-          }
-          in.mu = mu;
-          in.d_mean = c.d_mean;
-          in.d = d * c.drag_diameter_factor; // a parcel's real particles' (coarse graining)
-          const Vec3 v = p.velocity(i);
-          const Vec3 slip{u[0] - v[0], u[1] - v[1], u[2] - v[2]};
-          in.slip = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
-          const double vol = pi * d * d * d / 6.0;
-          double ci = vol * C::k(in);      // [Deen07 eq. 1]: F = V K (u - v)
-          if (divide_by_eps) ci /= in.eps; // Model B: f_d / eps (exchange.hpp)
-          out.coeff[i] = ci;
-          out.eps[i] = in.eps;
-          out.ux[i] = u[0];
-          out.uy[i] = u[1];
-          out.uz[i] = u[2];
-          out.drag_x[i] = ci * slip[0];
-          out.drag_y[i] = ci * slip[1];
-          out.drag_z[i] = ci * slip[2];
-          if (model_a) { // [Zhu07 eq. 5]: -V grad p on the particle
-            out.pres_x[i] = -vol * gp[0];
-            out.pres_y[i] = -vol * gp[1];
-            out.pres_z[i] = -vol * gp[2];
-          } else { // Model B: the buoyancy term -V rho g of f_pf (exchange.hpp)
-            out.pres_x[i] = -vol * in.rho * grav[0];
-            out.pres_y[i] = -vol * in.rho * grav[1];
-            out.pres_z[i] = -vol * in.rho * grav[2];
-          }
-        });
+    const auto all = [&]<int NY>() {
+      parallel_for_with(
+          n, threaded_particles(n),
+          [&] { return ParticleMapping(gs, c.porosity); }, // per thread: scratch space
+          [&](ParticleMapping& map, std::size_t i) { particle.template operator()<NY>(map, i); });
+    };
+    if (two_d)
+      all.template operator()<1>();
+    else
+      all.template operator()<2>();
     // Schemes 1, 2: the cell averages (scheme 2 replaces the per-particle drag above).
     if (c.scheme != ExchangeScheme::scheme3) compute_cell_forces<C>(gs, p, c, out, ranks);
   });
@@ -328,52 +362,57 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p, Particl
       continue;
     }
     const std::vector<double>& v = d == 0 ? p.vx : (d == 1 ? p.vy : p.vz);
+    // 1 on the faces that take the source, 0 elsewhere: the sums below then need no branch
+    // (a face that takes none gets exact zeros added, the solved faces the same bits).
+    std::vector<double>& takes = f.takes_source[static_cast<std::size_t>(d)];
+    takes.resize(g.size());
+    for (std::size_t q = 0; q < takes.size(); ++q) takes[q] = takes_particle_source(role[q]);
     // One particle's share over the weights (index q[m], weight wt[m], m < nw).
     // N > 0: nw = N (the loops unrolled for the common stencils of 4 and 8 nodes).
     const auto deposit = [&]<int N>(std::size_t i, const long* qs, const double* wt,
                                     std::size_t nw) {
       if constexpr (N > 0) nw = static_cast<std::size_t>(N);
-      double wsum = 0.0;
-      bool solved[8] = {}; // stencils: nw <= 8; the porous cube's lists may be longer
-      for (std::size_t m = 0; m < nw; ++m) {
-        const bool sv = takes_particle_source(role[static_cast<std::size_t>(qs[m])]);
-        if (m < 8) solved[m] = sv;
-        if (sv) wsum += wt[m];
-      }
+      double wsum = 0.0; // over the faces that take the source, in node order
+      for (std::size_t m = 0; m < nw; ++m) wsum += wt[m] * takes[static_cast<std::size_t>(qs[m])];
       if (!(wsum > 0.0)) return;
       const double ci = f.coeff[i] * inv_v / wsum;
       for (std::size_t m = 0; m < nw; ++m) {
         const auto q = static_cast<std::size_t>(qs[m]);
-        if (!(m < 8 ? solved[m] : takes_particle_source(role[q]))) continue;
-        const double w = wt[m] * ci;
+        const double w = wt[m] * ci, t = takes[q];
         if (fixed) {
+          if (t == 0.0) continue;
           fixed->add(fd, q, w);
           fixed->add(fd + 1, q, w * v[i]);
           if (model_b) fixed->add(fd + 2, q, -(wt[m] * pr[i] * inv_v / wsum));
           continue;
         }
-        K[q] += w;
-        Kus[q] += w * v[i];
-        if (model_b) src[q] -= wt[m] * pr[i] * inv_v / wsum;
+        K[q] += w * t;
+        Kus[q] += w * v[i] * t;
+        if (model_b) src[q] -= wt[m] * pr[i] * inv_v / wsum * t;
       }
     };
     const bool cached = f.face_stencils.size() == 3 * p.size();
     const bool any_periodic = periodic[0] || periodic[1] || periodic[2];
+    const bool two_d = g.dimension == 2;
+    if (cached && two_d && d == 1) continue; // no v_y in 2-D
     for (std::size_t i = 0; i < p.size(); ++i) {
       // The weights the particle's gas velocity came from (periodic images resolved).
       if (cached) {
-        const Stencil& st = f.face_stencils[3 * i + static_cast<std::size_t>(d)];
-        if (!any_periodic) {
-          with_node_count(st.n, [&]<int N>() {
-            deposit.template operator()<N>(i, st.q.data(), st.w.data(),
-                                           static_cast<std::size_t>(st.n));
-          });
-          continue;
-        }
+        const TrilinearStencil& st = f.face_stencils[3 * i + static_cast<std::size_t>(d)];
         std::array<long, 8> qs{};
-        for (std::size_t m = 0; m < static_cast<std::size_t>(st.n); ++m)
-          qs[m] = periodic_image(g, periodic, d, st.q[m]);
-        deposit.template operator()<0>(i, qs.data(), st.w.data(), static_cast<std::size_t>(st.n));
+        std::array<double, 8> ws{};
+        std::size_t nw = 0;
+        const auto node = [&](long q, double w) {
+          qs[nw] = any_periodic ? periodic_image(g, periodic, d, q) : q;
+          ws[nw++] = w;
+        };
+        if (two_d) {
+          for_trilinear_nodes<1>(st, g.stride[1], g.stride[2], node);
+          deposit.template operator()<4>(i, qs.data(), ws.data(), nw);
+        } else {
+          for_trilinear_nodes<2>(st, g.stride[1], g.stride[2], node);
+          deposit.template operator()<8>(i, qs.data(), ws.data(), nw);
+        }
       } else {
         const CubeWeights& s = map.face_weights(d, p.position(i), 2.0 * p.radius[i]);
         deposit.template operator()<0>(i, s.q.data(), s.w.data(), s.size());
@@ -399,13 +438,16 @@ void update_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
   const bool scheme2 = f.scheme == ExchangeScheme::scheme2;
   const bool cached = f.face_stencils.size() == 3 * n;
   if (cached) face_pressure_differences(gs, f.face_dp); // the pressure of this flow step
+  const bool two_d = gs.grid().dimension == 2;
   parallel_for_with(
       n, threaded_particles(n),
       [&] { return ParticleMapping(gs, f.porosity); }, // per thread: scratch space
       [&](ParticleMapping& map, std::size_t i) {
         Vec3 u, gp;
-        if (cached)
-          velocity_and_pressure_gradient_on(gs, f.face_dp, &f.face_stencils[3 * i], u, gp);
+        if (cached && two_d)
+          velocity_and_gradient<1>(gs, f.face_dp, &f.face_stencils[3 * i], u, gp);
+        else if (cached)
+          velocity_and_gradient<2>(gs, f.face_dp, &f.face_stencils[3 * i], u, gp);
         else
           map.velocity_and_pressure_gradient(p.position(i), 2.0 * p.radius[i], u, gp);
         Vec3 v = p.velocity(i);

@@ -28,6 +28,7 @@
 #include "coupling/drag/drag_model.hpp"
 #include "coupling/interpolation.hpp"
 #include "coupling/porosity.hpp"
+#include "coupling/trilinear.hpp"
 #include "gas/gas_solver.hpp"
 #include "particles/particle_store.hpp"
 #include <array>
@@ -77,14 +78,18 @@ struct ParticleGasForces {
   /// flow steps so that the time loop does not allocate.
   std::vector<double> cell_solid, cell_mass, cell_d2, cell_d3;
   /// Trilinear-stencil kernel (porosity by cell): the 3 face stencils of particle i at
-  /// 3 i + d, built once per flow step by compute_particle_forces and reused by
+  /// 3 i + d (trilinear.hpp; 3 i + 1 unused in 2-D), built once per flow step by
+  /// compute_particle_forces and reused by
   /// deposit_momentum_source and update_particle_forces, which therefore need the particles
   /// at the positions compute_particle_forces saw (as in a flow step: the particles do not move
   /// within it). Empty for the porous cube.
-  std::vector<Stencil> face_stencils;
+  std::vector<TrilinearStencil> face_stencils;
   /// With the stencils: the face pressure differences of the gas pressure the last loop over
   /// the particles read (face_pressure_differences), grid-sized per component.
   std::array<std::vector<double>, 3> face_dp;
+  /// Per component: 1 on the faces that take the particles' source (takes_particle_source), 0
+  /// elsewhere (grid-sized; deposit_momentum_source's work space).
+  std::array<std::vector<double>, 3> takes_source;
   /// Distributed runs: the fixed-point sums (rank_sum.hpp), kept between flow steps.
   FixedPointSum fixed;
   void resize(std::size_t n); ///< every per-particle array n long, zeroed

@@ -1,20 +1,11 @@
 #include "coupling/interpolation.hpp"
+#include "coupling/trilinear.hpp"
 #include <algorithm>
 #include <cmath>
 
 namespace fluidem::coupling {
 
 namespace {
-/// Lower index and weight of the upper node along one axis: nodes at lo + (i + shift) h,
-/// i in [imin, imax + 1]. floor by truncation and a correction (std::floor is a library call
-/// without SSE4.1): the same integer for every s inside the int range, beyond it clamped anyway.
-void axis_at(double s, int imin, int imax, int& i0, double& t) {
-  const double c = std::clamp(s, -1e9, 1e9); // no overflow in the conversion; NaN stays NaN
-  int i = static_cast<int>(c);
-  i -= c < static_cast<double>(i) ? 1 : 0;
-  i0 = std::clamp(i, imin, imax);
-  t = std::clamp(s - i0, 0.0, 1.0);
-}
 void axis(double x, double lo, double h, double shift, int imin, int imax, int& i0, double& t) {
   axis_at((x - lo) / h - shift, imin, imax, i0, t);
 }
@@ -92,37 +83,19 @@ Stencil face_stencil(const gas::GasGrid& g, int d, const Vec3& x) {
   return tensor(g, i0, t, active);
 }
 
-namespace {
-/// face_stencils, and with `cell` also cell_stencil(g, x, *periodic) into it.
-[[gnu::always_inline]] inline void face_and_cell(const gas::GasGrid& g, const Vec3& x, Stencil* out,
-                                                 const std::array<bool, 3>* periodic,
-                                                 Stencil* cell) {
+void face_stencils(const gas::GasGrid& g, const Vec3& x, Stencil* out) {
   // Per axis the two node lattices of face_stencil: the faces normal to it (shift 0, lower
   // node 0..n-1) and the cell centres with the ghosts (shift -1/2, lower node 0..n); the
-  // same arithmetic as axis(), so the stencils are bitwise those of face_stencil. The cell
-  // stencil's lattice is the centres' (its own clamping along walled axes).
+  // same arithmetic as axis(), so the stencils are bitwise those of face_stencil.
   const bool two_d = g.dimension == 2;
-  std::array<int, 3> i_face{1, 1, 1}, i_cell{1, 1, 1}, i_mid{1, 1, 1};
-  std::array<double, 3> t_face{0.0, 0.0, 0.0}, t_cell{0.0, 0.0, 0.0}, t_mid{0.0, 0.0, 0.0};
-  std::array<bool, 3> mid_active{true, true, true};
+  std::array<int, 3> i_face{1, 1, 1}, i_cell{1, 1, 1};
+  std::array<double, 3> t_face{0.0, 0.0, 0.0}, t_cell{0.0, 0.0, 0.0};
   for (int e = 0; e < 3; ++e) {
-    if (two_d && e == 1) { // one cell across y: i0 = 1, inactive
-      mid_active[e] = false;
-      continue;
-    }
+    if (two_d && e == 1) continue; // one cell across y: i0 = 1, inactive
     const double s = (x[e] - g.lo[e]) / g.h[e];
     axis_at(s - 0.0, 0, g.n[e] - 1, i_face[e], t_face[e]);
     axis_at(s - -0.5, 0, g.n[e], i_cell[e], t_cell[e]);
-    if (!cell) continue;
-    if ((*periodic)[e]) { // ghost images included: the centres' lattice as it is
-      i_mid[e] = i_cell[e], t_mid[e] = t_cell[e];
-    } else if (g.n[e] < 2) {
-      mid_active[e] = false;
-    } else {
-      axis_at(s - -0.5, 1, g.n[e] - 1, i_mid[e], t_mid[e]);
-    }
   }
-  if (cell) tensor(g, i_mid, t_mid, mid_active, *cell);
   for (int d = 0; d < 3; ++d) {
     Stencil& s = out[d];
     if (two_d && d == 1) {
@@ -139,16 +112,6 @@ namespace {
     }
     tensor(g, i0, t, {true, !two_d, true}, s);
   }
-}
-} // namespace
-
-void face_stencils(const gas::GasGrid& g, const Vec3& x, Stencil* out) {
-  face_and_cell(g, x, out, nullptr, nullptr);
-}
-
-void face_and_cell_stencils(const gas::GasGrid& g, const Vec3& x,
-                            const std::array<bool, 3>& periodic, Stencil* faces, Stencil& cell) {
-  face_and_cell(g, x, faces, &periodic, &cell);
 }
 
 Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool, 3>& periodic) {
@@ -275,18 +238,6 @@ void face_pressure_differences(const gas::GasSolver& gs, std::array<std::vector<
     for (std::size_t q = 0; q < m; ++q) out[q] = p[q + sd] - p[q];
     for (std::size_t q = m; q < n; ++q) out[q] = 0.0;
   }
-}
-
-void velocity_and_pressure_gradient_on(const gas::GasSolver& gs,
-                                       const std::array<std::vector<double>, 3>& dp,
-                                       const Stencil* st, Vec3& u, Vec3& grad_p) {
-  velocity_and_gradient(
-      gs, st,
-      [&dp](int d) {
-        const double* a = dp[static_cast<std::size_t>(d)].data();
-        return [a](long q) { return a[q]; };
-      },
-      u, grad_p);
 }
 
 double porosity_at(const gas::GasSolver& gs, const Vec3& x) {

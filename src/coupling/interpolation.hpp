@@ -33,10 +33,6 @@ void face_stencils(const gas::GasGrid& g, const Vec3& x, Stencil* out);
 /// Stencil of the cell centres at point x: interior centres along walled axes (clamped, zero
 /// gradient at the boundary), ghost centres (periodic images) included along periodic axes.
 Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool, 3>& periodic);
-/// face_stencils(g, x, faces) and cell_stencil(g, x, periodic) into cell, bitwise the same,
-/// the axis positions shared between them.
-void face_and_cell_stencils(const gas::GasGrid& g, const Vec3& x,
-                            const std::array<bool, 3>& periodic, Stencil* faces, Stencil& cell);
 
 /// The node a periodic ghost or copy node stands for: grid index q of component d (faces normal
 /// to d; -1: cell centres) with every index along a periodic axis wrapped into the unknowns
@@ -80,11 +76,6 @@ void velocity_and_pressure_gradient_on(const gas::GasSolver& gs, const Stencil* 
 /// the face gradients), for the stencils' faces, into dp[d] (grid-sized; 0 where q + stride_d
 /// is beyond the grid, a face no stencil holds).
 void face_pressure_differences(const gas::GasSolver& gs, std::array<std::vector<double>, 3>& dp);
-/// velocity_and_pressure_gradient_on with the differences of face_pressure_differences taken
-/// once for all particles: bitwise the same values.
-void velocity_and_pressure_gradient_on(const gas::GasSolver& gs,
-                                       const std::array<std::vector<double>, 3>& dp,
-                                       const Stencil* stencils, Vec3& u, Vec3& grad_p);
 /// Which axes of the solver's grid are periodic.
 std::array<bool, 3> periodic_axes(const gas::GasSolver& gs);
 /// Porosity at x (cell-centre stencil; periodic axes from the solver's boundary map).
