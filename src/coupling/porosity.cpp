@@ -263,16 +263,15 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
   // (Hoomans' bubble bed, 10 x 20 mm cells and 4 mm discs: 92% of the discs). A segment's h is
   // at most 2R (the whole disc beyond the face); round-off makes it slightly larger for a disc
   // touching a face, and the root would be NaN.
-  const auto minus_caps = [R, two_d](double v, double h_lo, double h_hi) { // caps of height h > 0
+  const auto segment = [R](double h) { // area of the disc's segment of height h > 0
+    h = std::min(h, 2.0 * R);
+    const double s = std::sqrt(h * (2.0 * R - h));
+    return R * R * std::atan2(s, R - h) - (R - h) * s;
+  };
+  const auto minus_caps = [&](double v, double h_lo, double h_hi) { // caps of height h > 0
     for (double h : {h_lo, h_hi}) {
       if (!(h > 0.0)) continue;
-      if (!two_d) {
-        v -= pi * h * h * (3.0 * R - h) / 3.0;
-      } else {
-        h = std::min(h, 2.0 * R);
-        const double s = std::sqrt(h * (2.0 * R - h));
-        v -= R * R * std::atan2(s, R - h) - (R - h) * s;
-      }
+      v -= two_d ? segment(h) : pi * h * h * (3.0 * R - h) / 3.0;
     }
     return v;
   };
@@ -297,6 +296,20 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
       part[0] = v / measure;
       return;
     }
+    if (cut_axes <= 1 && two_d && r.c1[along] == r.c0[along] + 1) {
+      // A disc across one face: its two parts are the segment beyond the face on the smaller side
+      // and the rest; one segment (one atan2) gives both.
+      const double h1 = R - node(along, r.c0[along] + 1), h0 = R + node(along, r.c0[along] + 1);
+      const bool small_in_c1 = h1 <= h0;
+      const double seg = segment(std::max(small_in_c1 ? h1 : h0, 0.0));
+      std::array<int, 3> c = r.c0;
+      cell[0] = grid_index(c[0], c[1], c[2]);
+      part[0] = std::max(small_in_c1 ? v - seg : seg, 0.0) / measure;
+      ++c[along];
+      cell[1] = grid_index(c[0], c[1], c[2]);
+      part[1] = std::max(small_in_c1 ? seg : v - seg, 0.0) / measure;
+      return;
+    }
     if (cut_axes <= 1) {
       std::array<int, 3> c = r.c0;
       for (long e = 0; c[along] <= r.c1[along]; ++c[along], ++e) {
@@ -306,6 +319,23 @@ void sphere_cell_parts(const gas::GasGrid& g, const Vec3& x, double R, const Cel
       }
       return;
     }
+  }
+  if (two_d && r.c1[0] == r.c0[0] + 1 && r.c1[2] == r.c0[2] + 1 && R + node(0, r.c0[0]) <= 0.0 &&
+      R - node(0, r.c1[0] + 1) <= 0.0 && R + node(2, r.c0[2]) <= 0.0 &&
+      R - node(2, r.c1[2] + 1) <= 0.0) {
+    // A disc across one face along x and one along z, inside the range's outer faces: the four
+    // parts around the node (X, Z) where the faces cross from the quadrant below-left of it and
+    // the parts below Z and left of X (a segment each): one quadrant and two segments instead of
+    // the nine nodes of the table below.
+    const double X = node(0, r.c0[0] + 1), Z = node(2, r.c0[2] + 1), disc = pi * R * R;
+    const auto below = [&](double u) { return u >= 0.0 ? disc - segment(R - u) : segment(R + u); };
+    const double q = disc_quadrant_area(R, X, Z), left = below(X), low = below(Z);
+    const double parts[4] = {q, low - q, left - q, disc - left - low + q}; // i fastest, then k
+    for (int m = 0; m < 4; ++m) {
+      cell[m] = grid_index(r.c0[0] + (m & 1), r.c0[1], r.c0[2] + (m >> 1));
+      part[m] = std::max(parts[m], 0.0) / measure;
+    }
+    return;
   }
   constexpr int max_nodes = 4; // per axis for the node table; larger ranges: corners directly
   std::array<int, 3> nn{};

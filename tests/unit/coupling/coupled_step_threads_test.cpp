@@ -11,7 +11,9 @@
 //    component's stencil anew with face_stencil.
 //  - The shared-corner porosity (porosity.cpp): the solid fraction of every cell agrees with
 //    the per-cell closed forms sphere_box_volume / disc_rect_area (each cell's 8 / 4 corners
-//    evaluated on their own, the method before the corners were shared) to 1e-14 absolute.
+//    evaluated on their own, the method before the corners were shared) to 1e-14 absolute;
+//    in 2-D this covers the shortcuts for a disc across one face (one segment for both parts)
+//    and across one face along x and one along z (one quadrant and two segments).
 #include "core/parallel.hpp"
 #include "coupling/exchange.hpp"
 #include <algorithm>
