@@ -36,13 +36,28 @@ void axis_weights(double lo, int n, double h, bool face, bool periodic, double c
     i0 = std::max(i0, face ? 0L : 1L);
     i1 = std::min(i1, static_cast<long>(n));
   }
+  const auto length = [&](long i) { // of control volume i inside the extent
+    const double x0 = (static_cast<double>(i) - o) * h, x1 = x0 + h;
+    return std::max(std::min(tb, x1) - std::max(ta, x0), 0.0);
+  };
+  if (!periodic) {
+    // Two passes, the sum first: the weights are written once and not read back (normalising
+    // them in place made vector loads wait on the scalar stores just made, half of the time).
+    double sum = 0.0;
+    for (long i = i0; i <= i1; ++i) sum += length(i); // (empty entries add exact zeros)
+    for (long i = i0; i <= i1; ++i)
+      if (const double l = length(i); l > 0.0) { // drop an end exactly on a boundary
+        q.push_back(i);
+        w.push_back(l / sum);
+      }
+    return;
+  }
   const long nl = n;
   for (long i = i0; i <= i1; ++i) {
-    const double x0 = (static_cast<double>(i) - o) * h, x1 = x0 + h;
-    const double l = std::max(std::min(tb, x1) - std::max(ta, x0), 0.0);
+    const double l = length(i);
     const long k = i - i0;
-    if (!periodic || k < nl) {
-      q.push_back(periodic ? ((i - 1) % nl + nl) % nl + 1 : i);
+    if (k < nl) {
+      q.push_back(((i - 1) % nl + nl) % nl + 1);
       w.push_back(l);
     } else {
       w[static_cast<std::size_t>(k % nl)] += l;
@@ -63,33 +78,49 @@ void axis_weights(double lo, int n, double h, bool face, bool periodic, double c
 }
 } // namespace
 
+namespace {
+/// The 1-D weights along axis d (face: the faces normal to d; else the cells), with the one
+/// cell across y of a 2-D grid.
+void axis_list(const gas::GasGrid& g, int d, bool face, const Vec3& c, double half,
+               const std::array<bool, 3>& periodic, std::vector<long>& q, std::vector<double>& w) {
+  if (g.dimension == 2 && d == 1) { // one cell across y: area fractions in x-z
+    q.assign(1, 1L);
+    w.assign(1, 1.0);
+    return;
+  }
+  axis_weights(g.lo[d], g.n[d], g.h[d], face, periodic[d], c[d], half, q, w);
+}
+} // namespace
+
+void cube_axes(const gas::GasGrid& g, const Vec3& c, double half,
+               const std::array<bool, 3>& periodic, CubeAxes& out) {
+  for (int d = 0; d < 3; ++d) {
+    const auto k = static_cast<std::size_t>(d);
+    axis_list(g, d, false, c, half, periodic, out.cell_q[k], out.cell_w[k]);
+    axis_list(g, d, true, c, half, periodic, out.face_q[k], out.face_w[k]);
+  }
+}
+
+void cube_axes(const gas::GasGrid& g, int component, const Vec3& c, double half,
+               const std::array<bool, 3>& periodic, CubeAxes& out) {
+  for (int d = 0; d < 3; ++d) {
+    const auto k = static_cast<std::size_t>(d);
+    if (component == d)
+      axis_list(g, d, true, c, half, periodic, out.face_q[k], out.face_w[k]);
+    else
+      axis_list(g, d, false, c, half, periodic, out.cell_q[k], out.cell_w[k]);
+  }
+}
+
 void cube_weights(const gas::GasGrid& g, int component, const Vec3& c, double half,
                   const std::array<bool, 3>& periodic, CubeWeights& out) {
   out.clear();
-  const bool two_d = g.dimension == 2;
-  if (two_d && component == 1) return; // no v_y in 2-D
-  for (int d = 0; d < 3; ++d) {
-    auto& q = out.axis_q[static_cast<std::size_t>(d)];
-    auto& w = out.axis_w[static_cast<std::size_t>(d)];
-    if (two_d && d == 1) { // one cell across y: area fractions in x-z
-      q.assign(1, 1L);
-      w.assign(1, 1.0);
-      continue;
-    }
-    axis_weights(g.lo[d], g.n[d], g.h[d], component == d, periodic[d], c[d], half, q, w);
-  }
-  // Box-box overlap = product of the 1-D overlaps [Deen07 eq. 38].
-  const auto &qx = out.axis_q[0], &qy = out.axis_q[1], &qz = out.axis_q[2];
-  const auto &wx = out.axis_w[0], &wy = out.axis_w[1], &wz = out.axis_w[2];
-  for (std::size_t k = 0; k < qz.size(); ++k)
-    for (std::size_t j = 0; j < qy.size(); ++j) {
-      const long qjk = g.stride[1] * qy[j] + g.stride[2] * qz[k];
-      const double wjk = wy[j] * wz[k];
-      for (std::size_t i = 0; i < qx.size(); ++i) {
-        out.q.push_back(qjk + qx[i]);
-        out.w.push_back(wjk * wx[i]);
-      }
-    }
+  if (g.dimension == 2 && component == 1) return; // no v_y in 2-D
+  cube_axes(g, component, c, half, periodic, out.axes);
+  for_cube_weights(g, out.axes, component, [&](long q, double w) {
+    out.q.push_back(q);
+    out.w.push_back(w);
+  });
 }
 
 } // namespace fluidem::coupling

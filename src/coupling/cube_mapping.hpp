@@ -35,6 +35,14 @@ namespace fluidem::coupling {
 /// `component` value selecting the cell-centre control volumes.
 inline constexpr int cell_component = -1;
 
+/// A cube's 1-D weights along each axis on both lattices: cell[a] over the cells along axis a,
+/// face[a] over the faces normal to a (2-D: the one cell across y, weight 1, on both). The
+/// weights of any component are their tensor product (for_cube_weights), so that a particle
+/// loop that needs several components computes the six lists once.
+struct CubeAxes {
+  std::array<std::vector<long>, 3> cell_q, face_q;
+  std::array<std::vector<double>, 3> cell_w, face_w;
+};
 /// Reusable list of (padded grid index, weight) pairs; clear() keeps the capacity. The per-axis
 /// scratch lists are kept here too, so that cube_weights does not allocate once warmed up.
 struct CubeWeights {
@@ -46,10 +54,35 @@ struct CubeWeights {
   }
   std::size_t size() const { return q.size(); }
 
-  // Scratch: 1-D (index, weight) lists per axis, reused between calls.
-  std::array<std::vector<long>, 3> axis_q;
-  std::array<std::vector<double>, 3> axis_w;
+  CubeAxes axes; ///< scratch: the 1-D lists, reused between calls
 };
+
+/// The six lists of the cube (centre c, half side `half`) into out (no allocation once warm).
+void cube_axes(const gas::GasGrid& g, const Vec3& c, double half,
+               const std::array<bool, 3>& periodic, CubeAxes& out);
+/// Only the three lists that the weights of `component` need.
+void cube_axes(const gas::GasGrid& g, int component, const Vec3& c, double half,
+               const std::array<bool, 3>& periodic, CubeAxes& out);
+
+/// Calls f(q, w) for the weights of `component` (cell_component or a face direction d) from the
+/// lists of cube_axes: cube_weights' entries, in its order and with its products (bitwise).
+template <class F>
+void for_cube_weights(const gas::GasGrid& g, const CubeAxes& a, int component, F&& f) {
+  if (g.dimension == 2 && component == 1) return; // no v_y in 2-D
+  const auto& qx = component == 0 ? a.face_q[0] : a.cell_q[0];
+  const auto& qy = component == 1 ? a.face_q[1] : a.cell_q[1];
+  const auto& qz = component == 2 ? a.face_q[2] : a.cell_q[2];
+  const auto& wx = component == 0 ? a.face_w[0] : a.cell_w[0];
+  const auto& wy = component == 1 ? a.face_w[1] : a.cell_w[1];
+  const auto& wz = component == 2 ? a.face_w[2] : a.cell_w[2];
+  // Box-box overlap = product of the 1-D overlaps [Deen07 eq. 38].
+  for (std::size_t k = 0; k < qz.size(); ++k)
+    for (std::size_t j = 0; j < qy.size(); ++j) {
+      const long qjk = g.stride[1] * qy[j] + g.stride[2] * qz[k];
+      const double wjk = wy[j] * wz[k];
+      for (std::size_t i = 0; i < qx.size(); ++i) f(qjk + qx[i], wjk * wx[i]);
+    }
+}
 
 /// Weights of a porous cube (centre c, half side `half` = a d_i / 2 > 0 [Deen07 eq. 34]) over
 /// the control volumes of `component` (cell_component or a face direction d = 0, 1, 2):

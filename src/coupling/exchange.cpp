@@ -239,8 +239,7 @@ void compute_particle_forces(const gas::GasSolver& gs, const ParticleStore& p,
         trilinear_sums<NY>(cell, g.stride[1], g.stride[2], gs.porosity().data(),
                            gs.density().data(), in.eps, in.rho);
       } else {
-        map.velocity_and_pressure_gradient(x, in.d, u, gp);
-        map.porosity_and_density(x, in.d, in.eps, in.rho);
+        map.gas_at(x, in.d, u, gp, in.eps, in.rho);
       }
       in.mu = mu;
       in.d_mean = c.d_mean;
@@ -367,55 +366,53 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p, Particl
     std::vector<double>& takes = f.takes_source[static_cast<std::size_t>(d)];
     takes.resize(g.size());
     for (std::size_t q = 0; q < takes.size(); ++q) takes[q] = takes_particle_source(role[q]);
-    // One particle's share over the weights (index q[m], weight wt[m], m < nw).
-    // N > 0: nw = N (the loops unrolled for the common stencils of 4 and 8 nodes).
-    const auto deposit = [&]<int N>(std::size_t i, const long* qs, const double* wt,
-                                    std::size_t nw) {
-      if constexpr (N > 0) nw = static_cast<std::size_t>(N);
+    // One particle's share over its weights: nodes(f) calls f(q, w) for each (index, weight)
+    // in order (twice: the sum of the weights that take the source, then the shares).
+    const auto deposit = [&](std::size_t i, const auto& nodes) {
       double wsum = 0.0; // over the faces that take the source, in node order
-      for (std::size_t m = 0; m < nw; ++m) wsum += wt[m] * takes[static_cast<std::size_t>(qs[m])];
+      nodes([&](long q, double w) { wsum += w * takes[static_cast<std::size_t>(q)]; });
       if (!(wsum > 0.0)) return;
       const double ci = f.coeff[i] * inv_v / wsum;
-      for (std::size_t m = 0; m < nw; ++m) {
-        const auto q = static_cast<std::size_t>(qs[m]);
-        const double w = wt[m] * ci, t = takes[q];
+      nodes([&](long lq, double wt) {
+        const auto q = static_cast<std::size_t>(lq);
+        const double w = wt * ci, t = takes[q];
         if (fixed) {
-          if (t == 0.0) continue;
+          if (t == 0.0) return;
           fixed->add(fd, q, w);
           fixed->add(fd + 1, q, w * v[i]);
-          if (model_b) fixed->add(fd + 2, q, -(wt[m] * pr[i] * inv_v / wsum));
-          continue;
+          if (model_b) fixed->add(fd + 2, q, -(wt * pr[i] * inv_v / wsum));
+          return;
         }
         K[q] += w * t;
         Kus[q] += w * v[i] * t;
-        if (model_b) src[q] -= wt[m] * pr[i] * inv_v / wsum * t;
-      }
+        if (model_b) src[q] -= wt * pr[i] * inv_v / wsum * t;
+      });
     };
     const bool cached = f.face_stencils.size() == 3 * p.size();
     const bool any_periodic = periodic[0] || periodic[1] || periodic[2];
     const bool two_d = g.dimension == 2;
-    if (cached && two_d && d == 1) continue; // no v_y in 2-D
+    if (two_d && d == 1) continue; // no v_y in 2-D
+    const long sy = g.stride[1], sz = g.stride[2];
     for (std::size_t i = 0; i < p.size(); ++i) {
       // The weights the particle's gas velocity came from (periodic images resolved).
-      if (cached) {
-        const TrilinearStencil& st = f.face_stencils[3 * i + static_cast<std::size_t>(d)];
-        std::array<long, 8> qs{};
-        std::array<double, 8> ws{};
-        std::size_t nw = 0;
-        const auto node = [&](long q, double w) {
-          qs[nw] = any_periodic ? periodic_image(g, periodic, d, q) : q;
-          ws[nw++] = w;
-        };
-        if (two_d) {
-          for_trilinear_nodes<1>(st, g.stride[1], g.stride[2], node);
-          deposit.template operator()<4>(i, qs.data(), ws.data(), nw);
-        } else {
-          for_trilinear_nodes<2>(st, g.stride[1], g.stride[2], node);
-          deposit.template operator()<8>(i, qs.data(), ws.data(), nw);
-        }
+      if (!cached) { // the porous cube
+        const CubeAxes& a = map.cube_axes_of(d, p.position(i), 2.0 * p.radius[i]);
+        deposit(i, [&](const auto& fn) { for_cube_weights(g, a, d, fn); });
+        continue;
+      }
+      const TrilinearStencil& st = f.face_stencils[3 * i + static_cast<std::size_t>(d)];
+      if (any_periodic) {
+        deposit(i, [&](const auto& fn) {
+          const auto image = [&](long q, double w) { fn(periodic_image(g, periodic, d, q), w); };
+          if (two_d)
+            for_trilinear_nodes<1>(st, sy, sz, image);
+          else
+            for_trilinear_nodes<2>(st, sy, sz, image);
+        });
+      } else if (two_d) {
+        deposit(i, [&](const auto& fn) { for_trilinear_nodes<1>(st, sy, sz, fn); });
       } else {
-        const CubeWeights& s = map.face_weights(d, p.position(i), 2.0 * p.radius[i]);
-        deposit.template operator()<0>(i, s.q.data(), s.w.data(), s.size());
+        deposit(i, [&](const auto& fn) { for_trilinear_nodes<2>(st, sy, sz, fn); });
       }
     }
   }

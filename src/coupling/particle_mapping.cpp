@@ -4,11 +4,41 @@
 namespace fluidem::coupling {
 
 namespace {
-/// The calling thread's cube weights: kept between calls and between flow steps (OpenMP reuses
+/// The calling thread's cube lists: kept between calls and between flow steps (OpenMP reuses
 /// its threads), so that a warm run maps without allocating (the vectors keep their capacity).
-CubeWeights& thread_weights() {
-  static thread_local CubeWeights w;
-  return w;
+CubeAxes& thread_axes() {
+  static thread_local CubeAxes a;
+  return a;
+}
+
+/// u and grad p from a cube's lists (all six): per component d, sum w u_d and the face gradients
+/// (p_+ - p_-)/h_d [Deen07 eq. 38].
+void cube_velocity_and_gradient(const gas::GasSolver& gs, const CubeAxes& a, Vec3& u,
+                                Vec3& grad_p) {
+  const gas::GasGrid& g = gs.grid();
+  const double* p = gs.pressure().data();
+  for (int dir = 0; dir < 3; ++dir) {
+    const double* ud = gs.velocity(dir).data();
+    const long sd = g.stride[static_cast<std::size_t>(dir)];
+    double uv = 0.0, gv = 0.0;
+    for_cube_weights(g, a, dir, [&](long q, double w) {
+      uv += w * ud[q];
+      gv += w * (p[q + sd] - p[q]);
+    });
+    u[dir] = uv;
+    grad_p[dir] = gv / g.h[static_cast<std::size_t>(dir)];
+  }
+}
+
+/// eps and rho from a cube's cell lists.
+void cube_porosity_and_density(const gas::GasSolver& gs, const CubeAxes& a, double& eps,
+                               double& rho) {
+  const double* e = gs.porosity().data();
+  const double* r = gs.density().data();
+  eps = 0.0;
+  rho = 0.0;
+  for_cube_weights(gs.grid(), a, cell_component, [&](long q, double w) { eps += w * e[q]; });
+  for_cube_weights(gs.grid(), a, cell_component, [&](long q, double w) { rho += w * r[q]; });
 }
 } // namespace
 
@@ -22,23 +52,9 @@ void ParticleMapping::velocity_and_pressure_gradient(const Vec3& x, double d, Ve
     velocity_and_pressure_gradient_at(gs_, x, u, grad_p);
     return;
   }
-  const gas::GasGrid& g = gs_.grid();
-  const std::vector<double>& p = gs_.pressure();
-  const double half = 0.5 * factor_ * d;
-  CubeWeights& w = thread_weights();
-  for (int dir = 0; dir < 3; ++dir) {
-    cube_weights(g, dir, x, half, periodic_, w);
-    const std::vector<double>& ud = gs_.velocity(dir);
-    const auto sd = static_cast<std::size_t>(g.stride[static_cast<std::size_t>(dir)]);
-    double uv = 0.0, gv = 0.0;
-    for (std::size_t m = 0; m < w.size(); ++m) {
-      const auto q = static_cast<std::size_t>(w.q[m]);
-      uv += w.w[m] * ud[q];
-      gv += w.w[m] * (p[q + sd] - p[q]); // [Deen07 eq. 38] on the face gradients
-    }
-    u[dir] = uv;
-    grad_p[dir] = gv / g.h[static_cast<std::size_t>(dir)];
-  }
+  CubeAxes& a = thread_axes();
+  cube_axes(gs_.grid(), x, 0.5 * factor_ * d, periodic_, a);
+  cube_velocity_and_gradient(gs_, a, u, grad_p);
 }
 
 void ParticleMapping::porosity_and_density(const Vec3& x, double d, double& eps, double& rho) {
@@ -48,26 +64,28 @@ void ParticleMapping::porosity_and_density(const Vec3& x, double d, double& eps,
     rho = interpolate(s, gs_.density());
     return;
   }
-  CubeWeights& w = thread_weights();
-  cube_weights(gs_.grid(), cell_component, x, 0.5 * factor_ * d, periodic_, w);
-  eps = cube_average(w, gs_.porosity());
-  rho = cube_average(w, gs_.density());
+  CubeAxes& a = thread_axes();
+  cube_axes(gs_.grid(), cell_component, x, 0.5 * factor_ * d, periodic_, a);
+  cube_porosity_and_density(gs_, a, eps, rho);
 }
 
-const CubeWeights& ParticleMapping::face_weights(int dir, const Vec3& x, double d) {
-  CubeWeights& w = thread_weights();
-  if (cube_) {
-    cube_weights(gs_.grid(), dir, x, 0.5 * factor_ * d, periodic_, w); // images already
-    return w;
+void ParticleMapping::gas_at(const Vec3& x, double d, Vec3& u, Vec3& grad_p, double& eps,
+                             double& rho) {
+  if (!cube_) {
+    velocity_and_pressure_gradient(x, d, u, grad_p);
+    porosity_and_density(x, d, eps, rho);
+    return;
   }
-  const Stencil s = face_stencil(gs_.grid(), dir, x);
-  w.clear();
-  for (int m = 0; m < s.n; ++m) {
-    const auto k = static_cast<std::size_t>(m);
-    w.q.push_back(periodic_image(gs_.grid(), periodic_, dir, s.q[k]));
-    w.w.push_back(s.w[k]);
-  }
-  return w;
+  CubeAxes& a = thread_axes();
+  cube_axes(gs_.grid(), x, 0.5 * factor_ * d, periodic_, a);
+  cube_velocity_and_gradient(gs_, a, u, grad_p);
+  cube_porosity_and_density(gs_, a, eps, rho);
+}
+
+const CubeAxes& ParticleMapping::cube_axes_of(int dir, const Vec3& x, double d) {
+  CubeAxes& a = thread_axes();
+  cube_axes(gs_.grid(), dir, x, 0.5 * factor_ * d, periodic_, a); // images already
+  return a;
 }
 
 } // namespace fluidem::coupling

@@ -28,10 +28,12 @@ public:
   void velocity_and_pressure_gradient(const Vec3& x, double d, Vec3& u, Vec3& grad_p);
   /// Porosity and gas density at the particle (cell-centre control volumes).
   void porosity_and_density(const Vec3& x, double d, double& eps, double& rho);
-  /// Weights of the faces of velocity component `dir` for a particle of diameter d at x, with
-  /// periodic ghost/copy nodes replaced by their images (for the deposit of forces). Valid until
-  /// the calling thread's next call of any ParticleMapping.
-  const CubeWeights& face_weights(int dir, const Vec3& x, double d);
+  /// Both of the above together (the porous cube's lists computed once).
+  void gas_at(const Vec3& x, double d, Vec3& u, Vec3& grad_p, double& eps, double& rho);
+  /// Porous cube only: the lists of the weights of component `dir` (for_cube_weights) for a
+  /// particle of diameter d at x, periodic images resolved (for the deposit of forces). Valid
+  /// until the calling thread's next call of any ParticleMapping.
+  const CubeAxes& cube_axes_of(int dir, const Vec3& x, double d);
 
 private:
   const gas::GasSolver& gs_;

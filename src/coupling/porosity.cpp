@@ -431,19 +431,19 @@ void solid_fraction(const gas::GasGrid& g, const ParticleStore& p, const Porosit
     // [Deen07 eq. 36-37]: the cube of side a d carries the particle's volume (2-D: disc area)
     // spread uniformly; the cell gets the fraction of the cube inside it, the weights of
     // cube_mapping.hpp (shifted into the domain at walls, wrapped at periodic axes).
-    CubeWeights& w = scratch.cube;
+    CubeAxes& a = scratch.cube.axes;
     if (ranks) start_fixed_sum(g, p, two_d, cell_measure, *ranks, scratch.fixed);
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double R = p.radius[i];
       const double measure = two_d ? pi * R * R : 4.0 / 3.0 * pi * R * R * R;
-      cube_weights(g, cell_component, p.position(i), s.cube_factor * R, wrap, w);
-      for (std::size_t m = 0; m < w.size(); ++m) {
-        const double part = measure * w.w[m] / cell_measure;
+      cube_axes(g, cell_component, p.position(i), s.cube_factor * R, wrap, a);
+      for_cube_weights(g, a, cell_component, [&](long q, double w) {
+        const double part = measure * w / cell_measure;
         if (ranks)
-          scratch.fixed.add(0, static_cast<std::size_t>(w.q[m]), part);
+          scratch.fixed.add(0, static_cast<std::size_t>(q), part);
         else
-          out[static_cast<std::size_t>(w.q[m])] += part;
-      }
+          out[static_cast<std::size_t>(q)] += part;
+      });
     }
     if (ranks) finish_fixed_sum(*ranks, scratch.fixed, out);
     return;

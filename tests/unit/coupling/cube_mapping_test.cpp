@@ -395,9 +395,9 @@ TEST(CubeMapping, NoReallocationOnceWarm) {
   cube_weights(g, 1, {4.0, 4.0, 4.0}, 2.0, walls, cw);
   const auto* q = cw.q.data();
   const auto* w = cw.w.data();
-  const auto* ax = cw.axis_w[0].data();
+  const auto* ax = cw.axes.cell_w[0].data(); // component 1: cells along x
   cube_weights(g, 1, {2.3, 5.1, 6.7}, 1.7, walls, cw);
   EXPECT_EQ(cw.q.data(), q);
   EXPECT_EQ(cw.w.data(), w);
-  EXPECT_EQ(cw.axis_w[0].data(), ax);
+  EXPECT_EQ(cw.axes.cell_w[0].data(), ax);
 }
