@@ -400,19 +400,26 @@ void deposit_momentum_source(gas::GasSolver& gs, const ParticleStore& p, Particl
         deposit(i, [&](const auto& fn) { for_cube_weights(g, a, d, fn); });
         continue;
       }
+      // The stencil's nodes once (images resolved once), then visited twice.
       const TrilinearStencil& st = f.face_stencils[3 * i + static_cast<std::size_t>(d)];
-      if (any_periodic) {
+      std::array<long, 8> qs{};
+      std::array<double, 8> ws{};
+      std::size_t nw = 0;
+      const auto node = [&](long q, double w) {
+        qs[nw] = any_periodic ? periodic_image(g, periodic, d, q) : q;
+        ws[nw++] = w;
+      };
+      const auto visit = [&]<std::size_t N>() {
         deposit(i, [&](const auto& fn) {
-          const auto image = [&](long q, double w) { fn(periodic_image(g, periodic, d, q), w); };
-          if (two_d)
-            for_trilinear_nodes<1>(st, sy, sz, image);
-          else
-            for_trilinear_nodes<2>(st, sy, sz, image);
+          for (std::size_t m = 0; m < N; ++m) fn(qs[m], ws[m]);
         });
-      } else if (two_d) {
-        deposit(i, [&](const auto& fn) { for_trilinear_nodes<1>(st, sy, sz, fn); });
+      };
+      if (two_d) {
+        for_trilinear_nodes<1>(st, sy, sz, node);
+        visit.template operator()<4>();
       } else {
-        deposit(i, [&](const auto& fn) { for_trilinear_nodes<2>(st, sy, sz, fn); });
+        for_trilinear_nodes<2>(st, sy, sz, node);
+        visit.template operator()<8>();
       }
     }
   }
