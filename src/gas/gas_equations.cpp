@@ -52,6 +52,7 @@ void GasSolver::compute_mass_fluxes() {
   for (int d = 0; d < 3; ++d) {
     double* F = F_[d].data();
     const double* u = u_[d].data();
+    const double *eps = eps_.data(), *rho = rho_.data(); // (not reloaded after each store to F)
     const unsigned char* role = role_[d].data();
     const double A = g_.face_area(d);
     const long sd = g_.stride[d];
@@ -63,7 +64,7 @@ void GasSolver::compute_mass_fluxes() {
       const long row = g_.idx(0, lo[1] + r % ny, k0 + r / ny);
       for (long q = row + lo[0]; q <= row + g_.n[0]; ++q) {
         const long up = u[q] >= 0.0 ? q : q + sd;
-        F[q] = role[q] == none ? 0.0 : A * eps_[up] * rho_[up] * u[q];
+        F[q] = role[q] == none ? 0.0 : A * eps[up] * rho[up] * u[q];
       }
     }
     fill_periodic_and_halo(F_[d]);
@@ -72,14 +73,17 @@ void GasSolver::compute_mass_fluxes() {
 
 void GasSolver::add_plane_sums(int k, double dt, double& sum_abs, double& mass) const {
   const double V = g_.cell_volume();
+  double sa = sum_abs, ms = mass; // running sums in registers, not through the references
   for (int j = 1; j <= g_.n[1]; ++j)
     for (int i = 1; i <= g_.n[0]; ++i) {
       const long q = g_.idx(i, j, k);
       double R = V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
       for (int e = 0; e < 3; ++e) R += F_[e][q] - F_[e][q - g_.stride[e]];
-      sum_abs += std::abs(R);
-      mass += eps_[q] * rho_[q] * V;
+      sa += std::abs(R);
+      ms += eps_[q] * rho_[q] * V;
     }
+  sum_abs = sa;
+  mass = ms;
 }
 
 double GasSolver::mass_residual(double dt, double& out_rate) {
@@ -387,31 +391,45 @@ void GasSolver::solve_pressure_correction(double dt) {
     rows_lo = pressure_solver_->part_lo();
     rows_hi = pressure_solver_->part_hi();
   }
+  // Everything the rows read and write, in locals: the rows' stores through the system's
+  // arrays would otherwise make the compiler reload the members after each of them.
+  const double *eps = eps_.data(), *rho = rho_.data(), *eps_old = eps_old_.data(),
+               *rho_old = rho_old_.data();
+  const double* F[3] = {F_[0].data(), F_[1].data(), F_[2].data()};
+  const double* vel[3] = {u_[0].data(), u_[1].data(), u_[2].data()};
+  const double* dcoef[3] = {dcoef_[0].data(), dcoef_[1].data(), dcoef_[2].data()};
+  const unsigned char* roles[3] = {role_[0].data(), role_[1].data(), role_[2].data()};
+  double* slots[3][2] = {{slot(sys_, 0, 0).data(), slot(sys_, 0, 1).data()},
+                         {slot(sys_, 1, 0).data(), slot(sys_, 1, 1).data()},
+                         {slot(sys_, 2, 0).data(), slot(sys_, 2, 1).data()}};
+  double *sys_diag = sys_.diag.data(), *sys_rhs = sys_.rhs.data();
+  const long stride[3] = {g_.stride[0], g_.stride[1], g_.stride[2]};
+  const double psi = psi_;
   const auto assemble = [&](int k, int j) {
     for (int i = rows_lo[0]; i <= rows_hi[0]; ++i) {
       const long q = g_.idx(i, j, k);
-      double R = V * (eps_[q] * rho_[q] - eps_old_[q] * rho_old_[q]) / dt;
-      double diag = psi_ * eps_[q] * V / dt;
+      double R = V * (eps[q] * rho[q] - eps_old[q] * rho_old[q]) / dt;
+      double diag = psi * eps[q] * V / dt;
       for (int e = 0; e < 3; ++e) {
-        const long se = g_.stride[e];
-        R += F_[e][q] - F_[e][q - se];
+        const long se = stride[e];
+        R += F[e][q] - F[e][q - se];
         for (int side = 0; side < 2; ++side) {
           const long f = side == 1 ? q : q - se;
-          const unsigned char r = role_[e][f];
-          slot(sys_, e, side)[q] = 0.0;
+          const unsigned char r = roles[e][f];
+          slots[e][side][q] = 0.0;
           if (r != solved && r != periodic_copy && r != pressure_face) continue;
-          const long up = u_[e][f] >= 0.0 ? f : f + se;
-          const double c = eps_[up] * rho_[up] * area[e] * dcoef_[e][f];
+          const long up = vel[e][f] >= 0.0 ? f : f + se;
+          const double c = eps[up] * rho[up] * area[e] * dcoef[e][f];
           if (r == pressure_face) {
             diag += 2.0 * c; // p'_ghost = -p'_P: the pressure on the face is fixed
           } else {
             diag += c;
-            slot(sys_, e, side)[q] = -c;
+            slots[e][side][q] = -c;
           }
         }
       }
-      sys_.diag[q] = diag;
-      sys_.rhs[q] = -R;
+      sys_diag[q] = diag;
+      sys_rhs[q] = -R;
     }
   };
   if (parallel_) { // unthreaded: no OpenMP region at all

@@ -376,8 +376,18 @@ void GasSolver::step(double time, double dt) {
     for (int d = 0; d < 3; ++d) {
       const auto [k0, k1] = dist_ ? own_planes(d) : std::array<int, 2>{0, g_.padded[2] - 1};
       const auto q1 = static_cast<std::size_t>((k1 + 1) * g_.stride[2]);
-      for (auto q = static_cast<std::size_t>(k0 * g_.stride[2]); q < q1; ++q)
-        if (role_[d][q] != none) dv = std::max(dv, std::abs(u_[d][q] - u_iter_[d][q]));
+      // Four running maxima in registers (a maximum does not depend on the order): one chain
+      // of dependent maxima through dv in memory was a tenth of the 2-D demo's gas step.
+      const unsigned char* role = role_[d].data();
+      const double *u = u_[d].data(), *u_it = u_iter_[d].data();
+      double m[4] = {dv, 0.0, 0.0, 0.0};
+      auto q = static_cast<std::size_t>(k0 * g_.stride[2]);
+      for (; q + 4 <= q1; q += 4)
+        for (std::size_t l = 0; l < 4; ++l)
+          if (role[q + l] != none) m[l] = std::max(m[l], std::abs(u[q + l] - u_it[q + l]));
+      for (; q < q1; ++q)
+        if (role[q] != none) m[0] = std::max(m[0], std::abs(u[q] - u_it[q]));
+      dv = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
     }
     if (dist_) dv = slabs_.max(dv);
     if (!std::isfinite(res) || !std::isfinite(dv)) {
