@@ -5,7 +5,8 @@
 // threaded particle loops, core/parallel.hpp kThreadedParticles), the ergun_wen_yu closure.
 //  - Thread independence: porosity, gas velocity and pressure, and the particle forces are
 //    bitwise identical with 1 and 2 OpenMP threads.
-//  - The per-step stencil cache (ParticleGasForces::face_stencils, built by face_stencils):
+//  - The per-step stencil cache (ParticleGasForces::face_stencils, the compact stencils of
+//    trilinear.hpp):
 //    the gas velocity and pressure gradient at each particle after the gas step are bitwise
 //    those of gas_velocity_at and pressure_gradient_at (interpolation.hpp), which build each
 //    component's stencil anew with face_stencil.
