@@ -37,7 +37,7 @@ double cell_gas_velocity(const gas::GasSolver& gs, long q, int d) {
 
 /// u and grad p at a particle from its face stencils st[0..2] (NY = 1: 2-D, where component 1 is
 /// 0; NY = 2: 3-D) and the face pressure differences dp of face_pressure_differences: the values
-/// of velocity_and_pressure_gradient_at (interpolation.hpp).
+/// of gas_velocity_at and pressure_gradient_at (interpolation.hpp).
 template <int NY>
 [[gnu::always_inline]] inline void
 velocity_and_gradient(const gas::GasSolver& gs, const std::array<std::vector<double>, 3>& dp,

@@ -83,37 +83,6 @@ Stencil face_stencil(const gas::GasGrid& g, int d, const Vec3& x) {
   return tensor(g, i0, t, active);
 }
 
-void face_stencils(const gas::GasGrid& g, const Vec3& x, Stencil* out) {
-  // Per axis the two node lattices of face_stencil: the faces normal to it (shift 0, lower
-  // node 0..n-1) and the cell centres with the ghosts (shift -1/2, lower node 0..n); the
-  // same arithmetic as axis(), so the stencils are bitwise those of face_stencil.
-  const bool two_d = g.dimension == 2;
-  std::array<int, 3> i_face{1, 1, 1}, i_cell{1, 1, 1};
-  std::array<double, 3> t_face{0.0, 0.0, 0.0}, t_cell{0.0, 0.0, 0.0};
-  for (int e = 0; e < 3; ++e) {
-    if (two_d && e == 1) continue; // one cell across y: i0 = 1, inactive
-    const double s = (x[e] - g.lo[e]) / g.h[e];
-    axis_at(s - 0.0, 0, g.n[e] - 1, i_face[e], t_face[e]);
-    axis_at(s - -0.5, 0, g.n[e], i_cell[e], t_cell[e]);
-  }
-  for (int d = 0; d < 3; ++d) {
-    Stencil& s = out[d];
-    if (two_d && d == 1) {
-      s.n = 0;
-      continue;
-    }
-    // The faces' lattice along d, the cell centres' across (y inactive in 2-D): tensor()'s
-    // nodes and weights.
-    std::array<int, 3> i0{};
-    std::array<double, 3> t{};
-    for (int e = 0; e < 3; ++e) {
-      i0[e] = e == d ? i_face[e] : i_cell[e];
-      t[e] = e == d ? t_face[e] : t_cell[e];
-    }
-    tensor(g, i0, t, {true, !two_d, true}, s);
-  }
-}
-
 Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool, 3>& periodic) {
   std::array<int, 3> i0{1, 1, 1};
   std::array<double, 3> t{0.0, 0.0, 0.0};
@@ -171,60 +140,6 @@ Vec3 pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x) {
     gp[d] = v / g.h[d];
   }
   return gp;
-}
-
-void velocity_and_pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x, Vec3& u,
-                                       Vec3& grad_p) {
-  Stencil st[3];
-  face_stencils(gs.grid(), x, st);
-  velocity_and_pressure_gradient_on(gs, st, u, grad_p);
-}
-
-namespace {
-/// sum w u and sum w diff(q) over the first n nodes of s, in node order (diff(q): the pressure
-/// difference p[q + s_d] - p[q] across face q); N > 0: n = N (the loop unrolled for the common
-/// stencils of 4 and 8 nodes).
-template <int N, class Diff>
-void weighted_sums(const Stencil& s, int n, const double* ud, const Diff& diff, double& uv,
-                   double& gv) {
-  if constexpr (N > 0) n = N;
-  for (int m = 0; m < n; ++m) {
-    const long q = s.q[static_cast<std::size_t>(m)];
-    const double w = s.w[static_cast<std::size_t>(m)];
-    uv += w * ud[q];
-    gv += w * diff(q);
-  }
-}
-
-/// u and grad p at a point from its three face stencils; diff_of(d): the face pressure
-/// differences of component d, as a function of the face index.
-template <class DiffOf>
-void velocity_and_gradient(const gas::GasSolver& gs, const Stencil* st, const DiffOf& diff_of,
-                           Vec3& u, Vec3& grad_p) {
-  const gas::GasGrid& g = gs.grid();
-  for (int d = 0; d < 3; ++d) {
-    const Stencil& s = st[d];
-    const double* ud = gs.velocity(d).data();
-    const auto diff = diff_of(d);
-    double uv = 0.0, gv = 0.0;
-    with_node_count(s.n, [&]<int N>() { weighted_sums<N>(s, s.n, ud, diff, uv, gv); });
-    u[d] = uv;
-    grad_p[d] = gv / g.h[d];
-  }
-}
-} // namespace
-
-void velocity_and_pressure_gradient_on(const gas::GasSolver& gs, const Stencil* st, Vec3& u,
-                                       Vec3& grad_p) {
-  const double* p = gs.pressure().data();
-  const auto& stride = gs.grid().stride;
-  velocity_and_gradient(
-      gs, st,
-      [p, &stride](int d) {
-        const long sd = stride[static_cast<std::size_t>(d)];
-        return [p, sd](long q) { return p[q + sd] - p[q]; };
-      },
-      u, grad_p);
 }
 
 void face_pressure_differences(const gas::GasSolver& gs, std::array<std::vector<double>, 3>& dp) {

@@ -27,9 +27,6 @@ struct Stencil {
 /// Stencil of velocity component d (faces normal to d) at point x. Points outside the domain
 /// are clamped onto it.
 Stencil face_stencil(const gas::GasGrid& g, int d, const Vec3& x);
-/// The stencils of all three components at x into out[0..2] (out[1].n = 0 in 2-D): bitwise
-/// face_stencil(g, d, x) for d = 0, 1, 2, the axis positions shared between them.
-void face_stencils(const gas::GasGrid& g, const Vec3& x, Stencil* out);
 /// Stencil of the cell centres at point x: interior centres along walled axes (clamped, zero
 /// gradient at the boundary), ghost centres (periodic images) included along periodic axes.
 Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool, 3>& periodic);
@@ -38,18 +35,6 @@ Stencil cell_stencil(const gas::GasGrid& g, const Vec3& x, const std::array<bool
 /// to d; -1: cell centres) with every index along a periodic axis wrapped into the unknowns
 /// (cells 1..n; along d for faces: 1..n, face 0 being the copy of face n). Other q unchanged.
 long periodic_image(const gas::GasGrid& g, const std::array<bool, 3>& periodic, int d, long q);
-
-/// Calls f.template operator()<N>() with N = n for the common stencil sizes 4 and 8 (loops over
-/// the nodes then have a compile-time trip count), N = 0 for any other n.
-template <class F>
-void with_node_count(int n, F&& f) {
-  if (n == 4)
-    f.template operator()<4>();
-  else if (n == 8)
-    f.template operator()<8>();
-  else
-    f.template operator()<0>();
-}
 
 inline double interpolate(const Stencil& s, const std::vector<double>& a) {
   double v = 0.0;
@@ -64,14 +49,6 @@ Vec3 gas_velocity_at(const gas::GasSolver& gs, const Vec3& x);
 /// Pressure gradient at x, Pa/m: the face gradients (p_+ - p_-)/h_d (ghost pressures at the
 /// boundary) interpolated with the stencil of component d.
 Vec3 pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x);
-/// Gas velocity and pressure gradient at x together (the two share their face stencils):
-/// the same values as gas_velocity_at and pressure_gradient_at at half the cost.
-void velocity_and_pressure_gradient_at(const gas::GasSolver& gs, const Vec3& x, Vec3& u,
-                                       Vec3& grad_p);
-/// The same on the 3 face stencils of x built before (face_stencils): stencils[d] for
-/// component d.
-void velocity_and_pressure_gradient_on(const gas::GasSolver& gs, const Stencil* stencils, Vec3& u,
-                                       Vec3& grad_p);
 /// The face pressure differences p[q + stride_d] - p[q] of each component d (the numerators of
 /// the face gradients), for the stencils' faces, into dp[d] (grid-sized; 0 where q + stride_d
 /// is beyond the grid, a face no stencil holds).

@@ -49,7 +49,8 @@ ParticleMapping::ParticleMapping(const gas::GasSolver& gs, const PorositySetting
 void ParticleMapping::velocity_and_pressure_gradient(const Vec3& x, double d, Vec3& u,
                                                      Vec3& grad_p) {
   if (!cube_) {
-    velocity_and_pressure_gradient_at(gs_, x, u, grad_p);
+    u = gas_velocity_at(gs_, x); // (the coupling's loops use the compact stencils instead)
+    grad_p = pressure_gradient_at(gs_, x);
     return;
   }
   CubeAxes& a = thread_axes();
