@@ -23,6 +23,7 @@
 #include "analysis/spectrum.hpp"
 #include "analysis/velocity_distribution.hpp"
 #include "app/analyse_bed.hpp"
+#include "app/analyse_bubbles.hpp"
 #include "app/analysis_table.hpp"
 #include "app/python_scripts.hpp"
 #include "core/error.hpp"
@@ -453,6 +454,11 @@ int analyse(const AnalyseOptions& o) {
     fmt::print("particles          no {}: velocity distribution and segregation left out\n",
                particles_path.string());
 
+  // Bubbles: the voids of every frame of fields.h5 (coupled runs).
+  const fs::path fields_path = out / "fields.h5";
+  const bool bubbles = fs::exists(fields_path, ec);
+  if (bubbles) analyse_bubbles(fields_path, dir, t0, t1, o.void_porosity, summary);
+
   const fs::path collisions_path = out / "collisions.csv";
   if (fs::exists(collisions_path, ec))
     analyse_collisions(collisions_path, window.first, window.second, summary);
@@ -460,8 +466,10 @@ int analyse(const AnalyseOptions& o) {
   std::ofstream f = open_out(dir / "summary.csv");
   f << "name,value,unit\n";
   for (const auto& r : summary) f << r.name << ',' << g(r.value) << ',' << r.unit << '\n';
-  fmt::print("written            {}/ (summary.csv, velocity_distribution.csv, spectrum_*.csv{})\n",
-             dir.string(), two_sizes ? ", velocity_distribution_by_size.csv, segregation.csv" : "");
+  fmt::print(
+      "written            {}/ (summary.csv, velocity_distribution.csv, spectrum_*.csv{}{})\n",
+      dir.string(), two_sizes ? ", velocity_distribution_by_size.csv, segregation.csv" : "",
+      bubbles ? ", bubbles.csv, bubble_frames.csv" : "");
   return 0;
 }
 
@@ -528,6 +536,10 @@ std::unique_ptr<AnalysisCommands> add_analysis_commands(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   c->analyse->add_option("--from", o.from, "Window start T0, s (default: half the run)");
   c->analyse->add_option("--to", o.to, "Window end T1, s (default: the end of the run)");
+  c->analyse
+      ->add_option("--void-porosity", o.void_porosity,
+                   "Bubbles: cells above this porosity are dilute (default 0.8)")
+      ->check(CLI::Range(0.0, 1.0));
   c->plot = app.add_subcommand("plot", "Draw a run's pictures: OUT/snapshot.png and, from "
                                        "`fluidem analyse`, OUT/analysis/*.png; several runs: "
                                        "also their shared curves on one figure, with the "

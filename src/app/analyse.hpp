@@ -8,6 +8,9 @@
 //                              pooled [Deen07 §6.2] (analysis/velocity_distribution.hpp)
 //   segregation.csv            time, s over all frames, when the particles have two sizes
 //                              [Deen07 eq. 49] (analysis/segregation.hpp)
+//   bubbles.csv, bubble_frames.csv  the bubbles of every frame of fields.h5, followed between
+//                              frames, and per frame their count and fraction of the bed
+//                              (analysis/bubbles.hpp, app/analyse_bubbles.hpp)
 //   summary.csv                name, value, unit: one row per quantity (also printed)
 // Bad input (no OUT, no probes.csv or particles.h5, an unknown probe, too few samples, a bad
 // window or segment) is an InputError (exit 2 from run_cli).
@@ -33,6 +36,7 @@ struct AnalyseOptions {
   std::string probe;              ///< empty: every probe of probes.csv
   double segment_seconds = 0.0;   ///< 0: the largest power of two of samples <= n / 4
   std::optional<double> from, to; ///< window [T0, T1], s; default the second half of the run
+  double void_porosity = 0.8;     ///< bubbles: cells above it are dilute (analysis/bubbles.hpp)
   /// The run's directory when the caller holds its lock (a run with output.analyse); nullptr:
   /// analyse locks it (output/output_directory.hpp) and refuses while another process writes.
   const OutputDirectory* directory = nullptr;
