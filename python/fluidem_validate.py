@@ -8,7 +8,7 @@ Called by `fluidem validate [--quick]` (docs/validation/README.md says how to re
 
 Each run is `fluidem run CASE --set ...` into WORK/<run>, then `fluidem analyse` (and `fluidem
 plot` for the pictures); each compared quantity is read from the run's outputs (the
-summary.csv rows of `fluidem analyse`, series.csv, fields.h5) and set beside the published
+summary.csv rows and tables of `fluidem analyse`, series.csv) and set beside the published
 value with the criterion it is judged by. The report is a Markdown file with one table and the
 pictures copied beside it. Full runs (the default) write docs/validation/README.md of the source
 tree; `--quick` runs short versions (ctest label `regression`): their numbers are not comparable
@@ -176,37 +176,30 @@ class Outputs:
         k = min(range(len(s[key])), key=lambda i: abs(s[key][i] - at))
         return s[column][k]
 
-    def bubble_fraction(self, run, threshold=0.8):
-        """Mean over the frames of the analysis window of the fraction of the gas cells below
-        the bed height (series.csv `bed_height`, interpolated to the frame) whose porosity
-        exceeds `threshold`: 0 for a bed without bubbles. The porosity is the one the gas
-        solver uses (in 2-D the 3-D porosity of [Hoomans96 eq. 49])."""
-        import h5py
-        import numpy as np
+    def bubble_fraction(self, run):
+        """Mean over the frames of the analysis window of the bubbles' share of the bed
+        (`fluidem analyse`, docs/analysis.md "Bubbles": connected regions of porosity > 0.8
+        enclosed by the bed; the freeboard and the dilute surface of an expanded bed are not
+        bubbles): 0 for a bed without bubbles."""
+        return self.summary(run, "bubble_fraction_mean")
 
-        t0 = self.summary(run, "window_start")
-        t1 = self.summary(run, "window_end")
-        s = self.series(run)
-        with h5py.File(os.path.join(self.dir(run), "fields.h5"), "r") as f:
-            times = f["/fields/time"][:]
-            por = f["/fields/porosity"]
-            lo = f["/grid/lo"][:]
-            dz = f["/grid/spacing"][:][2]
-            nz = por.shape[1]
-            zc = lo[2] + (np.arange(nz) + 0.5) * dz
-            fractions = []
-            for k, t in enumerate(times):
-                if t < t0 - 1e-12 or t > t1 + 1e-12:
-                    continue
-                h = np.interp(t, s["time"], s["bed_height"])
-                below = zc < lo[2] + h
-                if not below.any():
-                    continue
-                eps = por[k][below]
-                fractions.append(float(np.mean(eps > threshold)))
-        if not fractions:
-            raise ValueError(f"{run}: no fields.h5 frame in the window [{t0}, {t1}] s")
-        return sum(fractions) / len(fractions)
+    def jet_start(self, run):
+        """Start of the pulsed inflow region of the run's gas bottom boundary, s."""
+        import tomllib
+
+        with open(os.path.join(self.dir(run), "case.resolved.toml"), "rb") as f:
+            case = tomllib.load(f)
+        regions = case["gas"]["boundary"]["bottom"].get("region", [])
+        starts = [r["start"] for r in regions if r.get("mode") == "pulse"]
+        if not starts:
+            raise ValueError(f"{run}: no pulsed inflow region at the bottom boundary")
+        return starts[0]
+
+    def bubble_diameter_after(self, run, after):
+        """Equivalent diameter of the largest bubble (analysis/bubble_frames.csv) in the frame
+        nearest to `after` seconds after the jet starts, m."""
+        return self.csv_at(run, os.path.join("analysis", "bubble_frames.csv"), "time",
+                           self.jet_start(run) + after, "largest_diameter")
 
 
 def ratio_text(a, b):
@@ -246,8 +239,7 @@ RUNS = [
     Run("spouted_2.6", "chang08/spouted_2.6.toml", quick=["simulation.end_time=0.05"],
         analyse=["--from", "0.2", "--segment", "0.4"]),
     Run("single_bubble_quick", "deen07/single_bubble_quick.toml",
-        quick=["simulation.end_time=0.05"], analyse=["--from", "0.02"],
-        post=["deen07/bubble_size.py"]),
+        quick=["simulation.end_time=0.05"], analyse=["--from", "0.02"]),
     Run("velocity_ideal_quick", "deen07/velocity_ideal_quick.toml",
         quick=["simulation.end_time=0.05"], analyse=["--from", "0.5"]),
     Run("velocity_nonideal_quick", "deen07/velocity_nonideal_quick.toml",
@@ -259,8 +251,7 @@ RUNS += [
     Run("validation_40k", "hoomans96/validation_40k.toml", analyse=["--from", "0.5", "--to", "0.7"],
         long=True),
     Run("spouted_loop", "chang08/spouted_loop.toml", post=["chang08/loop_umf.py"], long=True),
-    Run("single_bubble", "deen07/single_bubble.toml", analyse=["--from", "0.6"],
-        post=["deen07/bubble_size.py"], long=True),
+    Run("single_bubble", "deen07/single_bubble.toml", analyse=["--from", "0.6"], long=True),
     Run("velocity_ideal", "deen07/velocity_ideal.toml", analyse=["--from", "1.0"], long=True),
     Run("velocity_nonideal", "deen07/velocity_nonideal.toml", analyse=["--from", "1.0"],
         long=True),
@@ -367,8 +358,7 @@ VALUES = {  # id: (the runs it needs, value(outputs) -> float)
         lambda o: pressure_drop_before_jet(o, "single_bubble_quick", 0.005, 0.02)),
     "single_bubble_quick.bubble_diameter": (
         ["single_bubble_quick"],
-        lambda o: o.csv_at("single_bubble_quick", "bubble.csv", "after_injection", 0.1,
-                           "equivalent_diameter")),
+        lambda o: o.bubble_diameter_after("single_bubble_quick", 0.1)),
     "velocity_ideal_quick.kurtosis": (["velocity_ideal_quick"],
                                       lambda o: kurtosis_farther(o, "velocity_ideal_quick")),
     "velocity_nonideal_quick.kurtosis": (["velocity_nonideal_quick"],
@@ -391,8 +381,7 @@ VALUES = {  # id: (the runs it needs, value(outputs) -> float)
         ["single_bubble"], lambda o: pressure_drop_before_jet(o, "single_bubble", 0.5, 0.6)),
     "single_bubble.bubble_diameter": (
         ["single_bubble"],
-        lambda o: o.csv_at("single_bubble", "bubble.csv", "after_injection", 0.1,
-                           "equivalent_diameter")),
+        lambda o: o.bubble_diameter_after("single_bubble", 0.1)),
     "velocity_ideal.kurtosis": (["velocity_ideal"],
                                 lambda o: kurtosis_farthest(o, "velocity_ideal")),
     "velocity_nonideal.kurtosis": (["velocity_nonideal"],
