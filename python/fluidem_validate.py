@@ -43,6 +43,14 @@ holds:
     tolerance, bound, lower, upper   numbers: the kind's parameters, exactly these
     text       string    the report's criterion column: "within 0.020 (twice the published
                          spread)"
+    [quantity.expect]    what the runs are expected to give: the gate (below)
+    status     string    "agrees" (the full run meets the criterion), "disagrees" (it does
+                         not; `note` says why), "no_criterion" (criterion kind "none") or
+                         "not_established" (a full-size case not run at a recorded commit)
+    band       [lo, hi]  "disagrees": the range the full run's value is recorded in
+    quick      [lo, hi]  the range of the quick variant's value (--quick), recorded from a run
+                         of that variant: a regression band, wide enough for the round-off
+                         changes a chaotic bed amplifies in its short run (about 20%)
   [[not_run]]            a seed case the report lists but cannot run, with the reason
     case, source, quantity, published, reason   strings
     value, unit          the published number(s) and unit(s) (optional; a list each when the
@@ -53,9 +61,16 @@ wrong type, an unknown criterion kind, an id that VALUES does not know, an id of
 [[quantity]], or a file that cannot be read stops the script with exit status 2 and a message
 naming the file and the key.
 
-Exit status: 0 when every run completed and every quantity was extracted (whether or not it
-agrees: disagreement is a result, reported with its reason); 1 when a run failed or a quantity
-could not be computed; 2 for bad arguments or a malformed reference.toml.
+The gate: a full run fails the report when a quantity expected to agree does not, when a
+disagreement's value leaves its band, or when it starts to agree (update the reference). A
+quick run (CI, ctest label regression) fails when a quick value leaves its quick band; the runs
+marked gate_full (seconds in full) run in full in quick mode too and are judged as in a full
+run, so that CI fails when a published number that agreed stops agreeing.
+
+Exit status: 0 when every run completed, every quantity was extracted and the gate passed
+(disagreement is a result, reported with its reason, when it is the expected one); 1 when a
+run failed, a quantity could not be computed or the gate failed; 2 for bad arguments or a
+malformed reference.toml.
 """
 
 import argparse
@@ -78,8 +93,10 @@ class Run:
     """One `fluidem run` of a shipped case: full and quick overrides (--set key=value)."""
 
     def __init__(self, name, case, full=(), quick=(), analyse=(), plot=True, post=(),
-                 long=False):
+                 long=False, gate_full=False):
         self.name = name
+        # seconds in full: --quick runs it in full, judged against the paper (the gate)
+        self.gate_full = gate_full
         self.long = long  # hours of wall time: run only with --long, never in --quick
         self.post = list(post)  # a script of the case folder run on OUT: [script, args...]
         self.case = case
@@ -107,12 +124,38 @@ class Quantity:
         self.params = ref["criterion"]
         self.criterion = ref["criterion"]["text"]
         self.note = ref.get("note", "")
+        e = ref["expect"]
+        self.status = e["status"]
+        self.band = e.get("band")
+        self.quick_band = e.get("quick")
         self.runs = list(runs)
         self.value = value
 
     def agrees(self, v):
         """True or False by the criterion; None when there is nothing to compare."""
         return CRITERIA[self.kind][1](v, self.reference, self.params)
+
+    def gate(self, v, quick_value):
+        """None when `v` is what the reference expects, else why not. quick_value: v comes
+        from a quick variant (judged by the quick band)."""
+        if quick_value:
+            if self.quick_band is None:
+                return "no quick band recorded ([quantity.expect] quick)"
+            lo, hi = self.quick_band
+            if not lo <= v <= hi:
+                return f"quick value {self.show(v)} outside its recorded band [{lo:g}, {hi:g}]"
+            return None
+        ok = self.agrees(v)
+        if self.status == "agrees" and ok is not True:
+            return f"{self.show(v)} no longer agrees ({self.criterion})"
+        if self.status == "disagrees":
+            if ok is True:
+                return (f"{self.show(v)} now agrees ({self.criterion}): update the reference's "
+                        "expect.status and note")
+            lo, hi = self.band
+            if not lo <= v <= hi:
+                return f"{self.show(v)} outside its recorded band [{lo:g}, {hi:g}]"
+        return None
 
     def show(self, v):
         """fluidem's value as the report shows it: the reference's format, then the unit."""
@@ -183,6 +226,32 @@ class Outputs:
         bubbles): 0 for a bed without bubbles."""
         return self.summary(run, "bubble_fraction_mean")
 
+    def orifice_bubble_frames(self, run, x_orifice, reach):
+        """Share of the frames of the analysis window holding a bubble that stands on the
+        orifice: its lowest cell on the distributor (z_bottom 0) and its centroid within `reach`
+        (m) of the orifice's centre x_orifice (analysis/bubbles.csv)."""
+        t0 = self.summary(run, "window_start")
+        t1 = self.summary(run, "window_end")
+        s = self.series(run, os.path.join("analysis", "bubble_frames.csv"))
+        frames = [t for t in s["time"] if t0 - 1e-12 <= t <= t1 + 1e-12]
+        if not frames:
+            raise ValueError(f"{run}: no frame of bubble_frames.csv in [{t0}, {t1}] s")
+        b = self.series(run, os.path.join("analysis", "bubbles.csv"))
+        on = {t for t, zb, x in zip(b["time"], b["z_bottom"], b["x"])
+              if t0 - 1e-12 <= t <= t1 + 1e-12 and zb <= 1e-12 and abs(x - x_orifice) <= reach}
+        return len(on) / len(frames)
+
+    def collisions_between(self, run, t0, t1):
+        """Hard-sphere collisions in [t0, t1] s: the growth of series.csv n_collisions (the
+        row nearest each end). A run that ends before t1 (a quick variant) counts its whole
+        length."""
+        s = self.series(run)
+        at = lambda t: s["n_collisions"][min(range(len(s["time"])),
+                                              key=lambda i: abs(s["time"][i] - t))]
+        if s["time"][-1] < t1 - 1e-9:
+            t0, t1 = s["time"][0], s["time"][-1]
+        return at(t1) - at(t0)
+
     def jet_start(self, run):
         """Start of the pulsed inflow region of the run's gas bottom boundary, s."""
         import tomllib
@@ -216,20 +285,20 @@ IDEAL = ["species[0].restitution=1.0", "species[0].friction=0.0", "walls.restitu
 
 RUNS = [
     Run("pouring_soft", "hoomans96/pouring_soft.toml",
-        quick=["simulation.end_time=0.3"], analyse=["--from", "0"]),
+        quick=["simulation.end_time=0.3"], analyse=["--from", "0"], gate_full=True),
     Run("pouring_hard", "hoomans96/pouring_hard.toml",
         full=["simulation.end_time=1.0"], quick=["simulation.end_time=0.3"],
-        analyse=["--from", "0"]),
-    Run("tsuji_setup", "hoomans96/tsuji_setup.toml",
-        quick=["simulation.end_time=0.05"], analyse=["--from", "0.3"]),
-    Run("bubble_orifice", "hoomans96/bubble_orifice.toml",
-        quick=["simulation.end_time=0.05"], analyse=["--from", "0.3"]),
-    Run("bubble_orifice_ideal", "hoomans96/bubble_orifice.toml", full=IDEAL,
-        quick=IDEAL + ["simulation.end_time=0.05"], analyse=["--from", "0.3"]),
-    Run("slug_homogeneous", "hoomans96/slug_homogeneous.toml",
-        quick=["simulation.end_time=0.05"], analyse=["--from", "0.5"]),
-    Run("slug_homogeneous_ideal", "hoomans96/slug_homogeneous.toml", full=IDEAL,
-        quick=IDEAL + ["simulation.end_time=0.05"], analyse=["--from", "0.5"]),
+        analyse=["--from", "0"], gate_full=True),
+    Run("tsuji_setup", "hoomans96/tsuji_setup_umf.toml",
+        quick=["simulation.end_time=0.05"], analyse=["--from", "1.2"]),
+    Run("bubble_orifice", "hoomans96/bubble_orifice_umf.toml",
+        quick=["simulation.end_time=0.05"], analyse=["--from", "1.2"]),
+    Run("bubble_orifice_ideal", "hoomans96/bubble_orifice_umf.toml", full=IDEAL,
+        quick=IDEAL + ["simulation.end_time=0.05"], analyse=["--from", "1.2"]),
+    Run("slug_homogeneous", "hoomans96/slug_homogeneous_umf.toml",
+        quick=["simulation.end_time=0.05"], analyse=["--from", "1.5"]),
+    Run("slug_homogeneous_ideal", "hoomans96/slug_homogeneous_umf.toml", full=IDEAL,
+        quick=IDEAL + ["simulation.end_time=0.05"], analyse=["--from", "1.5"]),
     Run("binary_collision_d10", "chang08/binary_collision_d10.toml",
         quick=["simulation.end_time=0.5"], analyse=["--from", "10"]),
     Run("binary_collision_d7_5", "chang08/binary_collision_d7_5.toml",
@@ -239,7 +308,7 @@ RUNS = [
     Run("spouted_2.6", "chang08/spouted_2.6.toml", quick=["simulation.end_time=0.05"],
         analyse=["--from", "0.2", "--segment", "0.4"]),
     Run("single_bubble_quick", "deen07/single_bubble_quick.toml",
-        quick=["simulation.end_time=0.05"], analyse=["--from", "0.02"]),
+        quick=["simulation.end_time=0.05"], analyse=["--from", "0.02"], gate_full=True),
     Run("velocity_ideal_quick", "deen07/velocity_ideal_quick.toml",
         quick=["simulation.end_time=0.05"], analyse=["--from", "0.5"]),
     Run("velocity_nonideal_quick", "deen07/velocity_nonideal_quick.toml",
@@ -326,13 +395,16 @@ VALUES = {  # id: (the runs it needs, value(outputs) -> float)
                                        lambda o: o.bubble_fraction("bubble_orifice")),
     "bubble_orifice_ideal.bubble_fraction": (["bubble_orifice_ideal"],
                                              lambda o: o.bubble_fraction("bubble_orifice_ideal")),
+    # The orifice of the Tsuji bed: x = 70-80 mm; within two cells (20 mm) of its centre.
+    "tsuji_setup.orifice_bubble": (["tsuji_setup"],
+                                   lambda o: o.orifice_bubble_frames("tsuji_setup", 0.075, 0.02)),
+    "bubble_orifice.orifice_bubble": (
+        ["bubble_orifice"], lambda o: o.orifice_bubble_frames("bubble_orifice", 0.075, 0.02)),
     "bubble_orifice.pressure_std_ratio": (
         ["bubble_orifice", "bubble_orifice_ideal"],
         lambda o: ratio_text(math.sqrt(o.summary("bubble_orifice", "pressure_variance_p_20cm")),
                              math.sqrt(o.summary("bubble_orifice_ideal",
                                                  "pressure_variance_p_20cm")))),
-    "bubble_orifice.collisions": (["bubble_orifice"],
-                                  summary_of("bubble_orifice", "collisions_total")),
     "slug_homogeneous.pressure_drop_std_ratio": (
         ["slug_homogeneous", "slug_homogeneous_ideal"],
         lambda o: ratio_text(o.summary("slug_homogeneous", "pressure_drop_std_over_weight"),
@@ -341,9 +413,13 @@ VALUES = {  # id: (the runs it needs, value(outputs) -> float)
     "slug_homogeneous.pressure_drop": (["slug_homogeneous"],
                                        summary_of("slug_homogeneous",
                                                   "pressure_drop_over_weight")),
-    "slug_homogeneous_ideal.collisions": (["slug_homogeneous_ideal"],
-                                          summary_of("slug_homogeneous_ideal",
-                                                     "collisions_total")),
+    # [Hoomans96 §5.3.2]: "during the transient", the 2 s of uniform inflow here
+    # (switched on at 1.0 s in slug_homogeneous_umf.toml)
+    "slug_homogeneous.collisions": (
+        ["slug_homogeneous"], lambda o: o.collisions_between("slug_homogeneous", 1.0, 3.0)),
+    "slug_homogeneous_ideal.collisions": (
+        ["slug_homogeneous_ideal"],
+        lambda o: o.collisions_between("slug_homogeneous_ideal", 1.0, 3.0)),
     # [Chang08]
     "spouted_2.6.pressure_drop": (["spouted_2.6"],
                                   summary_of("spouted_2.6", "pressure_drop_over_weight")),
@@ -472,6 +548,7 @@ QUANTITY_KEYS = {
     "format": (True, _format_spec, "a Python format spec such as \".3f\""),
     "note": (False, _is_text, "a string"),
     "criterion": (True, lambda x: isinstance(x, dict), "a table"),
+    "expect": (True, lambda x: isinstance(x, dict), "a table ([quantity.expect])"),
     # where `fluidem plot OUT1 OUT2 ...` draws the published value: on the curve of
     # analysis/<curve>.csv at the simulated time at_time (fluidem_analysis_plot.py --compare)
     "curve": (False, _is_text, "a string (an analysis CSV without .csv, e.g. \"segregation\")"),
@@ -498,6 +575,28 @@ def _check_keys(entry, keys, where):
                 raise ReferenceError(f"{where}: missing key '{k}'")
         elif not ok(entry[k]):
             raise ReferenceError(f"{where}: key '{k}' must be {what}, not {entry[k]!r}")
+
+
+STATUSES = ("agrees", "disagrees", "no_criterion", "not_established")
+
+
+def _band(x):
+    return isinstance(x, list) and len(x) == 2 and all(map(_is_number, x)) and x[0] <= x[1]
+
+
+def _check_expect(entry, where):
+    e = entry["expect"]
+    where = f"{where}, expect"
+    _check_keys(e, {"status": (True, lambda x: x in STATUSES, "one of " + ", ".join(STATUSES)),
+                    "band": (False, _band, "[lo, hi] with lo <= hi"),
+                    "quick": (False, _band, "[lo, hi] with lo <= hi")}, where)
+    if e["status"] == "disagrees" and "band" not in e:
+        raise ReferenceError(f"{where}: status 'disagrees' needs key 'band' (the range the "
+                             "full run's value is recorded in)")
+    if e["status"] == "disagrees" and not entry.get("note"):
+        raise ReferenceError(f"{where}: status 'disagrees' needs the quantity's 'note' (why)")
+    if (e["status"] == "no_criterion") != (entry["criterion"]["kind"] == "none"):
+        raise ReferenceError(f"{where}: status 'no_criterion' goes with criterion kind 'none'")
 
 
 def _check_criterion(entry, where):
@@ -564,6 +663,7 @@ def load_references(runs, values, cases=None):
                 e.get("id")) else "")
             _check_keys(e, QUANTITY_KEYS, where)
             _check_criterion(e, where)
+            _check_expect(e, where)
             if e["id"] in refs:
                 raise ReferenceError(f"{where}: key 'id': '{e['id']}' also in {refs[e['id']][1]}")
             if e["id"] not in values:
@@ -617,6 +717,8 @@ def main():
     ap.add_argument("--work", help="directory of the runs (default out/validation[-quick])")
     ap.add_argument("--report", help="report file (default docs/validation/README.md of the "
                     "source tree; WORK/README.md with --quick)")
+    ap.add_argument("--cases", help="the case folders (default: cases/ of the source tree; a "
+                    "copy with edited reference.toml files tests the gate)")
     ap.add_argument("--only", action="append", default=[],
                     help="only the runs whose name contains this text (repeatable)")
     ap.add_argument("--threads", type=int, default=0, help="threads per run (default: all)")
@@ -630,6 +732,9 @@ def main():
                     help="keep the runs of WORK that completed with the same command line "
                     "(WORK/<run>.done) instead of running them again")
     a = ap.parse_args()
+    global CASES
+    if a.cases:
+        CASES = os.path.abspath(a.cases)
 
     try:
         all_quantities, not_run = load_references(RUNS, VALUES)
@@ -673,7 +778,8 @@ def main():
         out = outputs.dir(r.name)
         log = os.path.join(work, r.name + ".log")
         cmd = [a.fluidem, "run", os.path.join(CASES, r.case), "--out", out, "--force"]
-        for s in (r.quick if a.quick else r.full):
+        in_full = not a.quick or r.gate_full
+        for s in (r.full if in_full else r.quick):
             cmd += ["--set", s]
         if a.threads > 0:
             cmd += ["--threads", str(a.threads)]
@@ -705,7 +811,7 @@ def main():
                 failed.append(f"{r.name}: fluidem run exited {code} (log {log})")
                 print(f"[{r.name}] FAILED (exit {code}), log {log}", flush=True)
                 continue
-        analyse = [a.fluidem, "analyse", out] + (["--from", "0"] if a.quick else r.analyse)
+        analyse = [a.fluidem, "analyse", out] + (r.analyse if in_full else ["--from", "0"])
         code = run_cmd(analyse, log)
         if code != 0:
             failed.append(f"{r.name}: fluidem analyse exited {code} (log {log})")
@@ -725,6 +831,8 @@ def main():
         print(f"[{r.name}] done ({wall[r.name]:.0f} s of wall time)", flush=True)
 
     rows = []
+    gate_failed = []
+    gate_full = {r.name: r.gate_full for r in runs}
     for q in quantities:
         if any(n in long_left for n in q.runs):
             rows.append((q, None, "not run: a full-size case (hours), run by `fluidem validate "
@@ -745,6 +853,11 @@ def main():
         if not math.isfinite(v):
             failed.append(f"{q.case}: {q.quantity}: not finite ({v})")
         rows.append((q, v, None))
+        in_full = not a.quick or all(gate_full.get(n, False) for n in q.runs)
+        why = q.gate(v, quick_value=not in_full)
+        if why:
+            gate_failed.append(f"{q.case}: {q.quantity}: {why}")
+    failed += [f"gate: {g}" for g in gate_failed]
 
     write_report(report, a.quick, runs, rows, not_run, wall, failed, outputs)
     print(f"report: {report}")
@@ -769,13 +882,22 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs):
       f"{git_commit()}, {cpu_model()}, {os.cpu_count()} cores.")
     w("")
     if quick:
-        w("**Quick mode**: every run is cut short (a few hundredths of a second of bed, analysed from t = 0), so the "
-          "values below are NOT comparable with the papers; this report only shows that every "
-          "case runs and every quantity is extracted. The full report is "
+        w("**Quick mode**: the runs are cut short (a few hundredths of a second of bed, analysed "
+          "from t = 0), so their values are NOT comparable with the papers (n/a (quick)): they "
+          "are checked against the bands recorded for them (a regression gate). The runs that "
+          "take seconds in full (" + ", ".join(r.name for r in runs if r.gate_full) + ") run "
+          "in full and are judged against the papers. The full report is "
           "docs/validation/README.md.")
         w("")
     w("Agreement: **yes** when fluidem's value meets the criterion, **no** when it does not "
       "(the note says why, as far as we know), n/a when the quantity could not be computed.")
+    w("")
+    w("The gate: every quantity's reference.toml entry records what is expected of it "
+      "([quantity.expect]): that it agrees, or that it disagrees, for the reason in its note, "
+      "with its value in a recorded band. The report fails (exit status 1, the failures listed "
+      "at its end) when a value leaves what is expected. CI (`fluidem validate --quick`, ctest "
+      "label regression) runs the same gate: the runs that take seconds in full, judged against "
+      "the papers, and the short variants of the others against the bands recorded for them.")
     w("")
     if not quick:
         agree = sum(1 for q, v, _ in rows if v is not None and q.agrees(v) is True)
@@ -795,7 +917,7 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs):
         else:
             val = q.show(v)
             ok = q.agrees(v)
-            if quick:
+            if quick and not all(r.gate_full for r in runs if r.name in q.runs):
                 agree = "n/a (quick)"
             elif ok is None:
                 agree = "n/a (nothing to compare)"
@@ -812,7 +934,8 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs):
     w("| run | case file | overrides | wall time |")
     w("|---|---|---|---|")
     for r in runs:
-        sets = " ".join(f"`{s}`" for s in (r.quick if quick else r.full)) or "-"
+        sets = " ".join(f"`{s}`" for s in (r.quick if quick and not r.gate_full else r.full))
+        sets = sets or "-"
         wt = f"{wall[r.name]:.0f} s" if r.name in wall else "-"
         w(f"| {r.name} | cases/{r.case} | {sets} | {wt} |")
     w("")
@@ -846,7 +969,7 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs):
             w(" ".join(shown))
             w("")
     if failed:
-        w("## Failures")
+        w("## Failures (runs, quantities not computed, the gate)")
         w("")
         for f in failed:
             w(f"- {f}")

@@ -32,7 +32,8 @@ void analyse_bubbles(const std::filesystem::path& fields_path, const std::filesy
   const std::vector<double>& time = reader->times();
 
   std::ofstream rows = open_out(dir / "bubbles.csv");
-  rows << "time,id,x,y,z,cells,size,equivalent_diameter,rise_velocity,touches_wall\n";
+  rows
+      << "time,id,x,y,z,z_bottom,z_top,cells,size,equivalent_diameter,rise_velocity,touches_wall\n";
   std::ofstream frames = open_out(dir / "bubble_frames.csv");
   frames << "time,bubbles,bubble_fraction,bed_volume,largest_diameter\n";
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -62,8 +63,9 @@ void analyse_bubbles(const std::filesystem::path& fields_path, const std::filesy
                     (time[k] - time[k - 1])
               : nan;
       rows << g(time[k]) << ',' << id[j] << ',' << g(u.centroid[0]) << ',' << g(u.centroid[1])
-           << ',' << g(u.centroid[2]) << ',' << u.cells << ',' << g(u.size) << ','
-           << g(u.equivalent_diameter) << ',' << g(rise) << ',' << (u.touches_wall ? 1 : 0) << '\n';
+           << ',' << g(u.centroid[2]) << ',' << g(u.z_extent[0]) << ',' << g(u.z_extent[1]) << ','
+           << u.cells << ',' << g(u.size) << ',' << g(u.equivalent_diameter) << ',' << g(rise)
+           << ',' << (u.touches_wall ? 1 : 0) << '\n';
       largest = std::max(largest, u.equivalent_diameter);
       if (in_window) {
         ++n_rows;

@@ -14,6 +14,7 @@ int ValidateCommand::run(const char* argv0) const {
   if (long_cases) args.emplace_back("--long");
   if (!work.empty()) args.insert(args.end(), {"--work", work});
   if (!report.empty()) args.insert(args.end(), {"--report", report});
+  if (!cases.empty()) args.insert(args.end(), {"--cases", cases});
   for (const auto& o : only) args.insert(args.end(), {"--only", o});
   if (threads > 0) args.insert(args.end(), {"--threads", std::to_string(threads)});
   return run_python_script(dir / "fluidem_validate.py", args);
@@ -39,6 +40,9 @@ std::unique_ptr<ValidateCommand> add_validate_command(CLI::App& app) {
   c->command->add_option("--work", c->work,
                          "Folder of the runs (default out/validation or out/validation-quick)");
   c->command->add_option("--report", c->report, "Report file (Markdown)");
+  c->command->add_option("--cases", c->cases,
+                         "The case folders and their reference.toml files (default: cases/ of "
+                         "the source tree)");
   c->command->add_option("--only", c->only, "Only the runs whose name contains this text");
   c->command->add_option("--threads,-t", c->threads, "OpenMP threads per run")
       ->check(CLI::PositiveNumber);

@@ -16,7 +16,7 @@ struct ValidateCommand {
   bool reuse = false;
   bool report_only = false;
   bool long_cases = false;
-  std::string work, report;
+  std::string work, report, cases;
   std::vector<std::string> only;
   int threads = 0;
   bool selected() const { return command->parsed(); }

@@ -86,22 +86,27 @@ TEST(AnalyseBubbles, RisingVoidIsOneBubbleAtItsRiseVelocity) {
   std::ifstream in(dir.path / "bubbles.csv");
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "time,id,x,y,z,cells,size,equivalent_diameter,rise_velocity,touches_wall");
+  EXPECT_EQ(line, "time,id,x,y,z,z_bottom,z_top,cells,size,equivalent_diameter,rise_velocity,"
+                  "touches_wall");
   int rows = 0;
   while (std::getline(in, line)) {
     std::istringstream s(line);
-    std::string time, id, x, y, z, cells, size, d, rise;
+    std::string time, id, x, y, z, z_bottom, z_top, cells, size, d, rise;
     std::getline(s, time, ',');
     std::getline(s, id, ',');
     std::getline(s, x, ',');
     std::getline(s, y, ',');
     std::getline(s, z, ',');
+    std::getline(s, z_bottom, ',');
+    std::getline(s, z_top, ',');
     std::getline(s, cells, ',');
     std::getline(s, size, ',');
     std::getline(s, d, ',');
     std::getline(s, rise, ',');
     EXPECT_EQ(id, "0");
     EXPECT_EQ(cells, std::to_string(painted));
+    // The painted disc spans 3 cells below and above its centre cell: 7 cells of height.
+    EXPECT_NEAR(std::stod(z_top) - std::stod(z_bottom), 7 * kH, 1e-9);
     if (rows == 0)
       EXPECT_EQ(rise, "nan");
     else
