@@ -128,6 +128,7 @@ class Quantity:
         self.status = e["status"]
         self.band = e.get("band")
         self.quick_band = e.get("quick")
+        self.labels = ref.get("labels")
         self.runs = list(runs)
         self.value = value
 
@@ -158,7 +159,10 @@ class Quantity:
         return None
 
     def show(self, v):
-        """fluidem's value as the report shows it: the reference's format, then the unit."""
+        """fluidem's value as the report shows it: the reference's format, then the unit (a
+        category: its label)."""
+        if self.labels is not None and float(v).is_integer() and 0 <= v < len(self.labels):
+            return self.labels[int(v)]
         return format(v, self.format) + (" " + self.unit if self.unit else "")
 
 
@@ -252,6 +256,43 @@ class Outputs:
             t0, t1 = s["time"][0], s["time"][-1]
         return at(t1) - at(t0)
 
+    def spout_regime(self, run, t0, x_axis, half_width=0.01, dz=0.02):
+        """The regime of a spouted bed from its particles (particles.h5) over [t0, end] [Chang08
+        §3.3]: 0 fixed, when the mean particle speed is below 0.01 m/s (no circulation); 2
+        through-spout, when the particles within half_width of the nozzle's axis x_axis move up
+        on average in every dz-high layer below the bed surface (bed height: twice the solids'
+        centre-of-mass height); 1 internal circulation otherwise (particles move, but the axis
+        does not carry them up through the whole bed: a cavity, a raceway). A run that ends
+        before t0 (a quick variant) is judged over its last half."""
+        import h5py
+        import numpy as np
+
+        with h5py.File(os.path.join(self.dir(run), "particles.h5"), "r") as f:
+            times = f["/particles/all/position/time"][:]
+            pos = f["/particles/all/position/value"]
+            vel = f["/particles/all/velocity/value"]
+            if times[-1] < t0:
+                t0 = 0.5 * (times[0] + times[-1])
+            frames = [k for k in range(len(times)) if times[k] >= t0 - 1e-12]
+            speed, height = [], []
+            layers = {}  # layer -> [sum vz, count]
+            for k in frames:
+                x, v = pos[k], vel[k]
+                speed.append(float(np.linalg.norm(v, axis=1).mean()))
+                height.append(2.0 * float(x[:, 2].mean()))
+                on_axis = np.abs(x[:, 0] - x_axis) < half_width
+                for layer, vz in zip((x[on_axis, 2] // dz).astype(int), v[on_axis, 2]):
+                    e = layers.setdefault(int(layer), [0.0, 0])
+                    e[0] += float(vz)
+                    e[1] += 1
+        if not frames:
+            raise ValueError(f"{run}: no particle frame after {t0} s")
+        if sum(speed) / len(speed) < 0.01:
+            return 0
+        h = sum(height) / len(height)
+        below = [e[0] / e[1] for layer, e in layers.items() if (layer + 1) * dz <= h and e[1]]
+        return 2 if below and min(below) > 0.0 else 1
+
     def jet_start(self, run):
         """Start of the pulsed inflow region of the run's gas bottom boundary, s."""
         import tomllib
@@ -305,8 +346,12 @@ RUNS = [
         quick=["simulation.end_time=0.5"], analyse=["--from", "10"]),
     Run("binary_collision_d5", "chang08/binary_collision_d5.toml",
         quick=["simulation.end_time=0.5"], analyse=["--from", "10"]),
+    Run("spouted_1.6", "chang08/spouted_1.6.toml", quick=["simulation.end_time=0.05"],
+        analyse=["--from", "1.0"]),
     Run("spouted_2.6", "chang08/spouted_2.6.toml", quick=["simulation.end_time=0.05"],
         analyse=["--from", "0.2", "--segment", "0.4"]),
+    Run("spouted_4.0", "chang08/spouted_4.0.toml", quick=["simulation.end_time=0.05"],
+        analyse=["--from", "1.0"]),
     Run("single_bubble_quick", "deen07/single_bubble_quick.toml",
         quick=["simulation.end_time=0.05"], analyse=["--from", "0.02"], gate_full=True),
     Run("velocity_ideal_quick", "deen07/velocity_ideal_quick.toml",
@@ -421,8 +466,19 @@ VALUES = {  # id: (the runs it needs, value(outputs) -> float)
         ["slug_homogeneous_ideal"],
         lambda o: o.collisions_between("slug_homogeneous_ideal", 1.0, 3.0)),
     # [Chang08]
+    # The regimes at 1.6, 2.6 and 4.0 m/s [Chang08 §3.3]: the nozzle's axis is x = 75 mm; the
+    # particles over the second half of the 2 s runs.
+    "spouted_1.6.regime": (["spouted_1.6"], lambda o: o.spout_regime("spouted_1.6", 1.0, 0.075)),
+    "spouted_1.6.pressure_steady": (
+        ["spouted_1.6"],
+        lambda o: o.summary("spouted_1.6", "pressure_drop_std")
+        / o.summary("spouted_1.6", "pressure_drop_mean")),
+    "spouted_2.6.regime": (["spouted_2.6"], lambda o: o.spout_regime("spouted_2.6", 1.0, 0.075)),
     "spouted_2.6.pressure_drop": (["spouted_2.6"],
                                   summary_of("spouted_2.6", "pressure_drop_over_weight")),
+    "spouted_4.0.regime": (["spouted_4.0"], lambda o: o.spout_regime("spouted_4.0", 1.0, 0.075)),
+    "spouted_4.0.pressure_drop": (["spouted_4.0"],
+                                  summary_of("spouted_4.0", "pressure_drop_over_weight")),
     "spouted_2.6.dominant_frequency": (["spouted_2.6"],
                                        summary_of("spouted_2.6", "dominant_frequency_p_200mm")),
     # [Deen07], reduced cases
@@ -549,6 +605,8 @@ QUANTITY_KEYS = {
     "note": (False, _is_text, "a string"),
     "criterion": (True, lambda x: isinstance(x, dict), "a table"),
     "expect": (True, lambda x: isinstance(x, dict), "a table ([quantity.expect])"),
+    # a category, not a number: fluidem's value is an index into labels, shown as the label
+    "labels": (False, lambda x: _texts(x) and isinstance(x, list), "a list of strings"),
     # where `fluidem plot OUT1 OUT2 ...` draws the published value: on the curve of
     # analysis/<curve>.csv at the simulated time at_time (fluidem_analysis_plot.py --compare)
     "curve": (False, _is_text, "a string (an analysis CSV without .csv, e.g. \"segregation\")"),
