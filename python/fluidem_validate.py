@@ -922,7 +922,7 @@ def main():
             gate_failed.append(f"{q.case}: {q.quantity}: {why}")
     failed += [f"gate: {g}" for g in gate_failed]
 
-    write_report(report, a.quick, runs, rows, not_run, wall, failed, outputs)
+    write_report(report, a.quick, runs, rows, not_run, wall, failed, outputs, a.threads)
     print(f"report: {report}")
     if failed:
         print("failures:\n  " + "\n  ".join(failed), file=sys.stderr)
@@ -930,7 +930,7 @@ def main():
     return 0
 
 
-def write_report(path, quick, runs, rows, not_run, wall, failed, outputs):
+def write_report(path, quick, runs, rows, not_run, wall, failed, outputs, threads=0):
     pics = os.path.join(os.path.dirname(path), "pictures")
     os.makedirs(pics, exist_ok=True)
     for old in os.listdir(pics):  # the pictures of an earlier report
@@ -969,8 +969,9 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs):
         w(f"**{len(rows)} quantities: {agree} agree, {disagree} do not, {other} without a "
           f"criterion, not computed or not run (the full-size cases need `--long`: hours each); "
           f"{len(not_run)} seed case cannot be set up (last row, with the reason).** Where a seed lost the data a case needs, the case file says what was "
-          "chosen; the notes say where that matters. Wall times below are of one thread on a "
-          "shared two-core machine (not benchmarks).")
+          "chosen; the notes say where that matters. Wall times below are of "
+          + (f"{threads} OpenMP thread(s) per run" if threads > 0 else "the machine's cores per run")
+          + " on a shared two-core machine, the runs one after the other (not benchmarks).")
         w("")
     w("| case | paper | quantity | published | fluidem | criterion | agreement | note |")
     w("|---|---|---|---|---|---|---|---|")
