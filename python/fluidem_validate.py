@@ -34,6 +34,8 @@ holds:
                          a fraction or a count)
     format     string    Python format spec of fluidem's value: ".3f", ".2e", ".3g"
     note       string    why, where it matters (optional)
+    tried      string    expect.status "disagrees": what was tried to find the cause and what
+                         that rules out (the report's section on the disagreements)
     [quantity.criterion]
     kind       string    within_abs  |v - value| <= tolerance
                          within_rel  |v / value - 1| <= tolerance
@@ -129,6 +131,7 @@ class Quantity:
         self.band = e.get("band")
         self.quick_band = e.get("quick")
         self.labels = ref.get("labels")
+        self.tried = ref.get("tried", "")
         self.runs = list(runs)
         self.value = value
 
@@ -608,6 +611,8 @@ QUANTITY_KEYS = {
     "unit": (True, _is_text, "a string (\"\" for none)"),
     "format": (True, _format_spec, "a Python format spec such as \".3f\""),
     "note": (False, _is_text, "a string"),
+    # expect.status "disagrees": what was tried to find the cause, and what that rules out
+    "tried": (False, _is_text, "a string"),
     "criterion": (True, lambda x: isinstance(x, dict), "a table"),
     "expect": (True, lambda x: isinstance(x, dict), "a table ([quantity.expect])"),
     # a category, not a number: fluidem's value is an index into labels, shown as the label
@@ -658,6 +663,9 @@ def _check_expect(entry, where):
                              "full run's value is recorded in)")
     if e["status"] == "disagrees" and not entry.get("note"):
         raise ReferenceError(f"{where}: status 'disagrees' needs the quantity's 'note' (why)")
+    if e["status"] == "disagrees" and not entry.get("tried"):
+        raise ReferenceError(f"{where}: status 'disagrees' needs the quantity's 'tried' (what was "
+                             "tried to find the cause, and what it rules out)")
     if (e["status"] == "no_criterion") != (entry["criterion"]["kind"] == "none"):
         raise ReferenceError(f"{where}: status 'no_criterion' goes with criterion kind 'none'")
 
@@ -993,6 +1001,15 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs, thread
         w(f"| {n.case} | {n.paper} | {n.quantity} | {n.published} | not run | - | n/a | "
           f"{n.reason} |")
     w("")
+    disagreeing = [(q, v) for q, v, _ in rows if v is not None and q.agrees(v) is False]
+    if disagreeing and not quick:
+        w("## Disagreements: why, what was tried, what it rules out")
+        w("")
+        for q, v in disagreeing:
+            w(f"- **{q.case}, {q.quantity}**: {q.show(v)} against {q.published} ({q.paper}).")
+            w(f"  - Why, as far as we know: {q.note}")
+            w(f"  - Tried: {q.tried}")
+        w("")
     w("## Runs")
     w("")
     w("| run | case file | overrides | wall time |")
