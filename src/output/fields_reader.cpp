@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <filesystem>
 #include <stdexcept>
 
 namespace fluidem {
@@ -46,22 +45,7 @@ struct FieldsReader::Impl {
 FieldsReader::FieldsReader(const std::string& path) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.path = path;
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    throw std::runtime_error("'" + path + "': no such file (the gas-field frames of a run)");
-  const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
-  const std::string detail = hdf5::hdf5_error_detail();
-  if (is_hdf5 <= 0)
-    throw std::runtime_error("'" + path + "' is not a readable HDF5 file" +
-                             (detail.empty() ? std::string() : " (" + detail + ")"));
-  Handle fapl{check_id(H5Pcreate(H5P_FILE_ACCESS), path, "create property list"), H5Pclose};
-#if H5_VERS_MAJOR > 1 || (H5_VERS_MAJOR == 1 && H5_VERS_MINOR >= 13) ||                            \
-    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 12 && H5_VERS_RELEASE >= 1) ||                         \
-    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7)
-  check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
-#endif
-  m.file = {check_id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file"),
-            H5Fclose};
+  m.file = hdf5::open_for_reading(path, "the gas-field frames of a run");
   for (const char* link :
        {"/grid", "/grid/cells", "/grid/lo", "/grid/spacing", "/fields", "/fields/time"})
     if (!m.exists(link)) m.bad(std::string("no ") + link);

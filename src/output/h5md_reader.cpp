@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -65,22 +64,7 @@ struct H5mdReader::Impl {
 H5mdReader::H5mdReader(const std::string& path) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.path = path;
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    throw std::runtime_error("'" + path + "': no such file (the particle frames of a run)");
-  const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
-  const std::string detail = hdf5::hdf5_error_detail();
-  if (is_hdf5 <= 0)
-    throw std::runtime_error("'" + path + "' is not a readable HDF5 file" +
-                             (detail.empty() ? std::string() : " (" + detail + ")"));
-  Handle fapl{check_id(H5Pcreate(H5P_FILE_ACCESS), path, "create property list"), H5Pclose};
-#if H5_VERS_MAJOR > 1 || (H5_VERS_MAJOR == 1 && H5_VERS_MINOR >= 13) ||                            \
-    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 12 && H5_VERS_RELEASE >= 1) ||                         \
-    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7)
-  check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
-#endif
-  m.file = {check_id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file"),
-            H5Fclose};
+  m.file = hdf5::open_for_reading(path, "the particle frames of a run");
   const hid_t f = m.file.get();
   const auto exists = [&](const char* link) {
     const htri_t e = H5Lexists(f, link, H5P_DEFAULT);

@@ -243,6 +243,27 @@ inline Handle open_existing(const std::string& path, const std::string& who, boo
           H5Fclose};
 }
 
+// Open an existing HDF5 file read-only, without file locking (a live run may hold it open for
+// writing; it flushes after every frame). std::runtime_error naming `path` when it does not
+// exist (`what`: what such a file holds, for the message) or is not a readable HDF5 file.
+inline Handle open_for_reading(const std::string& path, const std::string& what) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw std::runtime_error("'" + path + "': no such file (" + what + ")");
+  const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
+  const std::string detail = hdf5_error_detail();
+  if (is_hdf5 <= 0)
+    throw std::runtime_error("'" + path + "' is not a readable HDF5 file" +
+                             (detail.empty() ? std::string() : " (" + detail + ")"));
+  Handle fapl{check_id(H5Pcreate(H5P_FILE_ACCESS), path, "create property list"), H5Pclose};
+#if H5_VERS_MAJOR > 1 || (H5_VERS_MAJOR == 1 && H5_VERS_MINOR >= 13) ||                            \
+    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 12 && H5_VERS_RELEASE >= 1) ||                         \
+    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7)
+  check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
+#endif
+  return {check_id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file"), H5Fclose};
+}
+
 // Create `path` for writing: an existing regular file there is replaced, anything else (a link,
 // dangling or not, a directory) refused; the file is then created exclusively (H5F_ACC_EXCL:
 // open(2) with O_EXCL, which never follows a link).
