@@ -332,7 +332,7 @@ RUNS = [
         quick=["simulation.end_time=0.3"], analyse=["--from", "0"], gate_full=True),
     Run("pouring_hard", "hoomans96/pouring_hard.toml",
         full=["simulation.end_time=1.0"], quick=["simulation.end_time=0.3"],
-        analyse=["--from", "0"], gate_full=True),
+        analyse=["--from", "0"]),
     Run("tsuji_setup", "hoomans96/tsuji_setup_umf.toml",
         quick=["simulation.end_time=0.05"], analyse=["--from", "1.2"]),
     Run("bubble_orifice", "hoomans96/bubble_orifice_umf.toml",

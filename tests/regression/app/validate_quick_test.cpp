@@ -38,7 +38,7 @@ TEST(ValidateQuick, EveryCaseRunsAndEveryQuantityIsExtracted) {
   }
   ASSERT_GE(quantities, 10) << list.out;
 
-  const Result r = fluidem({"validate", "--quick", "--work", "work", "--threads", "2"}, dir.path);
+  const Result r = fluidem({"validate", "--quick", "--work", "work", "--threads", "1"}, dir.path);
   ASSERT_EQ(r.code, 0) << r.out << r.err;
   const std::string report = read_file(dir.path / "work" / "README.md");
   EXPECT_TRUE(contains(report, "QUICK RUNS")) << report;
