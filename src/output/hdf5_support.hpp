@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -218,6 +219,27 @@ inline void append_frame(hid_t dset, int rank, const hsize_t* inner, hsize_t fra
 
 // ---- Resume: reopen an existing file, check it, drop frames written after a checkpoint. ----
 
+// Nothing when `path` is a readable HDF5 file, else what to add to the caller's message: " (the
+// library's reason)", or "" when it gives none.
+inline std::optional<std::string> not_hdf5(const std::string& path) {
+  const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
+  const std::string detail = hdf5_error_detail();
+  if (is_hdf5 > 0) return std::nullopt;
+  return detail.empty() ? std::string() : " (" + detail + ")";
+}
+
+// Open `path` (H5F_ACC_RDONLY or H5F_ACC_RDWR) without file locking: the writers create their
+// files so, and a reader must open a file a live run holds for writing.
+inline Handle open_unlocked(const std::string& path, unsigned flags, const char* op) {
+  Handle fapl{check_id(H5Pcreate(H5P_FILE_ACCESS), path, "create property list"), H5Pclose};
+#if H5_VERS_MAJOR > 1 || (H5_VERS_MAJOR == 1 && H5_VERS_MINOR >= 13) ||                            \
+    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 12 && H5_VERS_RELEASE >= 1) ||                         \
+    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7)
+  check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
+#endif
+  return {check_id(H5Fopen(path.c_str(), flags, fapl.get()), path, op), H5Fclose};
+}
+
 // Open the existing file `path` without file locking (as the writers create theirs), read-write
 // or read-only. No file, a symbolic link, or not an HDF5 file: std::runtime_error starting with
 // `who`.
@@ -227,20 +249,10 @@ inline Handle open_existing(const std::string& path, const std::string& who, boo
     throw std::runtime_error(who + ": cannot resume, the file does not exist");
   if (kind != safe_file::Kind::regular)
     throw std::runtime_error(who + ": cannot resume, it is " + safe_file::to_string(kind));
-  const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
-  const std::string detail = hdf5_error_detail();
-  if (is_hdf5 <= 0)
-    throw std::runtime_error(who + ": cannot resume, not a readable HDF5 file" +
-                             (detail.empty() ? std::string() : " (" + detail + ")"));
-  Handle fapl{check_id(H5Pcreate(H5P_FILE_ACCESS), path, "create property list"), H5Pclose};
-#if H5_VERS_MAJOR > 1 || (H5_VERS_MAJOR == 1 && H5_VERS_MINOR >= 13) ||                            \
-    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 12 && H5_VERS_RELEASE >= 1) ||                         \
-    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7)
-  check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
-#endif
-  return {check_id(H5Fopen(path.c_str(), write ? H5F_ACC_RDWR : H5F_ACC_RDONLY, fapl.get()), path,
-                   write ? "open file for resume" : "open file"),
-          H5Fclose};
+  if (const auto why = not_hdf5(path))
+    throw std::runtime_error(who + ": cannot resume, not a readable HDF5 file" + *why);
+  return open_unlocked(path, write ? H5F_ACC_RDWR : H5F_ACC_RDONLY,
+                       write ? "open file for resume" : "open file");
 }
 
 // Open an existing HDF5 file read-only, without file locking (a live run may hold it open for
@@ -250,18 +262,9 @@ inline Handle open_for_reading(const std::string& path, const std::string& what)
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))
     throw std::runtime_error("'" + path + "': no such file (" + what + ")");
-  const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
-  const std::string detail = hdf5_error_detail();
-  if (is_hdf5 <= 0)
-    throw std::runtime_error("'" + path + "' is not a readable HDF5 file" +
-                             (detail.empty() ? std::string() : " (" + detail + ")"));
-  Handle fapl{check_id(H5Pcreate(H5P_FILE_ACCESS), path, "create property list"), H5Pclose};
-#if H5_VERS_MAJOR > 1 || (H5_VERS_MAJOR == 1 && H5_VERS_MINOR >= 13) ||                            \
-    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 12 && H5_VERS_RELEASE >= 1) ||                         \
-    (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7)
-  check(H5Pset_file_locking(fapl.get(), false, true), path, "disable file locking");
-#endif
-  return {check_id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), path, "open file"), H5Fclose};
+  if (const auto why = not_hdf5(path))
+    throw std::runtime_error("'" + path + "' is not a readable HDF5 file" + *why);
+  return open_unlocked(path, H5F_ACC_RDONLY, "open file");
 }
 
 // Create `path` for writing: an existing regular file there is replaced, anything else (a link,
