@@ -53,10 +53,16 @@ void CollisionStatistics::end(const Ongoing& c, double time) {
   const double duration = time - c.begin;
   for (Acc* acc : {&interval_, &total_}) {
     ++acc->pairs_ended;
+    if (c.multiple) ++acc->pairs_multiple;
     acc->sum_extent += extent;
     acc->max_extent = std::max(acc->max_extent, extent);
     acc->sum_duration += duration;
   }
+  for (std::size_t k = 0; k < s_.regions.size(); ++k)
+    if (inside(s_.regions[k], c.point)) {
+      ++region_[k].ended;
+      if (c.multiple) ++region_[k].multiple;
+    }
   const double w = s_.histogram_max / static_cast<double>(hist_.size() - 1);
   const double k = std::floor(extent / w);
   const std::size_t bin =
@@ -175,18 +181,57 @@ void CollisionStatistics::merge(double time, const std::function<Vec3(std::size_
   auto key_less = [](const Ongoing& x, const Ongoing& y) {
     return x.a != y.a ? x.a < y.a : x.b < y.b;
   };
+  const auto key_of = [&](const Entry& e) -> std::array<std::int64_t, 2> {
+    if (!packed) return ab_[e.k];
+    return {static_cast<std::int64_t>((e.key >> bits_b) + static_cast<std::uint64_t>(lo[0])),
+            static_cast<std::int64_t>((e.key & mask_b) + static_cast<std::uint64_t>(lo[1]))};
+  };
+  // Contacts per particle this step (a duplicate key counted once, capped at 2): a pair whose
+  // particle has more than one is multiple from this step on. Ids within a span of a few times
+  // the contacts are counted in a dense array (degree_, all zeros between steps), else in a
+  // sorted list of the step's ids.
+  std::int64_t id_lo = std::numeric_limits<std::int64_t>::max(), id_hi = -1;
+  for (const auto& [a, b] : ab_)
+    for (const std::int64_t id : {a, b})
+      if (id >= 0) id_lo = std::min(id_lo, id), id_hi = std::max(id_hi, id);
+  const bool dense = id_hi >= 0 && static_cast<std::uint64_t>(id_hi - id_lo) <
+                                       std::max<std::uint64_t>(8 * n, 1u << 20);
+  ids_.clear();
+  if (dense && degree_.size() < static_cast<std::size_t>(id_hi - id_lo) + 1)
+    degree_.resize(static_cast<std::size_t>(id_hi - id_lo) + 1, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k > 0 && key_of(entries_[k]) == key_of(entries_[k - 1])) continue;
+    const auto [a, b] = key_of(entries_[k]);
+    for (const std::int64_t id : {a, b}) {
+      if (id < 0) continue;
+      if (!dense) {
+        ids_.push_back(id);
+        continue;
+      }
+      std::uint8_t& d = degree_[static_cast<std::size_t>(id - id_lo)];
+      d = static_cast<std::uint8_t>(std::min(d + 1, 2));
+    }
+  }
+  if (!dense) std::sort(ids_.begin(), ids_.end());
+  const auto touches_another = [&](std::int64_t id) {
+    if (id < 0) return false;
+    if (dense) return degree_[static_cast<std::size_t>(id - id_lo)] > 1;
+    const auto [first, last] = std::equal_range(ids_.begin(), ids_.end(), id);
+    return last - first > 1;
+  };
   // Merge with the ongoing contacts (sorted): new keys begin, missing keys end.
   merged_.clear();
   merged_.reserve(n);
   std::size_t io = 0;
   for (const Entry& e : entries_) {
-    const std::int64_t a =
-        packed ? static_cast<std::int64_t>((e.key >> bits_b) + static_cast<std::uint64_t>(lo[0]))
-               : ab_[e.k][0];
-    const std::int64_t b =
-        packed ? static_cast<std::int64_t>((e.key & mask_b) + static_cast<std::uint64_t>(lo[1]))
-               : ab_[e.k][1];
-    const Ongoing c{a, b, time, e.overlap, e.diameter};
+    const auto [a, b] = key_of(e);
+    Ongoing c{a,
+              b,
+              time,
+              e.overlap,
+              e.diameter,
+              Vec3{},
+              b >= 0 && (touches_another(a) || touches_another(b))};
     if (!merged_.empty() && merged_.back().a == c.a && merged_.back().b == c.b) {
       merged_.back().max_overlap = std::max(merged_.back().max_overlap, c.max_overlap);
       continue; // a duplicate key (same pair twice in one record): one contact
@@ -195,14 +240,20 @@ void CollisionStatistics::merge(double time, const std::function<Vec3(std::size_
     if (io < ongoing_.size() && !key_less(c, ongoing_[io])) { // continues
       Ongoing o = ongoing_[io++];
       o.max_overlap = std::max(o.max_overlap, c.max_overlap);
+      o.multiple = o.multiple || c.multiple;
       merged_.push_back(o);
     } else { // begins (the contact point only counts in a region)
-      begin(c.b, s_.regions.empty() ? Vec3{} : point(e.k));
+      if (!s_.regions.empty()) c.point = point(e.k);
+      begin(c.b, c.point);
       merged_.push_back(c);
     }
   }
   while (io < ongoing_.size()) end(ongoing_[io++], time);
   std::swap(ongoing_, merged_);
+  if (dense)
+    for (const auto& [a, b] : ab_)
+      for (const std::int64_t id : {a, b})
+        if (id >= 0) degree_[static_cast<std::size_t>(id - id_lo)] = 0;
 }
 
 void CollisionStatistics::add_instant_step(const std::vector<InstantCollision>& collisions,
@@ -223,6 +274,7 @@ CollisionStatistics::Row CollisionStatistics::take_row(double time, std::size_t 
   r.pair_collisions = interval_.pairs_begun;
   r.wall_collisions = interval_.walls_begun;
   r.pair_collisions_ended = interval_.pairs_ended;
+  r.multiple_collisions = interval_.pairs_multiple;
   const double c2 = 2.0 * static_cast<double>(interval_.pairs_begun);
   r.frequency =
       r.length > 0.0 && n_particles > 0 ? c2 / (static_cast<double>(n_particles) * r.length) : kNaN;
@@ -240,6 +292,8 @@ CollisionStatistics::Row CollisionStatistics::take_row(double time, std::size_t 
     const double vol = disc ? kPi * rad * rad : 4.0 / 3.0 * kPi * rad * rad * rad;
     RegionRow rr;
     rr.collisions = a.collisions;
+    rr.ended = a.ended;
+    rr.multiple = a.multiple;
     const double samples = static_cast<double>(a.samples);
     rr.particles = a.samples > 0 ? a.sum_count / samples : kNaN;
     rr.void_fraction = a.samples > 0 ? 1.0 - a.sum_volume / samples / vol : kNaN;
@@ -271,17 +325,18 @@ double CollisionStatistics::mean_duration() const {
 CollisionStatistics::State CollisionStatistics::state() const {
   State s;
   for (const Ongoing& o : ongoing_) {
-    s.keys.insert(s.keys.end(), {o.a, o.b});
-    s.ongoing.insert(s.ongoing.end(), {o.begin, o.max_overlap, o.diameter});
+    s.keys.insert(s.keys.end(), {o.a, o.b, o.multiple ? 1 : 0});
+    s.ongoing.insert(s.ongoing.end(),
+                     {o.begin, o.max_overlap, o.diameter, o.point[0], o.point[1], o.point[2]});
   }
   for (const Acc* a : {&interval_, &total_}) {
-    s.counters.insert(s.counters.end(),
-                      {a->pairs_begun, a->walls_begun, a->pairs_ended, a->walls_ended});
+    s.counters.insert(s.counters.end(), {a->pairs_begun, a->walls_begun, a->pairs_ended,
+                                         a->walls_ended, a->pairs_multiple});
     s.sums.insert(s.sums.end(), {a->sum_extent, a->max_extent, a->sum_duration});
   }
   s.sums.push_back(t0_);
   for (const RegionAcc& r : region_) {
-    s.counters.insert(s.counters.end(), {r.collisions, r.samples});
+    s.counters.insert(s.counters.end(), {r.collisions, r.samples, r.ended, r.multiple});
     s.sums.insert(s.sums.end(), {r.sum_count, r.sum_volume});
   }
   s.histogram = hist_;
@@ -290,21 +345,25 @@ CollisionStatistics::State CollisionStatistics::state() const {
 
 void CollisionStatistics::restore(const State& s) {
   const std::size_t nr = region_.size();
-  if (s.keys.size() % 2 != 0 || s.ongoing.size() != s.keys.size() / 2 * 3 ||
-      s.counters.size() != 8 + 2 * nr || s.sums.size() != 7 + 2 * nr ||
+  if (s.keys.size() % 3 != 0 || s.ongoing.size() != s.keys.size() / 3 * 6 ||
+      s.counters.size() != 10 + 4 * nr || s.sums.size() != 7 + 2 * nr ||
       s.histogram.size() != hist_.size())
     throw std::runtime_error("collision statistics in the checkpoint do not match the case "
-                             "(regions or histogram bins differ)");
+                             "(regions or histogram bins differ, or the checkpoint was written "
+                             "by a fluidem before 2026-12-07)");
   ongoing_.clear();
-  for (std::size_t k = 0; k < s.keys.size() / 2; ++k)
-    ongoing_.push_back({s.keys[2 * k], s.keys[2 * k + 1], s.ongoing[3 * k], s.ongoing[3 * k + 1],
-                        s.ongoing[3 * k + 2]});
+  for (std::size_t k = 0; k < s.keys.size() / 3; ++k) {
+    const double* o = &s.ongoing[6 * k];
+    ongoing_.push_back({s.keys[3 * k], s.keys[3 * k + 1], o[0], o[1], o[2], Vec3{o[3], o[4], o[5]},
+                        s.keys[3 * k + 2] != 0});
+  }
   std::size_t c = 0, d = 0;
   for (Acc* a : {&interval_, &total_}) {
     a->pairs_begun = s.counters[c++];
     a->walls_begun = s.counters[c++];
     a->pairs_ended = s.counters[c++];
     a->walls_ended = s.counters[c++];
+    a->pairs_multiple = s.counters[c++];
     a->sum_extent = s.sums[d++];
     a->max_extent = s.sums[d++];
     a->sum_duration = s.sums[d++];
@@ -313,6 +372,8 @@ void CollisionStatistics::restore(const State& s) {
   for (RegionAcc& r : region_) {
     r.collisions = s.counters[c++];
     r.samples = s.counters[c++];
+    r.ended = s.counters[c++];
+    r.multiple = s.counters[c++];
     r.sum_count = s.sums[d++];
     r.sum_volume = s.sums[d++];
   }

@@ -12,6 +12,12 @@
 // diameter (the contact loop samples once per step, so the extent is accurate to the overlap
 // change over one step).
 //
+// Binary or multiple [Chang08 binary-collision paper, Introduction: the binary model needs
+// "multiple (larger than two) particle collisions" to be negligible]: a soft-sphere pair collision
+// is *multiple* when, at any step of its life, either of its two particles is in another contact
+// too (with a third particle or a wall), *binary* otherwise. Counted when the collision ends,
+// globally and per region (the region of its contact point when it began).
+//
 // Hard spheres: collisions are instantaneous; the engine reports each step's pair and wall
 // collisions (with their contact points, for the regions). Overlap extents and durations are zero
 // by construction and are not accumulated: those outputs stay empty (NaN in the rows).
@@ -66,6 +72,7 @@ public:
     std::array<bool, 3> periodic{};
     int histogram_bins = 200;   ///< overlap-extent histogram on [0, histogram_max)
     double histogram_max = 0.1; ///< extent (overlap / smaller diameter); above: overflow
+    bool soft_spheres = false;  ///< contacts last: the rows say which collisions were multiple
   };
   /// `time`: the start of the first interval (the run's current time).
   CollisionStatistics(Settings settings, double time);
@@ -89,6 +96,8 @@ public:
     double void_fraction = 0.0; ///< 1 - mean particle volume / region volume
     double particles = 0.0;     ///< mean number of particles (centres inside)
     long collisions = 0;        ///< pair collisions begun with the contact point inside
+    long ended = 0;             ///< pair collisions ended that had begun inside
+    long multiple = 0;          ///< of those, the multiple ones (soft spheres)
   };
   /// The statistics of one interval (between two rows).
   struct Row {
@@ -96,11 +105,12 @@ public:
     long pair_collisions = 0;        ///< pair collisions begun in the interval
     long wall_collisions = 0;        ///< wall collisions begun in the interval
     long pair_collisions_ended = 0;
-    double frequency = 0.0;      ///< f = 2 C / (N T), 1/s (NaN when T = 0)
-    double mean_free_time = 0.0; ///< 1/f, s (inf when no collision)
-    double mean_overlap = 0.0;   ///< mean extent of the pair collisions ended (NaN if none)
-    double max_overlap = 0.0;    ///< largest extent of the pair collisions ended (NaN if none)
-    double mean_duration = 0.0;  ///< s, of the pair collisions ended (NaN if none)
+    long multiple_collisions = 0; ///< pair collisions ended that were multiple (soft spheres)
+    double frequency = 0.0;       ///< f = 2 C / (N T), 1/s (NaN when T = 0)
+    double mean_free_time = 0.0;  ///< 1/f, s (inf when no collision)
+    double mean_overlap = 0.0;    ///< mean extent of the pair collisions ended (NaN if none)
+    double max_overlap = 0.0;     ///< largest extent of the pair collisions ended (NaN if none)
+    double mean_duration = 0.0;   ///< s, of the pair collisions ended (NaN if none)
     std::vector<RegionRow> regions;
   };
   /// Close the interval at `time` (N = p.size()) and start the next one there.
@@ -111,6 +121,7 @@ public:
   long wall_collisions() const { return total_.walls_begun; }
   long pair_collisions_ended() const { return total_.pairs_ended; }
   long wall_collisions_ended() const { return total_.walls_ended; }
+  long multiple_collisions() const { return total_.pairs_multiple; }
   double mean_overlap() const;  ///< over all pair collisions ended, NaN if none
   double max_overlap() const;   ///< NaN if none
   double mean_duration() const; ///< s, NaN if none
@@ -123,8 +134,9 @@ public:
 
   /// What a checkpoint keeps: the ongoing contacts and every accumulator, as flat arrays.
   struct State {
-    std::vector<std::int64_t> keys;     ///< 2 per ongoing contact
-    std::vector<double> ongoing;        ///< 3 per ongoing contact: begin, max overlap, diameter
+    std::vector<std::int64_t> keys;     ///< 3 per ongoing contact: a, b, multiple (0 or 1)
+    std::vector<double> ongoing;        ///< 6 per ongoing contact: begin, max overlap, diameter,
+                                        ///< the contact point where it began
     std::vector<std::int64_t> counters; ///< interval and total counters, region collisions
     std::vector<double> sums;           ///< interval start, sums, maxima, region sums
     std::vector<std::int64_t> histogram;
@@ -137,13 +149,15 @@ private:
   struct Ongoing {
     std::int64_t a, b; ///< a < b for pairs; (id, -1 - face) for walls
     double begin, max_overlap, diameter;
+    Vec3 point;            ///< the contact point when it began (for the regions)
+    bool multiple = false; ///< a particle of the pair was in another contact at some step
   };
   struct Acc {
-    long pairs_begun = 0, walls_begun = 0, pairs_ended = 0, walls_ended = 0;
+    long pairs_begun = 0, walls_begun = 0, pairs_ended = 0, walls_ended = 0, pairs_multiple = 0;
     double sum_extent = 0.0, max_extent = 0.0, sum_duration = 0.0;
   };
   struct RegionAcc {
-    long collisions = 0;
+    long collisions = 0, ended = 0, multiple = 0;
     long samples = 0;
     double sum_count = 0.0, sum_volume = 0.0;
   };
@@ -170,6 +184,10 @@ private:
   std::vector<Entry> entries_, entries_tmp_;
   std::vector<std::array<std::int64_t, 2>> ab_;
   std::vector<std::uint32_t> radix_count_;
+  /// Contacts per particle id (id - the step's smallest id; 0, 1, or 2 for more) in the step
+  /// being merged; all zeros between steps.
+  std::vector<std::uint8_t> degree_;
+  std::vector<std::int64_t> ids_; ///< the step's particle ids, sorted (ids spread too far apart)
   std::vector<std::int64_t> hist_;
 };
 

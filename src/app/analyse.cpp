@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -258,6 +259,7 @@ void analyse_collisions(const fs::path& path, double t0, double t1,
     return "s"; // mean_free_time, mean_contact_duration
   };
   double f_mean = std::numeric_limits<double>::quiet_NaN();
+  std::map<std::string, double> totals; // by column
   for (std::size_t c = 1; c < t.columns.size(); ++c) {
     const std::string& name = t.columns[c];
     if (name == "mean_free_time") continue; // from the mean frequency below
@@ -277,6 +279,20 @@ void analyse_collisions(const fs::path& path, double t0, double t1,
         {name == "pair_collisions" || name == "wall_collisions" ? name + "_window" : name, value,
          unit_of(name)});
     if (name == "collision_frequency") summary.push_back({"mean_free_time", 1.0 / value, "s"});
+    totals[name] = value;
+  }
+  // Soft spheres: the share of the pair collisions ended in the window that were multiple
+  // (a particle of the pair in another contact meanwhile), globally and per region.
+  for (const auto& [name, multiple] : totals) {
+    const std::string suffix = "multiple_collisions";
+    if (!name.ends_with(suffix)) continue;
+    const std::string prefix = name.substr(0, name.size() - suffix.size());
+    const auto ended = totals.find(prefix + "ended_collisions");
+    if (ended == totals.end()) continue;
+    summary.push_back(
+        {prefix + "multiple_collision_fraction",
+         ended->second > 0.0 ? multiple / ended->second : std::numeric_limits<double>::quiet_NaN(),
+         "1"});
   }
   fmt::print("collisions         {} rows of {}: collision frequency {} 1/s, mean free time {} s\n",
              rows.size(), path.string(), g(f_mean), g(1.0 / f_mean));

@@ -151,8 +151,15 @@ void RunRecorder::write_series_rows() {
                              c.mean_overlap,
                              c.max_overlap,
                              c.mean_duration};
-    for (const auto& r : c.regions)
+    const bool soft = sim_.collisions_->settings().soft_spheres;
+    if (soft)
+      crow.insert(crow.end(), {static_cast<double>(c.pair_collisions_ended),
+                               static_cast<double>(c.multiple_collisions)});
+    for (const auto& r : c.regions) {
       crow.insert(crow.end(), {r.frequency, r.void_fraction, r.particles});
+      if (soft)
+        crow.insert(crow.end(), {static_cast<double>(r.ended), static_cast<double>(r.multiple)});
+    }
     outputs_->csv("collisions.csv").write_row(crow);
   }
 }
@@ -274,9 +281,16 @@ OutputLayout RunRecorder::layout(const Simulation& sim) {
     std::vector<std::string> cc{
         "time",           "pair_collisions",     "wall_collisions",    "collision_frequency",
         "mean_free_time", "mean_overlap_extent", "max_overlap_extent", "mean_contact_duration"};
-    for (const CollisionRegionSpec& r : spec.output.collision_regions)
+    // Soft spheres: the pair collisions ended and, of those, the multiple ones (a particle of
+    // the pair in another contact during the collision).
+    const bool soft = sim.collisions_->settings().soft_spheres;
+    if (soft) cc.insert(cc.end(), {"ended_collisions", "multiple_collisions"});
+    for (const CollisionRegionSpec& r : spec.output.collision_regions) {
       cc.insert(cc.end(), {r.name + "_collision_frequency", r.name + "_void_fraction",
                            r.name + "_particles"});
+      if (soft)
+        cc.insert(cc.end(), {r.name + "_ended_collisions", r.name + "_multiple_collisions"});
+    }
     l.csv["collisions.csv"] = cc;
   }
   if (sim.gas_) { // gas fields per particle frame

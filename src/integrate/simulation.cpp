@@ -141,6 +141,7 @@ void Simulation::set_up_analyses() {
     for (const CollisionRegionSpec& r : spec_.output.collision_regions)
       cs.regions.push_back({r.name, Vec3{r.centre[0], r.centre[1], r.centre[2]}, r.radius});
     cs.dimension = spec_.simulation.dimension;
+    cs.soft_spheres = spec_.simulation.engine != Engine::HardSphere;
     for (std::size_t a = 0; a < 3; ++a) {
       cs.box_length[a] = spec_.domain.hi[a] - spec_.domain.lo[a];
       cs.periodic[a] = spec_.domain.periodic[a];

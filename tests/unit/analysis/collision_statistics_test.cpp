@@ -3,7 +3,9 @@
 // (max overlap / smaller diameter) and their histogram bin, the frequency f = 2 C / (N T),
 // wall contacts counted apart, spherical regions (particles whose centre lies inside, minimum
 // image on periodic axes; void fraction 1 - particle volume / sphere volume), hard-sphere steps,
-// and the checkpoint state (restore mid-contact continues identically).
+// binary and multiple collisions (a particle of the pair in another contact at some step of the
+// collision [Chang08 binary-collision paper]), and the checkpoint state (restore mid-contact
+// continues identically).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -102,9 +104,10 @@ void expect_map_statistics(std::int64_t id_base, bool wide) {
   CollisionStatistics c(settings(), 0.0);
   struct Ref {
     double begin, max_overlap, diameter;
+    bool multiple;
   };
   std::map<std::pair<std::int64_t, std::int64_t>, Ref> ongoing;
-  long pairs = 0, walls = 0, ended = 0;
+  long pairs = 0, walls = 0, ended = 0, multiple = 0;
   double sum_extent = 0.0, sum_duration = 0.0;
   std::mt19937_64 rng(11);
   std::uniform_int_distribution<std::int64_t> id(0, 60000);
@@ -143,17 +146,24 @@ void expect_map_statistics(std::int64_t id_base, bool wide) {
       }
       if (it->first.second >= 0) {
         ++ended;
+        if (it->second.multiple) ++multiple;
         sum_extent += it->second.max_overlap / it->second.diameter;
         sum_duration += t - it->second.begin;
       }
       it = ongoing.erase(it);
     }
+    std::map<std::int64_t, int> contacts_of; // particle ids (>= 0) in this step's contacts
+    for (const KeyedContact& kc : rec)
+      for (const std::int64_t particle : {kc.a, kc.b})
+        if (particle >= 0) ++contacts_of[particle];
     for (const KeyedContact& kc : rec) {
-      auto [it, fresh] = ongoing.try_emplace({kc.a, kc.b}, Ref{t, kc.overlap, kc.diameter});
+      const bool now = kc.b >= 0 && (contacts_of[kc.a] > 1 || contacts_of[kc.b] > 1);
+      auto [it, fresh] = ongoing.try_emplace({kc.a, kc.b}, Ref{t, kc.overlap, kc.diameter, now});
       if (fresh)
         ++(kc.b < 0 ? walls : pairs);
       else
-        it->second.max_overlap = std::max(it->second.max_overlap, kc.overlap);
+        it->second.max_overlap = std::max(it->second.max_overlap, kc.overlap),
+        it->second.multiple = it->second.multiple || now;
     }
     c.add_keyed_step(rec, ParticleStore{}, t);
   }
@@ -161,6 +171,9 @@ void expect_map_statistics(std::int64_t id_base, bool wide) {
   EXPECT_EQ(c.pair_collisions(), pairs);
   EXPECT_EQ(c.wall_collisions(), walls);
   EXPECT_EQ(c.pair_collisions_ended(), ended);
+  EXPECT_EQ(c.multiple_collisions(), multiple);
+  EXPECT_GT(multiple, 0);
+  EXPECT_LT(multiple, ended);
   EXPECT_EQ(c.ongoing(), ongoing.size());
   EXPECT_EQ(c.mean_overlap(), sum_extent / static_cast<double>(ended));
   EXPECT_EQ(c.mean_duration(), sum_duration / static_cast<double>(ended));
@@ -232,6 +245,81 @@ TEST(CollisionStatistics, HardSphereStepsCountWithoutOverlap) {
   EXPECT_DOUBLE_EQ(row.frequency, 2.0 * 2.0 / 4.0);
   EXPECT_TRUE(std::isnan(row.mean_overlap));
   EXPECT_TRUE(std::isnan(row.mean_duration));
+}
+
+// Five particles in a chain and a pair apart, worked out by hand. Steps of 1 s:
+//   t = 1: 0-1 and 1-2 touch (1 has two contacts: both multiple); 3-4 alone (binary so far);
+//   t = 2: 0-1 gone (ends, multiple); 1-2 continues alone (stays multiple: it was); 3-4 and a
+//          wall contact of 4 (4 has two contacts: 3-4 becomes multiple);
+//   t = 3: 1-2 and 3-4 gone (end, both multiple); 5-6 begins alone;
+//   t = 4: 5-6 gone (ends, binary). The wall contact ended at t = 3.
+TEST(CollisionStatistics, MultipleWhenAParticleOfThePairTouchesAnotherDuringTheCollision) {
+  ParticleStore p;
+  for (int k = 0; k < 7; ++k) p.add({2.0 * k, 0.0, 0.0}, {}, 1.0, 1.0, 0, k);
+  CollisionStatistics c(settings(), 0.0);
+  ContactRecord r;
+  r.samples = {pair(0, 1, 0, 1, 0.01), pair(1, 2, 1, 2, 0.01), pair(3, 4, 3, 4, 0.01)};
+  c.add_step(r, p, 1.0);
+  r.samples = {pair(1, 2, 1, 2, 0.01), pair(3, 4, 3, 4, 0.01), wall(4, 4, 0, 0.01)};
+  c.add_step(r, p, 2.0);
+  EXPECT_EQ(c.pair_collisions_ended(), 1);
+  EXPECT_EQ(c.multiple_collisions(), 1); // 0-1
+  r.samples = {pair(5, 6, 5, 6, 0.01)};
+  c.add_step(r, p, 3.0);
+  EXPECT_EQ(c.pair_collisions_ended(), 3);
+  EXPECT_EQ(c.multiple_collisions(), 3); // 1-2 (from t = 1), 3-4 (the wall at t = 2)
+  c.add_step(ContactRecord{}, p, 4.0);
+  EXPECT_EQ(c.pair_collisions_ended(), 4);
+  EXPECT_EQ(c.multiple_collisions(), 3); // 5-6 was binary
+  const auto row = c.take_row(4.0, p.size());
+  EXPECT_EQ(row.pair_collisions_ended, 4);
+  EXPECT_EQ(row.multiple_collisions, 3);
+}
+
+// The same pair listed twice in one record is one contact, not two: it does not make the pair
+// multiple. Hard-sphere collisions are never multiple (instantaneous).
+TEST(CollisionStatistics, ADuplicateKeyIsOneContactAndHardSphereCollisionsAreBinary) {
+  const ParticleStore p = particles();
+  CollisionStatistics c(settings(), 0.0);
+  ContactRecord r;
+  r.samples = {pair(0, 1, 10, 11, 0.01), pair(1, 0, 11, 10, 0.02)};
+  c.add_step(r, p, 1.0);
+  c.add_step(ContactRecord{}, p, 2.0);
+  EXPECT_EQ(c.pair_collisions_ended(), 1);
+  EXPECT_EQ(c.multiple_collisions(), 0);
+  c.add_instant_step({{10, 11, {}}, {11, 12, {}}}, p, 3.0);
+  EXPECT_EQ(c.multiple_collisions(), 0);
+}
+
+// Per region: the collisions ended whose contact point lay inside when they began, and the
+// multiple ones among them; a checkpoint taken mid-collision keeps the flag and the point.
+TEST(CollisionStatistics, RegionsCountMultipleCollisionsByWhereTheyBegan) {
+  ParticleStore p;
+  for (int k = 0; k < 4; ++k) p.add({2.0 * k, 0.0, 0.0}, {}, 1.0, 1.0, 0, k);
+  auto s = settings();
+  s.regions = {{"A", {0.0, 0.0, 0.0}, 1.5}, {"B", {6.0, 0.0, 0.0}, 0.5}};
+  CollisionStatistics a(s, 0.0);
+  ContactRecord r;
+  // 0-1 begins at x = 1 (in A), 2-3 at x = 5 (in neither); 1-2 touches 1 too: 0-1 multiple.
+  r.samples = {pair(0, 1, 0, 1, 0.01, {1.0, 0, 0}), pair(1, 2, 1, 2, 0.01, {3.0, 0, 0}),
+               pair(2, 3, 2, 3, 0.01, {5.0, 0, 0})};
+  a.add_step(r, p, 1.0);
+  CollisionStatistics b(s, 0.0);
+  b.restore(a.state());
+  for (CollisionStatistics* c : {&a, &b}) {
+    ContactRecord r2; // the contact points move (ignored: where a collision began counts)
+    r2.samples = {pair(0, 1, 0, 1, 0.01, {6.0, 0, 0}), pair(2, 3, 2, 3, 0.01, {6.0, 0, 0})};
+    c->add_step(r2, p, 2.0);
+    c->add_step(ContactRecord{}, p, 3.0);
+  }
+  for (CollisionStatistics* c : {&a, &b}) {
+    const auto row = c->take_row(3.0, p.size());
+    EXPECT_EQ(row.pair_collisions_ended, 3);
+    EXPECT_EQ(row.multiple_collisions, 3); // 2 touched 1 and 3 at t = 1
+    EXPECT_EQ(row.regions[0].ended, 1);
+    EXPECT_EQ(row.regions[0].multiple, 1);
+    EXPECT_EQ(row.regions[1].ended, 0);
+  }
 }
 
 TEST(CollisionStatistics, StateRestoresMidContact) {

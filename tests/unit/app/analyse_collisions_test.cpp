@@ -62,5 +62,34 @@ TEST(AnalyseCollisions, SummaryOverTheWindow) {
   EXPECT_NEAR(s.at("GC_particles"), 14.0 / 3.0, 1e-9);
 }
 
+// Soft spheres: the multiple-collision fraction over the window is the sum of the multiple
+// collisions over the sum of the collisions ended (not the mean of the rows' fractions):
+// (3 + 0 + 9) / (30 + 0 + 10) = 0.3; GC (1 + 4) / (10 + 5) = 1/3.
+TEST(AnalyseCollisions, MultipleCollisionFractionsAreSumsOverTheWindow) {
+  test::TempDir dir("fluidem_analyse_multi");
+  const fs::path out = dir.path / "out";
+  fs::create_directories(out);
+  std::string probes = "time,p\n";
+  for (int k = 0; k < 64; ++k)
+    probes += std::to_string(0.001 * k) + "," + std::to_string(std::sin(k)) + "\n";
+  dir.write("out/probes.csv", probes);
+  dir.write("out/collisions.csv",
+            "time,pair_collisions,wall_collisions,collision_frequency,mean_free_time,"
+            "mean_overlap_extent,max_overlap_extent,mean_contact_duration,ended_collisions,"
+            "multiple_collisions,GC_collision_frequency,GC_void_fraction,GC_particles,"
+            "GC_ended_collisions,GC_multiple_collisions\n"
+            "0.02,100,5,200,0.005,0.01,0.03,0.0002,99,99,100,0.8,10,50,50\n" // before the window
+            "0.04,60,4,120,0.0083,0.02,0.05,0.0003,30,3,90,0.9,6,10,1\n"
+            "0.05,0,1,0,inf,nan,nan,nan,0,0,nan,0.7,0,0,0\n"
+            "0.06,90,3,180,0.0056,0.01,0.04,0.0001,10,9,30,0.8,8,5,4\n");
+  const auto r = test::fluidem({"analyse", "out"}, dir.path);
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const auto s = summary(out / "analysis" / "summary.csv");
+  EXPECT_EQ(s.at("ended_collisions"), 40.0);
+  EXPECT_EQ(s.at("multiple_collisions"), 12.0);
+  EXPECT_NEAR(s.at("multiple_collision_fraction"), 0.3, 1e-9); // (10 digits in summary.csv)
+  EXPECT_NEAR(s.at("GC_multiple_collision_fraction"), 1.0 / 3.0, 1e-9);
+}
+
 } // namespace
 } // namespace fluidem
