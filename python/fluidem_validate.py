@@ -349,6 +349,11 @@ RUNS = [
         quick=["simulation.end_time=0.5"], analyse=["--from", "10"]),
     Run("binary_collision_d5", "chang08/binary_collision_d5.toml",
         quick=["simulation.end_time=0.5"], analyse=["--from", "10"]),
+    # The binary-collision question asked of the soft-sphere DEM (E = 1e10 Pa, 15 s; the quick
+    # variants at E = 1e8 Pa, 5x longer contacts and 6x fewer steps: CI's time).
+    *[Run(f"binary_soft_d{d}", f"chang08/binary_collision_soft_d{d}.toml",
+          quick=["simulation.end_time=0.3", "species[0].youngs_modulus=1e8"],
+          analyse=["--from", "3"], plot=False) for d in ["5", "7_5", "10", "12"]],
     Run("spouted_1.6", "chang08/spouted_1.6.toml", quick=["simulation.end_time=0.05"],
         analyse=["--from", "1.0"]),
     Run("spouted_2.6", "chang08/spouted_2.6.toml", quick=["simulation.end_time=0.05"],
@@ -550,6 +555,44 @@ for _d in ["10", "7_5", "5"]:
         f"{_run}.void_fraction_gc": ([_run], summary_of(_run, "GC_void_fraction")),
         f"{_run}.void_fraction_cc": ([_run], lambda o, run=_run: cube_cc(o, run, "void_fraction")),
     })
+
+
+# The binary-collision question with soft spheres: the runs' points (void fraction, share of
+# multiple collisions) for the whole cube and the regions GC, CC1, CC2; the cube's own void
+# fraction follows from the diameter (512 spheres in 1 litre).
+BINARY_SOFT = {"5": 0.005, "7_5": 0.0075, "10": 0.010, "12": 0.012}
+BINARY_SHARE = 0.05  # "negligible": fewer than 5 % of the collisions multiple
+BINARY_MIN_ENDED = 30  # a region's share from fewer collisions is left out
+
+
+def binary_points(o):
+    pts = []
+    for d, dia in BINARY_SOFT.items():
+        run = f"binary_soft_d{d}"
+        for p in ["", "GC_", "CC1_", "CC2_"]:
+            ended = o.summary(run, p + "ended_collisions")
+            if ended < BINARY_MIN_ENDED:
+                continue
+            eps = (o.summary(run, p + "void_fraction") if p
+                   else 1.0 - 512 * math.pi / 6 * dia ** 3 / 1e-3)
+            pts.append((eps, o.summary(run, p + "multiple_collision_fraction")))
+    return pts
+
+
+def binary_void_fraction(o):
+    """The void fraction above which fewer than BINARY_SHARE of the collisions are multiple:
+    the largest void fraction of a point at or above that share; when no point reaches it, the
+    lowest void fraction the runs reached (the assumption holds at least down to there)."""
+    pts = binary_points(o)
+    failing = [eps for eps, share in pts if share >= BINARY_SHARE]
+    return max(failing) if failing else min(eps for eps, _ in pts)
+
+
+VALUES["binary_soft.void_fraction_binary"] = (
+    [f"binary_soft_d{d}" for d in BINARY_SOFT], binary_void_fraction)
+VALUES["binary_soft.multiple_share_densest"] = (
+    [f"binary_soft_d{d}" for d in BINARY_SOFT],
+    lambda o: min(binary_points(o))[1])
 
 
 # ---------------------------------------------------------------------------------------------
@@ -762,10 +805,14 @@ def run_cmd(cmd, log, cwd=None):
 
 
 def git_commit():
+    """The source tree's commit, "+changes" when tracked files differ from it."""
     try:
         out = subprocess.run(["git", "-C", SOURCE, "rev-parse", "--short", "HEAD"],
                              capture_output=True, text=True, check=True)
-        return out.stdout.strip()
+        changed = subprocess.run(["git", "-C", SOURCE, "status", "--porcelain",
+                                  "--untracked-files=no"], capture_output=True, text=True,
+                                 check=True)
+        return out.stdout.strip() + ("+changes" if changed.stdout.strip() else "")
     except (OSError, subprocess.CalledProcessError):
         return "unknown"
 
@@ -845,6 +892,7 @@ def main():
     failed = []
     skipped = []  # --report-only: runs not finished in WORK
     wall = {}
+    made = {}  # run: (the commit of the source tree it ran from, threads)
     for r in runs:
         out = outputs.dir(r.name)
         log = os.path.join(work, r.name + ".log")
@@ -857,17 +905,16 @@ def main():
         done = os.path.join(work, r.name + ".done")
         if a.report_only:
             if os.path.exists(done):
-                with open(done) as f:
-                    wall[r.name] = float(f.read().split("\n")[1])
+                wall[r.name], made[r.name] = read_done(done)
             else:
                 skipped.append(r.name)
             continue
         reused = False
         if a.reuse and os.path.exists(done):
             with open(done) as f:
-                prev_cmd, prev_wall = f.read().split("\n")[:2]
+                prev_cmd = f.read().split("\n")[0]
             if prev_cmd == " ".join(cmd[1:]):
-                wall[r.name] = float(prev_wall)
+                wall[r.name], made[r.name] = read_done(done)
                 reused = True
                 print(f"[{r.name}] run reused ({done})", flush=True)
         if not reused:
@@ -897,8 +944,10 @@ def main():
             if code != 0:
                 failed.append(f"{r.name}: fluidem plot exited {code} (log {log})")
         if not reused:
+            made[r.name] = (git_commit(), str(a.threads) if a.threads > 0 else "all")
             with open(done, "w") as f:
-                f.write(" ".join(cmd[1:]) + "\n" + str(wall[r.name]) + "\n")
+                f.write(" ".join(cmd[1:]) + "\n" + str(wall[r.name]) + "\n"
+                        + "\n".join(made[r.name]) + "\n")
         print(f"[{r.name}] done ({wall[r.name]:.0f} s of wall time)", flush=True)
 
     rows = []
@@ -930,7 +979,7 @@ def main():
             gate_failed.append(f"{q.case}: {q.quantity}: {why}")
     failed += [f"gate: {g}" for g in gate_failed]
 
-    write_report(report, a.quick, runs, rows, not_run, wall, failed, outputs, a.threads)
+    write_report(report, a.quick, runs, rows, not_run, wall, failed, outputs, made)
     print(f"report: {report}")
     if failed:
         print("failures:\n  " + "\n  ".join(failed), file=sys.stderr)
@@ -938,7 +987,17 @@ def main():
     return 0
 
 
-def write_report(path, quick, runs, rows, not_run, wall, failed, outputs, threads=0):
+def read_done(path):
+    """A finished run's record WORK/<run>.done: its command line, wall time (s), the commit of
+    the source tree it ran from and its threads (those two missing in older records: "-")."""
+    with open(path) as f:
+        lines = f.read().split("\n")
+    made = tuple(lines[2:4]) if len(lines) > 3 and lines[3] else ("-", "-")
+    return float(lines[1]), made
+
+
+def write_report(path, quick, runs, rows, not_run, wall, failed, outputs, made=None):
+    made = made or {}
     pics = os.path.join(os.path.dirname(path), "pictures")
     os.makedirs(pics, exist_ok=True)
     for old in os.listdir(pics):  # the pictures of an earlier report
@@ -977,9 +1036,9 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs, thread
         w(f"**{len(rows)} quantities: {agree} agree, {disagree} do not, {other} without a "
           f"criterion, not computed or not run (the full-size cases need `--long`: hours each); "
           f"{len(not_run)} seed case cannot be set up (last row, with the reason).** Where a seed lost the data a case needs, the case file says what was "
-          "chosen; the notes say where that matters. Wall times below are of "
-          + (f"{threads} OpenMP thread(s) per run" if threads > 0 else "the machine's cores per run")
-          + " on a shared two-core machine, the runs one after the other (not benchmarks).")
+          "chosen; the notes say where that matters. The runs' table gives each run's wall time, "
+          "its OpenMP threads and the commit it ran from; the wall times are of a shared "
+          "two-core machine (not benchmarks).")
         w("")
     w("| case | paper | quantity | published | fluidem | criterion | agreement | note |")
     w("|---|---|---|---|---|---|---|---|")
@@ -1012,13 +1071,14 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs, thread
         w("")
     w("## Runs")
     w("")
-    w("| run | case file | overrides | wall time |")
-    w("|---|---|---|---|")
+    w("| run | case file | overrides | commit | threads | wall time |")
+    w("|---|---|---|---|---|---|")
     for r in runs:
         sets = " ".join(f"`{s}`" for s in (r.quick if quick and not r.gate_full else r.full))
         sets = sets or "-"
         wt = f"{wall[r.name]:.0f} s" if r.name in wall else "-"
-        w(f"| {r.name} | cases/{r.case} | {sets} | {wt} |")
+        commit, threads = made.get(r.name, ("-", "-"))
+        w(f"| {r.name} | cases/{r.case} | {sets} | {commit} | {threads} | {wt} |")
     w("")
     w("## Pictures")
     w("")
