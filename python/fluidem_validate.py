@@ -588,6 +588,15 @@ def binary_void_fraction(o):
     return max(failing) if failing else min(eps for eps, _ in pts)
 
 
+# Pictures drawn from several runs: (file name, title, runs, script of the source tree, its
+# arguments); the report draws them when all the runs are there.
+STUDY_PICTURES = [
+    ("binary_soft_study", "binary_soft: the share of multiple collisions against the void "
+     "fraction and against f t_c",
+     [f"binary_soft_d{d}" for d in BINARY_SOFT], "tools/chang08_binary_study.py",
+     ["--from", "3"]),
+]
+
 VALUES["binary_soft.void_fraction_binary"] = (
     [f"binary_soft_d{d}" for d in BINARY_SOFT], binary_void_fraction)
 VALUES["binary_soft.multiple_share_densest"] = (
@@ -1083,7 +1092,7 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs, made=N
     w("## Pictures")
     w("")
     for r in runs:
-        if quick and r.name not in QUICK_PLOTS:
+        if (quick and r.name not in QUICK_PLOTS) or not r.plot:
             continue
         out = outputs.dir(r.name)
         shown = []
@@ -1111,6 +1120,18 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs, made=N
             w("")
             w(" ".join(shown))
             w("")
+    done = {r.name for r in runs if r.name in wall}
+    for name, title, names, script, args in STUDY_PICTURES:
+        if quick or not all(n in done for n in names):
+            continue
+        dst = f"{name}.png"
+        code = subprocess.run([sys.executable, os.path.join(SOURCE, script)]
+                              + [outputs.dir(n) for n in names] + args
+                              + ["--png", os.path.join(pics, dst)], capture_output=True).returncode
+        w(f"### {title}")
+        w("")
+        w(f"![{title}](pictures/{dst})" if code == 0 else f"({script} exited {code})")
+        w("")
     if failed:
         w("## Failures (runs, quantities not computed, the gate)")
         w("")
