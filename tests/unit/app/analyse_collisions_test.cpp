@@ -29,14 +29,20 @@ std::map<std::string, double> summary(const fs::path& file) {
   return m;
 }
 
-TEST(AnalyseCollisions, SummaryOverTheWindow) {
-  test::TempDir dir("fluidem_analyse_coll");
+/// DIR/out with the synthetic probes.csv (the analysis window); returns DIR/out.
+fs::path write_probes(test::TempDir& dir) {
   const fs::path out = dir.path / "out";
   fs::create_directories(out);
   std::string probes = "time,p\n";
   for (int k = 0; k < 64; ++k)
     probes += std::to_string(0.001 * k) + "," + std::to_string(std::sin(k)) + "\n";
   dir.write("out/probes.csv", probes);
+  return out;
+}
+
+TEST(AnalyseCollisions, SummaryOverTheWindow) {
+  test::TempDir dir("fluidem_analyse_coll");
+  const fs::path out = write_probes(dir);
   dir.write("out/collisions.csv",
             "time,pair_collisions,wall_collisions,collision_frequency,mean_free_time,"
             "mean_overlap_extent,max_overlap_extent,mean_contact_duration,GC_collision_frequency,"
@@ -67,12 +73,7 @@ TEST(AnalyseCollisions, SummaryOverTheWindow) {
 // (3 + 0 + 9) / (30 + 0 + 10) = 0.3; GC (1 + 4) / (10 + 5) = 1/3.
 TEST(AnalyseCollisions, MultipleCollisionFractionsAreSumsOverTheWindow) {
   test::TempDir dir("fluidem_analyse_multi");
-  const fs::path out = dir.path / "out";
-  fs::create_directories(out);
-  std::string probes = "time,p\n";
-  for (int k = 0; k < 64; ++k)
-    probes += std::to_string(0.001 * k) + "," + std::to_string(std::sin(k)) + "\n";
-  dir.write("out/probes.csv", probes);
+  const fs::path out = write_probes(dir);
   dir.write("out/collisions.csv",
             "time,pair_collisions,wall_collisions,collision_frequency,mean_free_time,"
             "mean_overlap_extent,max_overlap_extent,mean_contact_duration,ended_collisions,"
