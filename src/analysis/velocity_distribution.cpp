@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -28,11 +29,17 @@ void check_options(const VelocityDistributionOptions& o) {
 }
 } // namespace
 
-void append_velocity_fluctuations(const ParticleStore& p, const std::array<double, 3>& lo,
-                                  const std::array<double, 3>& hi,
-                                  const VelocityDistributionOptions& o,
-                                  std::vector<std::array<double, 3>>& C,
-                                  std::vector<std::size_t>* which) {
+namespace {
+/// Each particle's cell (or SIZE_MAX for none) and the cells' mass-weighted mean velocities and
+/// particle counts.
+struct CellMeans {
+  std::vector<std::size_t> cell;
+  std::vector<double> mass, mv[3];
+  std::vector<long> count;
+};
+
+CellMeans cell_means(const ParticleStore& p, const std::array<double, 3>& lo,
+                     const std::array<double, 3>& hi, const VelocityDistributionOptions& o) {
   check_options(o);
   std::array<int, 3> nc = o.cells;
   for (int d = 0; d < 3; ++d)
@@ -41,10 +48,11 @@ void append_velocity_fluctuations(const ParticleStore& p, const std::array<doubl
                                   std::to_string(d));
   const std::size_t ncell = static_cast<std::size_t>(nc[0]) * nc[1] * nc[2];
   const std::size_t n = p.size();
-  std::vector<std::size_t> cell(n);
-  std::vector<double> mass(ncell, 0.0), mv[3];
-  for (auto& v : mv) v.assign(ncell, 0.0);
-  std::vector<long> count(ncell, 0);
+  CellMeans m;
+  m.cell.resize(n);
+  m.mass.assign(ncell, 0.0);
+  for (auto& v : m.mv) v.assign(ncell, 0.0);
+  m.count.assign(ncell, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const double x[3] = {p.x[i], p.y[i], p.z[i]};
     std::size_t q = 0, stride = 1;
@@ -54,24 +62,98 @@ void append_velocity_fluctuations(const ParticleStore& p, const std::array<doubl
       q += static_cast<std::size_t>(c) * stride;
       stride *= static_cast<std::size_t>(nc[d]);
     }
-    cell[i] = q;
-    mass[q] += p.mass[i];
-    mv[0][q] += p.mass[i] * p.vx[i];
-    mv[1][q] += p.mass[i] * p.vy[i];
-    mv[2][q] += p.mass[i] * p.vz[i];
-    ++count[q];
+    m.cell[i] = q;
+    m.mass[q] += p.mass[i];
+    m.mv[0][q] += p.mass[i] * p.vx[i];
+    m.mv[1][q] += p.mass[i] * p.vy[i];
+    m.mv[2][q] += p.mass[i] * p.vz[i];
+    ++m.count[q];
   }
+  return m;
+}
+
+/// C_i: particle i's velocity less the mass-weighted mean of its cell.
+std::array<double, 3> fluctuation(const ParticleStore& p, const CellMeans& m, std::size_t i) {
+  const std::size_t q = m.cell[i];
+  const double v[3] = {p.vx[i], p.vy[i], p.vz[i]};
+  std::array<double, 3> c{};
+  for (int d = 0; d < 3; ++d) c[d] = v[d] - m.mv[d][q] / m.mass[q];
+  return c;
+}
+} // namespace
+
+void append_velocity_fluctuations(const ParticleStore& p, const std::array<double, 3>& lo,
+                                  const std::array<double, 3>& hi,
+                                  const VelocityDistributionOptions& o,
+                                  std::vector<std::array<double, 3>>& C,
+                                  std::vector<std::size_t>* which) {
+  const CellMeans m = cell_means(p, lo, hi, o);
   // Fluctuations about the mass-weighted local mean.
-  C.reserve(C.size() + n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t q = cell[i];
-    if (count[q] < 2) continue;
-    const double v[3] = {p.vx[i], p.vy[i], p.vz[i]};
-    std::array<double, 3> c{};
-    for (int d = 0; d < 3; ++d) c[d] = v[d] - mv[d][q] / mass[q];
-    C.push_back(c);
+  C.reserve(C.size() + p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (m.count[m.cell[i]] < 2) continue;
+    C.push_back(fluctuation(p, m, i));
     if (which) which->push_back(i);
   }
+}
+
+void append_local_scales(const ParticleStore& p, const std::array<double, 3>& lo,
+                         const std::array<double, 3>& hi, const VelocityDistributionOptions& o,
+                         std::vector<std::array<double, 3>>& scale) {
+  const CellMeans m = cell_means(p, lo, hi, o);
+  std::array<std::vector<double>, 3> sum2;
+  for (auto& s : sum2) s.assign(m.count.size(), 0.0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto c = fluctuation(p, m, i);
+    for (int d = 0; d < 3; ++d) sum2[d][m.cell[i]] += c[d] * c[d];
+  }
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  scale.reserve(scale.size() + p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::size_t q = m.cell[i];
+    if (m.count[q] < 2) continue; // as append_velocity_fluctuations: no sample
+    std::array<double, 3> s{nan, nan, nan};
+    if (m.count[q] >= o.min_local)
+      for (int d = 0; d < 3; ++d) s[d] = std::sqrt(sum2[d][q] / static_cast<double>(m.count[q]));
+    scale.push_back(s);
+  }
+}
+
+LocalMoments local_moments(const std::vector<std::array<double, 3>>& C,
+                           const std::vector<std::array<double, 3>>& scale,
+                           const VelocityDistributionOptions& o) {
+  if (scale.size() != C.size())
+    throw std::invalid_argument("local_moments: one scale per fluctuation sample needed");
+  const int ncomp = o.two_d ? 2 : 3;
+  const std::array<int, 3> comps =
+      o.two_d ? std::array<int, 3>{0, 2, 1} : std::array<int, 3>{0, 1, 2};
+  LocalMoments r;
+  std::array<double, 3> m2{}, m3{}, m4{};
+  for (std::size_t k = 0; k < C.size(); ++k) {
+    bool finite = true;
+    for (int j = 0; j < ncomp; ++j) {
+      const double s = scale[k][comps[static_cast<std::size_t>(j)]];
+      finite = finite && std::isfinite(s) && s > 0.0;
+    }
+    if (!finite) continue;
+    ++r.samples;
+    for (int j = 0; j < ncomp; ++j) {
+      const int d = comps[static_cast<std::size_t>(j)];
+      const double u = C[k][d] / scale[k][d], u2 = u * u;
+      m2[d] += u2, m3[d] += u2 * u, m4[d] += u2 * u2;
+    }
+  }
+  if (r.samples < 2)
+    throw std::invalid_argument("local_moments: fewer than 2 samples in cells of " +
+                                std::to_string(o.min_local) + " particles or more");
+  const double ns = static_cast<double>(r.samples);
+  for (int j = 0; j < ncomp; ++j) {
+    const int d = comps[static_cast<std::size_t>(j)];
+    const double var = m2[d] / ns;
+    r.skewness[d] = m3[d] / ns / (var * std::sqrt(var));
+    r.kurtosis[d] = m4[d] / ns / (var * var);
+  }
+  return r;
 }
 
 VelocityDistribution fluctuation_distribution(const std::vector<std::array<double, 3>>& C,

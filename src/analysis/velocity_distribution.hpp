@@ -9,6 +9,14 @@
 // density (2-D discs). Granular temperature theta = <|C|^2> / D (D = 3, or 2 for discs in the
 // x-z plane). Anisotropy: s_vertical^2 / s_horizontal^2 (1 for an isotropic distribution;
 // Goldschmidt et al. found it above 1 for non-ideal particles).
+//
+// Locally normalised: C_d / s_d,cell, each fluctuation over the rms fluctuation of its own cell
+// and frame. The pooled moments above mix cells of different granular temperature (a bubble's
+// wake and a packed corner), and a mixture of Gaussians of different variances has a kurtosis
+// above 3 (two halves of variances a and b: 6 (a^2 + b^2) / (a + b)^2); the normalised ones
+// measure the shape of the local distribution. With n particles in a cell the scale is their own
+// rms, which biases the kurtosis of Gaussian samples to 3 (n - 1) / (n + 1) (2.93 at n = 60):
+// cells with fewer than `min_local` particles are left out.
 #pragma once
 #include <array>
 #include <vector>
@@ -40,6 +48,7 @@ struct VelocityDistributionOptions {
   double range = 4.0; ///< histogram range in units of s (components) or sqrt(theta) (speed)
   int vertical_axis = 2;
   bool two_d = false; ///< discs in the x-z plane: components x and z only
+  int min_local = 20; ///< fewest particles of a cell for the locally normalised moments
 };
 
 /// The distribution over the particles of `p` in the box [lo, hi] (particles outside are
@@ -66,6 +75,23 @@ void append_velocity_fluctuations(const ParticleStore& p, const std::array<doubl
 /// std::invalid_argument when `C` has fewer than 2 samples or a variance is zero.
 VelocityDistribution fluctuation_distribution(const std::vector<std::array<double, 3>>& C,
                                               const VelocityDistributionOptions& o = {});
+
+/// The rms fluctuation per component of each sample's cell in its frame, appended to `scale`
+/// alongside the samples append_velocity_fluctuations appends to C (call both on the same frame,
+/// with the same options): NaN for the samples of cells with fewer than `min_local` particles.
+void append_local_scales(const ParticleStore& p, const std::array<double, 3>& lo,
+                         const std::array<double, 3>& hi, const VelocityDistributionOptions& o,
+                         std::vector<std::array<double, 3>>& scale);
+
+struct LocalMoments {
+  std::array<double, 3> skewness{}, kurtosis{}; ///< of C_d / s_d,cell (Gaussian: 0, 3)
+  long samples = 0;                             ///< those with a finite scale
+};
+/// The moments of C_d / scale_d over the samples whose scale is finite (C and scale from the
+/// functions above). std::invalid_argument when fewer than 2 samples are left.
+LocalMoments local_moments(const std::vector<std::array<double, 3>>& C,
+                           const std::vector<std::array<double, 3>>& scale,
+                           const VelocityDistributionOptions& o = {});
 
 /// Reference densities for unit variance per component: the standard normal
 /// exp(-x^2/2)/sqrt(2 pi); the Maxwell speed density sqrt(2/pi) c^2 exp(-c^2/2) (3-D, <c^2> = 3);

@@ -107,7 +107,7 @@ bool analyse_particles(const fs::path& particles_path, const fs::path& out, cons
   }
   for (int d = 0; d < 3; ++d)
     if (!(hi[d] > lo[d])) hi[d] = lo[d] + 1.0; // a flat box (2-D without depth)
-  std::vector<std::array<double, 3>> C;
+  std::vector<std::array<double, 3>> C, local_scale;
   ParticleStore p;
   long frames_used = 0;
   const auto& ft = reader->times();
@@ -127,6 +127,7 @@ bool analyse_particles(const fs::path& particles_path, const fs::path& out, cons
       reader->read_frame(k, p);
       which.clear();
       append_velocity_fluctuations(p, lo, hi, vo, C, &which);
+      append_local_scales(p, lo, hi, vo, local_scale);
       if (classes)
         for (const std::size_t i : which) sample_class.push_back(classes->of(2.0 * p.radius[i]));
       ++frames_used;
@@ -181,6 +182,21 @@ bool analyse_particles(const fs::path& particles_path, const fs::path& out, cons
       fmt::print(
           "  {}: variance {:.4g} m^2/s^2, skewness {:.3f}, kurtosis {:.3f} (Gaussian: 0, 3)\n", a,
           vd.variance[d], vd.skewness[d], vd.kurtosis[d]);
+    }
+    try { // each fluctuation over its cell's rms (analysis/velocity_distribution.hpp)
+      const LocalMoments lm = local_moments(C, local_scale, vo);
+      fmt::print("  locally normalised (cells of {}+ particles, {} samples): kurtosis",
+                 vo.min_local, lm.samples);
+      for (int d = 0; d < 3; ++d) {
+        if (two_d && d == 1) continue;
+        const std::string a(1, axis[d]);
+        summary.push_back({"velocity_kurtosis_local_" + a, lm.kurtosis[d], "1"});
+        fmt::print(" {} {:.3f}", a, lm.kurtosis[d]);
+      }
+      summary.push_back({"velocity_local_samples", static_cast<double>(lm.samples), "1"});
+      fmt::print("\n");
+    } catch (const std::invalid_argument& e) {
+      fmt::print("  locally normalised: left out ({})\n", e.what());
     }
     summary.push_back({"speed_outside_range", vd.speed_outside, "1"});
     summary.push_back({"anisotropy", vd.anisotropy, "1"});

@@ -9,7 +9,11 @@
 //  - the same fluctuations on top of a mean flow that differs from cell to cell (a circulation
 //    of 1 m/s): with the cells as averaging cells the variances are recovered within 1%; with
 //    one cell the mean flow inflates them (the reason for local averaging);
-//  - 2-D discs (x-z): temperature over two components, Rayleigh speed density.
+//  - 2-D discs (x-z): temperature over two components, Rayleigh speed density;
+//  - locally normalised moments: Gaussian velocities whose variance differs between two halves
+//    of the box (s = 0.1 and 0.3 m/s): the pooled kurtosis is the mixture's
+//    6 (a^2 + b^2) / (a + b)^2 = 4.92 (a = 0.01, b = 0.09) within 0.15, the locally normalised
+//    one 3 (n - 1)/(n + 1) (n = 5,000 per cell: 2.999) within 0.05, as for one Gaussian.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -80,6 +84,37 @@ TEST(VelocityDistribution, DiscsUseTwoComponentsAndRayleigh) {
   EXPECT_NEAR(r.anisotropy, 1.0, 0.02);
   for (std::size_t b = 0; b < r.speed_centres.size(); ++b)
     EXPECT_NEAR(r.speed_density[b], rayleigh_speed_density(r.speed_centres[b]), 0.02) << b;
+}
+
+TEST(VelocityDistribution, LocalNormalisationRemovesTheMixtureOfTemperatures) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> pos(0.0, 1.0);
+  std::normal_distribution<double> g(0.0, 1.0);
+  ParticleStore p;
+  for (long i = 0; i < 100000; ++i) { // 4 x 1 x 5 cells of 5,000 particles on average
+    const Vec3 x{pos(rng), pos(rng), pos(rng)};
+    const double s = x[0] < 0.5 ? 0.1 : 0.3;
+    p.add(x, {s * g(rng), s * g(rng), s * g(rng)}, 0.001, 2500.0, 0, i);
+  }
+  VelocityDistributionOptions o;
+  o.cells = {4, 1, 5};
+  std::vector<std::array<double, 3>> C, scale;
+  append_velocity_fluctuations(p, {0, 0, 0}, {1, 1, 1}, o, C);
+  append_local_scales(p, {0, 0, 0}, {1, 1, 1}, o, scale);
+  ASSERT_EQ(C.size(), scale.size());
+  const VelocityDistribution pooled = fluctuation_distribution(C, o);
+  const LocalMoments local = local_moments(C, scale, o);
+  EXPECT_EQ(local.samples, static_cast<long>(C.size()));
+  for (int d = 0; d < 3; ++d) {
+    EXPECT_NEAR(pooled.kurtosis[d], 6.0 * (1e-4 + 81e-4) / (0.1 * 0.1), 0.15) << d;
+    EXPECT_NEAR(local.kurtosis[d], 3.0, 0.05) << d;
+    EXPECT_NEAR(local.skewness[d], 0.0, 0.03) << d;
+  }
+  // Cells below min_local particles are left out; none left is an error.
+  o.min_local = 1000000;
+  scale.clear();
+  append_local_scales(p, {0, 0, 0}, {1, 1, 1}, o, scale);
+  EXPECT_THROW(local_moments(C, scale, o), std::invalid_argument);
 }
 
 TEST(VelocityDistribution, NoFluctuationIsAnError) {
