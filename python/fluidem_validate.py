@@ -420,6 +420,13 @@ def kurtosis_farthest(o, run):
     return max(k, key=lambda v: abs(v - 3.0))
 
 
+def kurtosis_local_farthest(o, run):
+    """The kurtosis of the locally normalised x and z velocity fluctuations (each over its cell's
+    rms) farther from the Gaussian's 3."""
+    k = [o.summary(run, f"velocity_kurtosis_local_{a}") for a in "xz"]
+    return max(k, key=lambda v: abs(v - 3.0))
+
+
 def pressure_drop_before_jet(o, run, t0, t1):
     """Mean pressure drop over [t0, t1] s / the bed's weight per area."""
     return o.window_mean(run, "pressure_drop", t0, t1) / o.summary(run, "bed_weight_per_area")
@@ -509,6 +516,11 @@ VALUES = {  # id: (the runs it needs, value(outputs) -> float)
     "velocity_nonideal_quick.kurtosis": (["velocity_nonideal_quick"],
                                          lambda o: kurtosis_farther(o,
                                                                     "velocity_nonideal_quick")),
+    "velocity_ideal_quick.kurtosis_local": (
+        ["velocity_ideal_quick"], lambda o: kurtosis_local_farthest(o, "velocity_ideal_quick")),
+    "velocity_nonideal_quick.kurtosis_local": (
+        ["velocity_nonideal_quick"],
+        lambda o: kurtosis_local_farthest(o, "velocity_nonideal_quick")),
     "velocity_ideal_quick.anisotropy": (["velocity_ideal_quick"],
                                         summary_of("velocity_ideal_quick", "anisotropy")),
     "velocity_nonideal_quick.anisotropy": (["velocity_nonideal_quick"],
@@ -531,6 +543,10 @@ VALUES = {  # id: (the runs it needs, value(outputs) -> float)
                                 lambda o: kurtosis_farthest(o, "velocity_ideal")),
     "velocity_nonideal.kurtosis": (["velocity_nonideal"],
                                    lambda o: kurtosis_farthest(o, "velocity_nonideal")),
+    "velocity_ideal.kurtosis_local": (["velocity_ideal"],
+                                      lambda o: kurtosis_local_farthest(o, "velocity_ideal")),
+    "velocity_nonideal.kurtosis_local": (
+        ["velocity_nonideal"], lambda o: kurtosis_local_farthest(o, "velocity_nonideal")),
     "velocity_nonideal.anisotropy_ratio": (
         ["velocity_ideal", "velocity_nonideal"],
         lambda o: o.summary("velocity_nonideal", "anisotropy")
