@@ -1108,8 +1108,8 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs, made=N
     w("## Pictures")
     w("")
     for r in runs:
-        if (quick and r.name not in QUICK_PLOTS) or not r.plot:
-            continue
+        if (quick and r.name not in QUICK_PLOTS) or not r.plot or r.name not in wall:
+            continue  # (not drawn: a run that did not finish, or --report-only without it)
         out = outputs.dir(r.name)
         shown = []
         # The snapshot drawn again at a lower resolution (the repository keeps the report), then
