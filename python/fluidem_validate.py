@@ -830,13 +830,14 @@ def run_cmd(cmd, log, cwd=None):
 
 
 def git_commit():
-    """The source tree's commit, "+changes" when tracked files differ from it."""
+    """The source tree's commit, "+changes" when tracked files differ from it (the report's
+    own folder, which writing the report changes, aside)."""
     try:
         out = subprocess.run(["git", "-C", SOURCE, "rev-parse", "--short", "HEAD"],
                              capture_output=True, text=True, check=True)
         changed = subprocess.run(["git", "-C", SOURCE, "status", "--porcelain",
-                                  "--untracked-files=no"], capture_output=True, text=True,
-                                 check=True)
+                                  "--untracked-files=no", "--", ".", ":!docs/validation"],
+                                 capture_output=True, text=True, check=True)
         return out.stdout.strip() + ("+changes" if changed.stdout.strip() else "")
     except (OSError, subprocess.CalledProcessError):
         return "unknown"
