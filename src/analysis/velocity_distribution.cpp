@@ -86,36 +86,31 @@ void append_velocity_fluctuations(const ParticleStore& p, const std::array<doubl
                                   const std::array<double, 3>& hi,
                                   const VelocityDistributionOptions& o,
                                   std::vector<std::array<double, 3>>& C,
-                                  std::vector<std::size_t>* which) {
+                                  std::vector<std::size_t>* which,
+                                  std::vector<std::array<double, 3>>* local_scale) {
   const CellMeans m = cell_means(p, lo, hi, o);
+  // The cells' rms fluctuations, for local_scale.
+  std::array<std::vector<double>, 3> sum2;
+  if (local_scale) {
+    for (auto& s : sum2) s.assign(m.count.size(), 0.0);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const auto c = fluctuation(p, m, i);
+      for (int d = 0; d < 3; ++d) sum2[d][m.cell[i]] += c[d] * c[d];
+    }
+  }
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   // Fluctuations about the mass-weighted local mean.
   C.reserve(C.size() + p.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (m.count[m.cell[i]] < 2) continue;
+    const std::size_t q = m.cell[i];
+    if (m.count[q] < 2) continue;
     C.push_back(fluctuation(p, m, i));
     if (which) which->push_back(i);
-  }
-}
-
-void append_local_scales(const ParticleStore& p, const std::array<double, 3>& lo,
-                         const std::array<double, 3>& hi, const VelocityDistributionOptions& o,
-                         std::vector<std::array<double, 3>>& scale) {
-  const CellMeans m = cell_means(p, lo, hi, o);
-  std::array<std::vector<double>, 3> sum2;
-  for (auto& s : sum2) s.assign(m.count.size(), 0.0);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const auto c = fluctuation(p, m, i);
-    for (int d = 0; d < 3; ++d) sum2[d][m.cell[i]] += c[d] * c[d];
-  }
-  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-  scale.reserve(scale.size() + p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const std::size_t q = m.cell[i];
-    if (m.count[q] < 2) continue; // as append_velocity_fluctuations: no sample
+    if (!local_scale) continue;
     std::array<double, 3> s{nan, nan, nan};
     if (m.count[q] >= o.min_local)
       for (int d = 0; d < 3; ++d) s[d] = std::sqrt(sum2[d][q] / static_cast<double>(m.count[q]));
-    scale.push_back(s);
+    local_scale->push_back(s);
   }
 }
 

@@ -63,12 +63,15 @@ VelocityDistribution velocity_distribution(const ParticleStore& p, const std::ar
 /// particle left out) of the particles of `p`, appended to `out`: to pool several frames (each
 /// frame with its own local means) into one distribution. Throws for bad options as
 /// velocity_distribution does. `which` (when given) gets the index in `p` of each appended
-/// sample (to split the samples by particle, e.g. by size class).
+/// sample (to split the samples by particle, e.g. by size class); `local_scale` (when given)
+/// the rms fluctuation per component of the sample's cell in this frame, NaN for cells of fewer
+/// than `min_local` particles (for local_moments).
 void append_velocity_fluctuations(const ParticleStore& p, const std::array<double, 3>& lo,
                                   const std::array<double, 3>& hi,
                                   const VelocityDistributionOptions& o,
                                   std::vector<std::array<double, 3>>& out,
-                                  std::vector<std::size_t>* which = nullptr);
+                                  std::vector<std::size_t>* which = nullptr,
+                                  std::vector<std::array<double, 3>>* local_scale = nullptr);
 
 /// The distribution of the fluctuation velocities `C` (from append_velocity_fluctuations, one
 /// or many frames): moments, granular temperature, anisotropy and histograms as above.
@@ -76,19 +79,12 @@ void append_velocity_fluctuations(const ParticleStore& p, const std::array<doubl
 VelocityDistribution fluctuation_distribution(const std::vector<std::array<double, 3>>& C,
                                               const VelocityDistributionOptions& o = {});
 
-/// The rms fluctuation per component of each sample's cell in its frame, appended to `scale`
-/// alongside the samples append_velocity_fluctuations appends to C (call both on the same frame,
-/// with the same options): NaN for the samples of cells with fewer than `min_local` particles.
-void append_local_scales(const ParticleStore& p, const std::array<double, 3>& lo,
-                         const std::array<double, 3>& hi, const VelocityDistributionOptions& o,
-                         std::vector<std::array<double, 3>>& scale);
-
 struct LocalMoments {
   std::array<double, 3> skewness{}, kurtosis{}; ///< of C_d / s_d,cell (Gaussian: 0, 3)
   long samples = 0;                             ///< those with a finite scale
 };
-/// The moments of C_d / scale_d over the samples whose scale is finite (C and scale from the
-/// functions above). std::invalid_argument when fewer than 2 samples are left.
+/// The moments of C_d / scale_d over the samples whose scale is finite (C and scale from
+/// append_velocity_fluctuations). std::invalid_argument when fewer than 2 samples are left.
 LocalMoments local_moments(const std::vector<std::array<double, 3>>& C,
                            const std::vector<std::array<double, 3>>& scale,
                            const VelocityDistributionOptions& o = {});

@@ -126,8 +126,7 @@ bool analyse_particles(const fs::path& particles_path, const fs::path& out, cons
       if (ft[k] < t0 || ft[k] > t1) continue;
       reader->read_frame(k, p);
       which.clear();
-      append_velocity_fluctuations(p, lo, hi, vo, C, &which);
-      append_local_scales(p, lo, hi, vo, local_scale);
+      append_velocity_fluctuations(p, lo, hi, vo, C, &which, &local_scale);
       if (classes)
         for (const std::size_t i : which) sample_class.push_back(classes->of(2.0 * p.radius[i]));
       ++frames_used;

@@ -99,8 +99,7 @@ TEST(VelocityDistribution, LocalNormalisationRemovesTheMixtureOfTemperatures) {
   VelocityDistributionOptions o;
   o.cells = {4, 1, 5};
   std::vector<std::array<double, 3>> C, scale;
-  append_velocity_fluctuations(p, {0, 0, 0}, {1, 1, 1}, o, C);
-  append_local_scales(p, {0, 0, 0}, {1, 1, 1}, o, scale);
+  append_velocity_fluctuations(p, {0, 0, 0}, {1, 1, 1}, o, C, nullptr, &scale);
   ASSERT_EQ(C.size(), scale.size());
   const VelocityDistribution pooled = fluctuation_distribution(C, o);
   const LocalMoments local = local_moments(C, scale, o);
@@ -112,8 +111,8 @@ TEST(VelocityDistribution, LocalNormalisationRemovesTheMixtureOfTemperatures) {
   }
   // Cells below min_local particles are left out; none left is an error.
   o.min_local = 1000000;
-  scale.clear();
-  append_local_scales(p, {0, 0, 0}, {1, 1, 1}, o, scale);
+  C.clear(), scale.clear();
+  append_velocity_fluctuations(p, {0, 0, 0}, {1, 1, 1}, o, C, nullptr, &scale);
   EXPECT_THROW(local_moments(C, scale, o), std::invalid_argument);
 }
 
