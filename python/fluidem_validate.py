@@ -82,6 +82,7 @@ import math
 import os
 import platform
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -829,6 +830,59 @@ def run_cmd(cmd, log, cwd=None):
         return subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd).returncode
 
 
+def run_pieces_cmd(cmd, log, record, every=60.0):
+    """Run one piece of a run: `cmd` in its own session (a signal to validate's process group
+    does not reach it twice), its output appended to `log`. SIGINT and SIGTERM to validate are
+    passed on once (fluidem stops after its step and writes a checkpoint). record(seconds) is
+    called every `every` s of wall time and at the end, so that a lost machine still leaves the
+    wall time of the piece in WORK/<run>.started. Returns (exit code, wall time in s)."""
+    with open(log, "a") as f:
+        f.write("$ " + " ".join(cmd) + "\n")
+        f.flush()
+        t0 = time.time()
+        record(0.0)
+        p = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, start_new_session=True)
+
+        def forward(sig, _frame):
+            p.send_signal(sig)
+
+        old = {s: signal.signal(s, forward) for s in (signal.SIGINT, signal.SIGTERM)}
+        try:
+            while True:
+                try:
+                    code = p.wait(timeout=every)
+                    break
+                except subprocess.TimeoutExpired:
+                    record(time.time() - t0)
+        finally:
+            for s, h in old.items():
+                signal.signal(s, h)
+        seconds = time.time() - t0
+        record(seconds)
+        return code, seconds
+
+
+def write_started(path, cmd, wall, commits, threads):
+    """The record of a run that is not finished, WORK/<run>.started (written with a temporary
+    file and a rename): its command line, the wall time of its pieces so far (s), the commits
+    its pieces ran from (comma-separated) and its threads."""
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        f.write(f"{cmd}\n{wall}\n{','.join(commits)}\n{threads}\n")
+    os.replace(tmp, path)
+
+
+def read_started(path):
+    """WORK/<run>.started (write_started), or None when there is none or it is unreadable."""
+    try:
+        with open(path) as f:
+            lines = f.read().split("\n")
+        return {"cmd": lines[0], "wall": float(lines[1]), "commits": lines[2].split(","),
+                "threads": lines[3]}
+    except (OSError, IndexError, ValueError):
+        return None
+
+
 def git_commit():
     """The source tree's commit, "+changes" when tracked files differ from it (the report's
     own folder, which writing the report changes, aside)."""
@@ -875,7 +929,13 @@ def main():
     ap.add_argument("--reuse", action="store_true",
                     help="keep the runs of WORK that completed with the same command line "
                     "(WORK/<run>.done) instead of running them again")
+    ap.add_argument("--resume", action="store_true",
+                    help="continue the runs of WORK that were stopped (Ctrl-C, SIGTERM, a lost "
+                    "machine) from their last checkpoint, when their record WORK/<run>.started "
+                    "has the same command line; the wall times of the pieces add up. Implies "
+                    "--reuse")
     a = ap.parse_args()
+    a.reuse = a.reuse or a.resume
     global CASES
     if a.cases:
         CASES = os.path.abspath(a.cases)
@@ -944,17 +1004,48 @@ def main():
                 reused = True
                 print(f"[{r.name}] run reused ({done})", flush=True)
         if not reused:
-            for old in (done, log):
-                if os.path.exists(old):
-                    os.remove(old)
-            print(f"[{r.name}] running {r.case} ...", flush=True)
-            t = time.time()
-            code = run_cmd(cmd, log)
-            wall[r.name] = time.time() - t
+            started = os.path.join(work, r.name + ".started")
+            checkpoint = os.path.join(out, "checkpoint.h5")
+            piece = read_started(started) if a.resume and os.path.exists(checkpoint) else None
+            if piece and piece["cmd"] == " ".join(cmd[1:]):
+                # The next piece: the run continues from its checkpoint, appending to its
+                # outputs (a restart is bitwise: the same result as one piece).
+                print(f"[{r.name}] continuing {r.case} from {checkpoint} ({piece['wall']:.0f} s "
+                      "of wall time before) ...", flush=True)
+                run = [a.fluidem, "run", "--restart", checkpoint, "--out", out]
+                if a.threads > 0:
+                    run += ["--threads", str(a.threads)]
+                commits = piece["commits"]
+                if git_commit() not in commits:
+                    commits.append(git_commit())
+            else:
+                for old in (done, log, started):
+                    if os.path.exists(old):
+                        os.remove(old)
+                print(f"[{r.name}] running {r.case} ...", flush=True)
+                run, piece, commits = cmd, {"wall": 0.0}, [git_commit()]
+            threads = str(a.threads) if a.threads > 0 else "all"
+
+            def record(seconds, r=r, started=started, piece=piece, commits=commits,
+                       threads=threads):
+                write_started(started, " ".join(cmd[1:]), piece["wall"] + seconds, commits,
+                              threads)
+
+            code, seconds = run_pieces_cmd(run, log, record)
+            wall[r.name] = piece["wall"] + seconds
+            if code in (128 + signal.SIGINT, 128 + signal.SIGTERM):
+                # Stopped: no report (it would list the runs not made as failed); the run
+                # continues from its checkpoint with --resume.
+                print(f"[{r.name}] stopped by a signal after {wall[r.name]:.0f} s of wall time "
+                      f"in all: continue it with --resume (log {log})", file=sys.stderr,
+                      flush=True)
+                return code
             if code != 0:
                 failed.append(f"{r.name}: fluidem run exited {code} (log {log})")
                 print(f"[{r.name}] FAILED (exit {code}), log {log}", flush=True)
                 continue
+            os.remove(started)
+            made[r.name] = (",".join(commits), threads)
         analyse = [a.fluidem, "analyse", out] + (r.analyse if in_full else ["--from", "0"])
         code = run_cmd(analyse, log)
         if code != 0:
@@ -970,7 +1061,6 @@ def main():
             if code != 0:
                 failed.append(f"{r.name}: fluidem plot exited {code} (log {log})")
         if not reused:
-            made[r.name] = (git_commit(), str(a.threads) if a.threads > 0 else "all")
             with open(done, "w") as f:
                 f.write(" ".join(cmd[1:]) + "\n" + str(wall[r.name]) + "\n"
                         + "\n".join(made[r.name]) + "\n")
