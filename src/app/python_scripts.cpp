@@ -1,9 +1,12 @@
 #include "app/python_scripts.hpp"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 #include <fmt/format.h>
 
@@ -14,6 +17,11 @@ namespace fluidem {
 namespace fs = std::filesystem;
 
 namespace {
+
+std::string python_interpreter() {
+  const char* env = std::getenv("FLUIDEM_PYTHON");
+  return env != nullptr && env[0] != '\0' ? env : "/usr/bin/python3";
+}
 
 std::string quote(const std::string& s) {
   std::string q = "'";
@@ -48,8 +56,7 @@ fs::path find_python_script_dir(const std::string& script, const char* argv0) {
 }
 
 int run_python_script(const fs::path& script, const std::vector<std::string>& args) {
-  const char* env = std::getenv("FLUIDEM_PYTHON");
-  const std::string python = env != nullptr && env[0] != '\0' ? env : "/usr/bin/python3";
+  const std::string python = python_interpreter();
   std::string cmd = quote(python) + " " + quote(script.string());
   for (const auto& a : args) cmd += " " + quote(a);
   std::fflush(stdout);
@@ -59,6 +66,20 @@ int run_python_script(const fs::path& script, const std::vector<std::string>& ar
     fmt::print(stderr, "error: {} failed (exit code {}): {}\n", script.filename().string(), code,
                cmd);
   return code;
+}
+
+int exec_python_script(const fs::path& script, const std::vector<std::string>& args) {
+  std::vector<std::string> words{python_interpreter(), script.string()};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  ::execv(argv[0], argv.data());
+  fmt::print(stderr, "error: cannot run {} with {}: {}\n", script.string(), words[0],
+             std::strerror(errno));
+  return 127;
 }
 
 } // namespace fluidem

@@ -20,4 +20,8 @@ std::filesystem::path own_binary_path(const char* argv0);
 /// Run `python script args...`; returns the script's exit code (1 if it could not run).
 int run_python_script(const std::filesystem::path& script, const std::vector<std::string>& args);
 
+/// Replace this process by `python script args...` (signals reach the script itself: a stopped
+/// `fluidem validate` stops its run with a checkpoint); returns only when that fails (127).
+int exec_python_script(const std::filesystem::path& script, const std::vector<std::string>& args);
+
 } // namespace fluidem

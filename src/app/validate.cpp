@@ -10,6 +10,7 @@ int ValidateCommand::run(const char* argv0) const {
   if (quick) args.emplace_back("--quick");
   if (list) args.emplace_back("--list");
   if (reuse) args.emplace_back("--reuse");
+  if (resume) args.emplace_back("--resume");
   if (report_only) args.emplace_back("--report-only");
   if (long_cases) args.emplace_back("--long");
   if (!work.empty()) args.insert(args.end(), {"--work", work});
@@ -17,7 +18,7 @@ int ValidateCommand::run(const char* argv0) const {
   if (!cases.empty()) args.insert(args.end(), {"--cases", cases});
   for (const auto& o : only) args.insert(args.end(), {"--only", o});
   if (threads > 0) args.insert(args.end(), {"--threads", std::to_string(threads)});
-  return run_python_script(dir / "fluidem_validate.py", args);
+  return exec_python_script(dir / "fluidem_validate.py", args);
 }
 
 std::unique_ptr<ValidateCommand> add_validate_command(CLI::App& app) {
@@ -32,6 +33,10 @@ std::unique_ptr<ValidateCommand> add_validate_command(CLI::App& app) {
   c->command->add_flag("--reuse", c->reuse,
                        "Keep the runs in the work folder that completed with the same command "
                        "(re-analyse them only)");
+  c->command->add_flag("--resume", c->resume,
+                       "Continue the runs of the work folder that were stopped (Ctrl-C, "
+                       "SIGTERM, a lost machine) from their last checkpoint: long runs in "
+                       "pieces, their wall times added up (implies --reuse)");
   c->command->add_flag("--long", c->long_cases,
                        "Also the full-size cases (40,000-72,600 particles, the 17 s loop): "
                        "hours of wall time each");

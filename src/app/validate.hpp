@@ -14,6 +14,7 @@ struct ValidateCommand {
   bool quick = false;
   bool list = false;
   bool reuse = false;
+  bool resume = false;
   bool report_only = false;
   bool long_cases = false;
   std::string work, report, cases;

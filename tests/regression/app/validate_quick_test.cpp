@@ -9,22 +9,28 @@
 // validation) and by the physics tests of each module.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <thread>
 
 #include "../../common/cli_runner.hpp"
 
 namespace {
 
 using fluidem::test::contains;
+using fluidem::test::finish;
 using fluidem::test::fluidem;
 using fluidem::test::read_file;
 using fluidem::test::Result;
 using fluidem::test::run_command;
+using fluidem::test::series_times;
+using fluidem::test::start_fluidem;
 using fluidem::test::TempDir;
 
 TEST(ValidateQuick, EveryCaseRunsAndEveryQuantityIsExtracted) {
@@ -104,6 +110,65 @@ TEST(ValidateQuick, TheGateFailsWhenAValueLeavesWhatIsExpected) {
   EXPECT_TRUE(contains(r.err, "settled area fraction") && contains(r.err, "no longer agrees"))
       << r.err;
   EXPECT_TRUE(contains(r.err, "outside its recorded band [5, 6]")) << r.err;
+}
+
+} // namespace
+
+namespace {
+
+// A long run made in pieces (issue 39: "long runs may be split into pieces with --restart"):
+// `fluidem validate` stopped by SIGTERM in the middle of a run stops that run with a checkpoint,
+// exits 143 and writes no report (it would list the run as failed); `--resume` continues the run
+// from its checkpoint and the finished run is the same as one made in one piece: its series.csv
+// has every row once, in order (the restart is bitwise: tests/unit/app/run_safety_test.cpp), and
+// the gate passes (pouring_soft runs in full in --quick and agrees with [Hoomans96 §5.1]). The
+// record of the run adds up the wall time of its pieces.
+TEST(ValidateQuick, AStoppedRunContinuesWithResume) {
+  TempDir dir("fluidem_validate_resume");
+  namespace fs = std::filesystem;
+  const fs::path work = dir.path / "work";
+  const fs::path series = work / "pouring_soft" / "series.csv";
+  const std::vector<std::string> args{"validate", "--quick",     "--only",    "pouring_soft",
+                                      "--work",   work.string(), "--threads", "1"};
+  const pid_t pid = start_fluidem(args, dir.path);
+  const auto t0 = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(120)) {
+    if (fs::exists(series) && series_times(series).size() > 10) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ::kill(pid, SIGTERM);
+  const Result stopped = finish(pid, dir.path);
+  ASSERT_EQ(stopped.code, 143) << stopped.out << stopped.err;
+  EXPECT_TRUE(contains(stopped.err, "continue it with --resume")) << stopped.err;
+  EXPECT_FALSE(fs::exists(work / "README.md")) << "a stopped validate writes no report";
+  ASSERT_TRUE(fs::exists(work / "pouring_soft.started"));
+  std::istringstream started(read_file(work / "pouring_soft.started"));
+  std::string line, first_wall;
+  std::getline(started, line);
+  std::getline(started, first_wall);
+  const std::size_t rows_before = series_times(series).size();
+  ASSERT_LT(rows_before, 200u) << "the run finished before it was stopped";
+
+  std::vector<std::string> again = args;
+  again.push_back("--resume");
+  const Result r = fluidem(again, dir.path);
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_TRUE(contains(r.out, "continuing")) << r.out;
+  EXPECT_FALSE(fs::exists(work / "pouring_soft.started"));
+  const std::vector<double> t = series_times(series);
+  ASSERT_EQ(t.size(), 201u) << "0 to 1 s every 5 ms (cases/hoomans96/pouring_soft.toml)";
+  // A row at the first step at or after every 5 ms (the time step is "auto", far below 1 ms): a
+  // duplicated or missing row would put every later one 5 ms off.
+  for (std::size_t i = 0; i < t.size(); ++i)
+    EXPECT_NEAR(t[i], 0.005 * static_cast<double>(i), 1e-3) << "row " << i;
+  // The record: the command line, the wall time of both pieces, the commit(s), the threads.
+  std::istringstream done(read_file(work / "pouring_soft.done"));
+  std::string cmd, wall;
+  std::getline(done, cmd);
+  std::getline(done, wall);
+  EXPECT_GT(std::stod(wall), std::stod(first_wall));
+  const std::string report = read_file(work / "README.md");
+  EXPECT_FALSE(contains(report, "## Failures")) << report;
 }
 
 } // namespace
