@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install what is missing, build fluidem with its tests, run the tests (labels unit, regression);
-# then the unit tests under ASan + UBSan (tools/ci-sanitizers.sh, build-asan) and 60 s of fuzzing
-# of the case reader (tools/ci-fuzz.sh, build-fuzz). FLUIDEM_QUICK=1 skips those two.
+# then the unit tests under ASan + UBSan (tools/ci-sanitizers.sh, build-asan) and 30 s of fuzzing
+# of the case reader on every core (tools/ci-fuzz.sh, build-fuzz). FLUIDEM_QUICK=1 skips those two.
 set -euo pipefail
 cd "$(dirname "$0")"
 tools/install-deps.sh

@@ -20,9 +20,14 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=None -DFLUIDEM_SANITIZE=ON \
   -DCMAKE_CXX_FLAGS="-O1 -g1 -fno-sanitize-recover=undefined" \
   -DCMAKE_C_FLAGS="-O1 -g1 -fno-sanitize-recover=undefined" >/dev/null
 targets=(fluidem)
+# Not built: the test executables all of whose tests are excluded below (MpiRun.*,
+# ThreadIndependence.*); ctest skips a test executable that is not built (its placeholder test has
+# no label).
+not_built=" unit_app_mpi_run_test unit_integrate_thread_independence_test "
 for f in tests/unit/*/*_test.cpp; do
   module=$(basename "$(dirname "$f")")
-  targets+=("unit_${module}_$(basename "$f" .cpp)")
+  target="unit_${module}_$(basename "$f" .cpp)"
+  [[ $not_built == *" $target "* ]] || targets+=("$target")
 done
 cmake --build "$build" -j"$jobs" --target "${targets[@]}"
 
