@@ -187,9 +187,10 @@ class Outputs:
 
     def __init__(self, work):
         self.work = work
+        self.elsewhere = {}  # run: its folder outside WORK (a run taken from the archive)
 
     def dir(self, run):
-        return os.path.join(self.work, run)
+        return self.elsewhere.get(run, os.path.join(self.work, run))
 
     def summary(self, run, name):
         path = os.path.join(self.dir(run), "analysis", "summary.csv")
@@ -830,6 +831,80 @@ def run_cmd(cmd, log, cwd=None):
         return subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd).returncode
 
 
+def done_command(path):
+    """The command line of a run's record (WORK/<run>.done)."""
+    with open(path) as f:
+        return f.read().split("\n")[0]
+
+
+def portable_command(words, cases, work):
+    """A run's command line with the case folder and the work folder written as cases/ and
+    WORK/ and without its --threads (the results do not depend on them; the record keeps
+    them): the same run made in another checkout, work folder or thread count compares equal."""
+    out = []
+    words = list(words)
+    if "--threads" in words:
+        k = words.index("--threads")
+        del words[k:k + 2]
+    for w in words:
+        for root, name in ((cases, "cases"), (work, "WORK")):
+            if w == root or w.startswith(root + os.sep):
+                w = name + w[len(root):]
+        out.append(w)
+    return " ".join(out)
+
+
+# The files of a finished run kept in the archive: what the quantities and the report read,
+# without the particle and field files (hundreds of MB) and the checkpoints.
+ARCHIVED = (".csv", ".toml")
+ARCHIVED_ANALYSIS = (".csv", ".png")
+
+
+def archive_run(out, done, archive, name, cases, work):
+    """Copy a finished long run's small outputs and record to ARCHIVE/<name> and
+    ARCHIVE/<name>.done (the command line written with cases/ and WORK/), replacing an earlier
+    copy only once the new one is complete (a temporary folder, then renames). The snapshot
+    is drawn at the report's resolution (report_snapshot.png): particles.h5 stays behind."""
+    os.makedirs(archive, exist_ok=True)
+    dst = os.path.join(archive, name)
+    tmp = dst + ".tmp"
+    if os.path.exists(tmp):
+        shutil.rmtree(tmp)
+    os.makedirs(os.path.join(tmp, "analysis"))
+    for f in sorted(os.listdir(out)):
+        if f.endswith(ARCHIVED) and os.path.isfile(os.path.join(out, f)):
+            shutil.copyfile(os.path.join(out, f), os.path.join(tmp, f))
+    adir = os.path.join(out, "analysis")
+    for f in sorted(os.listdir(adir)) if os.path.isdir(adir) else []:
+        if f.endswith(ARCHIVED_ANALYSIS):
+            shutil.copyfile(os.path.join(adir, f), os.path.join(tmp, "analysis", f))
+    if os.path.exists(os.path.join(out, "particles.h5")):
+        subprocess.run([sys.executable, os.path.join(HERE, "fluidem_plot.py"), out, "--out",
+                        os.path.join(tmp, "report_snapshot.png"), "--dpi", "60"],
+                       capture_output=True)
+    with open(done) as f:
+        lines = f.read().split("\n")
+    lines[0] = portable_command(lines[0].split(" "), cases, work)
+    with open(os.path.join(tmp, "record.done"), "w") as f:
+        f.write("\n".join(lines))
+    old = dst + ".old"
+    if os.path.exists(old):
+        shutil.rmtree(old)
+    if os.path.exists(dst):
+        os.replace(dst, old)
+    os.replace(tmp, dst)
+    os.replace(os.path.join(dst, "record.done"), dst + ".done")
+    if os.path.exists(old):
+        shutil.rmtree(old)
+
+
+def archived_run(archive, name, words, cases, work):
+    """Whether ARCHIVE holds run `name` made with this command line (as portable_command)."""
+    done = os.path.join(archive, name + ".done")
+    return (os.path.exists(done) and os.path.isdir(os.path.join(archive, name))
+            and done_command(done) == portable_command(words, cases, work))
+
+
 def run_pieces_cmd(cmd, log, record, every=60.0):
     """Run one piece of a run: `cmd` in its own session (a signal to validate's process group
     does not reach it twice), its output appended to `log`. SIGINT and SIGTERM to validate are
@@ -934,6 +1009,14 @@ def main():
                     "machine) from their last checkpoint, when their record WORK/<run>.started "
                     "has the same command line; the wall times of the pieces add up. Implies "
                     "--reuse")
+    ap.add_argument("--archive",
+                    help="folder of the finished full-size (--long) runs' small outputs: "
+                    "their CSV files, analysis tables and pictures and their record, without "
+                    "the HDF5 files (default docs/validation/runs of the source tree; not "
+                    "with --quick). A long run that finishes is copied there; with --reuse or "
+                    "--report-only, a long run not finished in WORK is taken from there, so "
+                    "that the report can be made at a later commit, on another machine, from "
+                    "runs of days")
     a = ap.parse_args()
     a.reuse = a.reuse or a.resume
     global CASES
@@ -974,6 +1057,8 @@ def main():
                                                        "README.md")))
     os.makedirs(work, exist_ok=True)
     os.makedirs(os.path.dirname(report), exist_ok=True)
+    archive = None if a.quick else os.path.abspath(
+        a.archive or os.path.join(SOURCE, "docs", "validation", "runs"))
     outputs = Outputs(work)
     failed = []
     skipped = []  # --report-only: runs not finished in WORK
@@ -989,20 +1074,28 @@ def main():
         if a.threads > 0:
             cmd += ["--threads", str(a.threads)]
         done = os.path.join(work, r.name + ".done")
+        finished = os.path.exists(done) and (
+            a.report_only or done_command(done) == " ".join(cmd[1:]))
+        archived = (r.long and archive and not finished and (a.reuse or a.report_only)
+                    and archived_run(archive, r.name, cmd[1:], CASES, work))
+        if archived:
+            # A full-size run made earlier (another commit, another machine): its record and
+            # small outputs, kept in the archive.
+            outputs.elsewhere[r.name] = os.path.join(archive, r.name)
+            wall[r.name], made[r.name] = read_done(os.path.join(archive, r.name + ".done"))
+            print(f"[{r.name}] taken from the archive ({archive})", flush=True)
+            continue
         if a.report_only:
-            if os.path.exists(done):
+            if finished:
                 wall[r.name], made[r.name] = read_done(done)
             else:
                 skipped.append(r.name)
             continue
         reused = False
-        if a.reuse and os.path.exists(done):
-            with open(done) as f:
-                prev_cmd = f.read().split("\n")[0]
-            if prev_cmd == " ".join(cmd[1:]):
-                wall[r.name], made[r.name] = read_done(done)
-                reused = True
-                print(f"[{r.name}] run reused ({done})", flush=True)
+        if a.reuse and finished:
+            wall[r.name], made[r.name] = read_done(done)
+            reused = True
+            print(f"[{r.name}] run reused ({done})", flush=True)
         if not reused:
             started = os.path.join(work, r.name + ".started")
             checkpoint = os.path.join(out, "checkpoint.h5")
@@ -1064,6 +1157,9 @@ def main():
             with open(done, "w") as f:
                 f.write(" ".join(cmd[1:]) + "\n" + str(wall[r.name]) + "\n"
                         + "\n".join(made[r.name]) + "\n")
+        if r.long and archive:
+            archive_run(out, done, archive, r.name, CASES, work)
+            print(f"[{r.name}] archived in {os.path.join(archive, r.name)}", flush=True)
         print(f"[{r.name}] done ({wall[r.name]:.0f} s of wall time)", flush=True)
 
     rows = []
@@ -1205,13 +1301,16 @@ def write_report(path, quick, runs, rows, not_run, wall, failed, outputs, made=N
         shown = []
         # The snapshot drawn again at a lower resolution (the repository keeps the report), then
         # the analysis pictures: velocity distribution, pressure-drop curve, s(t), first spectrum.
+        dst = f"{r.name}_snapshot.png"
         if os.path.exists(os.path.join(out, "particles.h5")):
-            dst = f"{r.name}_snapshot.png"
             code = subprocess.run([sys.executable, os.path.join(HERE, "fluidem_plot.py"), out,
                                    "--out", os.path.join(pics, dst), "--dpi", "60"],
                                   capture_output=True).returncode
             if code == 0:
                 shown.append(f"![{r.name} snapshot](pictures/{dst})")
+        elif os.path.exists(os.path.join(out, "report_snapshot.png")):  # an archived run
+            shutil.copyfile(os.path.join(out, "report_snapshot.png"), os.path.join(pics, dst))
+            shown.append(f"![{r.name} snapshot](pictures/{dst})")
         adir = os.path.join(out, "analysis")
         spectra = sorted(f for f in os.listdir(adir) if f.startswith("spectrum_")
                          and f.endswith(".png")) if os.path.isdir(adir) else []

@@ -16,6 +16,7 @@ int ValidateCommand::run(const char* argv0) const {
   if (!work.empty()) args.insert(args.end(), {"--work", work});
   if (!report.empty()) args.insert(args.end(), {"--report", report});
   if (!cases.empty()) args.insert(args.end(), {"--cases", cases});
+  if (!archive.empty()) args.insert(args.end(), {"--archive", archive});
   for (const auto& o : only) args.insert(args.end(), {"--only", o});
   if (threads > 0) args.insert(args.end(), {"--threads", std::to_string(threads)});
   return exec_python_script(dir / "fluidem_validate.py", args);
@@ -48,6 +49,10 @@ std::unique_ptr<ValidateCommand> add_validate_command(CLI::App& app) {
   c->command->add_option("--cases", c->cases,
                          "The case folders and their reference.toml files (default: cases/ of "
                          "the source tree)");
+  c->command->add_option("--archive", c->archive,
+                         "Folder of the finished full-size runs' small outputs and records "
+                         "(default docs/validation/runs): a long run is copied there when it "
+                         "finishes; --reuse and --report-only take long runs from there");
   c->command->add_option("--only", c->only, "Only the runs whose name contains this text");
   c->command->add_option("--threads,-t", c->threads, "OpenMP threads per run")
       ->check(CLI::PositiveNumber);

@@ -17,7 +17,7 @@ struct ValidateCommand {
   bool resume = false;
   bool report_only = false;
   bool long_cases = false;
-  std::string work, report, cases;
+  std::string work, report, cases, archive;
   std::vector<std::string> only;
   int threads = 0;
   bool selected() const { return command->parsed(); }
