@@ -1109,8 +1109,9 @@ def main():
                 if a.threads > 0:
                     run += ["--threads", str(a.threads)]
                 commits = piece["commits"]
-                if git_commit() not in commits:
-                    commits.append(git_commit())
+                now = git_commit()
+                if now not in commits:
+                    commits.append(now)
             else:
                 for old in (done, log, started):
                     if os.path.exists(old):
@@ -1119,8 +1120,7 @@ def main():
                 run, piece, commits = cmd, {"wall": 0.0}, [git_commit()]
             threads = str(a.threads) if a.threads > 0 else "all"
 
-            def record(seconds, r=r, started=started, piece=piece, commits=commits,
-                       threads=threads):
+            def record(seconds, started=started, piece=piece, commits=commits, threads=threads):
                 write_started(started, " ".join(cmd[1:]), piece["wall"] + seconds, commits,
                               threads)
 
@@ -1159,7 +1159,9 @@ def main():
                         + "\n".join(made[r.name]) + "\n")
         if r.long and archive:
             archive_run(out, done, archive, r.name, CASES, work)
-            print(f"[{r.name}] archived in {os.path.join(archive, r.name)}", flush=True)
+            # The report reads what was archived (its snapshot drawn once, there).
+            outputs.elsewhere[r.name] = os.path.join(archive, r.name)
+            print(f"[{r.name}] archived in {outputs.dir(r.name)}", flush=True)
         print(f"[{r.name}] done ({wall[r.name]:.0f} s of wall time)", flush=True)
 
     rows = []
