@@ -107,7 +107,7 @@ HardSphereEngine::HardSphereEngine(const CaseSpec& spec, const BoxGeometry& box)
   }
 }
 
-void HardSphereEngine::build_list(const ParticleStore& p) {
+std::size_t HardSphereEngine::build_list(const ParticleStore& p, double short_skin) {
   // Cells at least 2 R_max + skin wide; each particle scans the (up to 27, deduplicated on
   // periodic axes with fewer than 3 cells) cells around its own and keeps every partner closer
   // than R_i + R_j + skin, in cell-scan order: the full list in one pass, each row computed
@@ -120,9 +120,10 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
   grid_.bin(box_, 2.0 * rmax + skin_, p.x.data(), p.y.data(), p.z.data(), n, n >= kParallelMin);
 
   full_offset_.assign(n + 1, 0);
+  std::size_t within_short = 0;
   const int nthreads = n >= kParallelMin ? omp_get_max_threads() : 1;
   if (static_cast<int>(thread_rows_.size()) < nthreads) thread_rows_.resize(nthreads);
-#pragma omp parallel num_threads(nthreads)
+#pragma omp parallel num_threads(nthreads) reduction(+ : within_short)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
     const std::size_t i0 = n * t / nt, i1 = n * (t + 1) / nt;
@@ -152,8 +153,10 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
         const double ddx = image(px[j] - xi, 0);
         const double ddy = image(py[j] - yi, 1);
         const double ddz = image(pz[j] - zi, 2);
-        const double cut = ri + pr[j] + skin;
-        if (ddx * ddx + ddy * ddy + ddz * ddz < cut * cut) rows.push_back(j);
+        const double cut = ri + pr[j] + skin, cut_short = ri + pr[j] + short_skin;
+        const double d2 = ddx * ddx + ddy * ddy + ddz * ddz;
+        if (d2 < cut * cut) rows.push_back(j);
+        within_short += d2 < cut_short * cut_short ? 1 : 0;
       });
       // Rows in ascending partner order: the partners above i (each pair once) form the tail.
       std::sort(rows.begin() + static_cast<std::ptrdiff_t>(before), rows.end());
@@ -204,6 +207,7 @@ void HardSphereEngine::build_list(const ParticleStore& p) {
         }
       }
   }
+  return within_short;
 }
 
 void HardSphereEngine::first_events(double now) {
@@ -621,7 +625,8 @@ void HardSphereEngine::update_neighbour_list(const ParticleStore& p, double time
   // at most s = 1.5 (v_max + |g| DT) DT in one step [Deen07 eq. 44] (the 1.5 allows for
   // collisions speeding it up), so the list built with skin `skin` stays valid while the
   // largest displacement since the build plus s is below skin / 2. It is rebuilt, with a skin
-  // of 8 s (valid for about four steps), only when that fails. The same pass copies the
+  // of 8 s (valid for about four steps) or 2 s (one step) as hardsphere/skin_policy.hpp
+  // chooses, only when that fails. The same pass copies the
   // kinematics of the hot loops into kin_ (one cache line per particle, clocks at `time`).
   const std::size_t n = p.size();
   kin_.resize(n);
@@ -651,11 +656,30 @@ void HardSphereEngine::update_neighbour_list(const ParticleStore& p, double time
   moving_ = n - fixed;
   const double vmax = std::sqrt(vmax2);
   const double step = 1.5 * (vmax + norm(g_) * dt) * dt;
-  if (have && std::sqrt(moved2) + step <= 0.5 * skin_) return;
-  skin_ = std::max(8.0 * step, 1e-3 * rmin);
-  build_list(p);
+  if (have && std::sqrt(moved2) + step <= 0.5 * skin_) {
+    ++list_steps_;
+    return;
+  }
+  if (probe_.build == list_builds_ - 1 && probe_.life == 0) probe_.life = list_steps_;
+  // The skin: long (several steps) or short (one step), from the last probe's list sizes and
+  // the last step's events (hardsphere/skin_policy.hpp).
+  const double events =
+      moving_ > 0 ? static_cast<double>(stats_.events_last_step) / static_cast<double>(moving_)
+                  : 0.0;
+  const double steps = fixed_skin_steps_ > 0.0
+                           ? fixed_skin_steps_
+                           : hardsphere::skin_steps(probe_, list_builds_, events);
+  const double floor = 1e-3 * rmin;
+  skin_ = std::max(steps * step, floor);
+  const bool probe = steps == hardsphere::kLongSkinSteps;
+  const std::size_t within_short =
+      build_list(p, probe ? std::max(hardsphere::kShortSkinSteps * step, floor) : 0.0);
+  if (probe && n > 0)
+    probe_ = {list_builds_, static_cast<double>(full_partner_.size()) / static_cast<double>(n),
+              static_cast<double>(within_short) / static_cast<double>(n), 0};
   built_x_ = p.x, built_y_ = p.y, built_z_ = p.z;
   ++list_builds_;
+  list_steps_ = 1;
 }
 
 void HardSphereEngine::advance(ParticleStore& p, double time, double dt,
@@ -738,6 +762,8 @@ HardSphereEngine::State HardSphereEngine::state() const {
   s.stats = stats_;
   s.list.skin = skin_;
   s.list.builds = list_builds_;
+  s.skin_probe = probe_;
+  s.list_steps = list_steps_;
   s.list.x0 = built_x_;
   s.list.y0 = built_y_;
   s.list.z0 = built_z_;
@@ -789,6 +815,8 @@ void HardSphereEngine::restore(const ParticleStore& p, const State& s) {
   counter_ = s.counter;
   list_builds_ = s.list_builds;
   stats_ = s.stats;
+  probe_ = s.skin_probe;
+  list_steps_ = s.list_steps;
 }
 
 } // namespace fluidem

@@ -7,7 +7,8 @@
 // paper.) Pairs fall together, so their relative motion stays a straight line:
 //  - neighbour lists bounded by R_a + R_max + 2 v_max DT [Deen07 eq. 44] (here with a safety
 //    factor 1.5 and gravity's contribution to the velocity), built from the cell grid with a
-//    skin for several steps and rebuilt when the displacements since the build need it;
+//    skin for several steps or for one, whichever is expected to cost less
+//    (hardsphere/skin_policy.hpp), and rebuilt when the displacements since the build need it;
 //  - pair collision times [Deen07 eq. 45] and wall collision times [Hoomans96 eq. 31]; a fixed
 //    particle (ParticleStore::fix) stays where it is, so a pair with one falls apart: its
 //    collision time is the first root of a quartic (hardsphere/fixed_partner_time.hpp), and
@@ -29,6 +30,7 @@
 #include "core/case_spec.hpp"
 #include "core/nearest_integer.hpp"
 #include "hardsphere/collision_operator.hpp"
+#include "hardsphere/skin_policy.hpp"
 #include "neighbour/cell_grid.hpp"
 #include "neighbour/neighbour_list.hpp" // BoxGeometry, NeighbourList::State (checkpoints)
 #include "particles/particle_store.hpp"
@@ -71,6 +73,11 @@ public:
   const std::vector<HardSphereCollision>& last_step_collisions() const { return log_; }
   std::size_t bytes() const;
   long list_builds() const { return list_builds_; }
+  /// The skin policy's last probe (hardsphere/skin_policy.hpp).
+  const hardsphere::SkinProbe& skin_probe() const { return probe_; }
+  /// Fix the skin at `steps` maximal one-step displacements for every following build (0: the
+  /// policy chooses, the default). For tests and benchmarks: the particles do not depend on it.
+  void set_skin_steps(double steps) { fixed_skin_steps_ = steps; }
 
   /// What a checkpoint keeps between flow steps: the time of each particle's last collision
   /// (TC model), the collision counters, the neighbour list and its build positions, the
@@ -81,6 +88,8 @@ public:
     std::int64_t list_builds = 0;
     HardSphereStats stats;
     NeighbourList::State list;
+    hardsphere::SkinProbe skin_probe; ///< the skin policy's last probe (none: build = -1)
+    std::int64_t list_steps = 0;      ///< flow steps the current list has served
   };
   State state() const;
   void restore(const ParticleStore& p, const State& s);
@@ -94,8 +103,9 @@ private:
   static constexpr std::uint32_t kNone = 0xffffffffu; ///< no partner, no calendar slot
 
   /// The engine's own cell list: every pair (both directions, CSR by particle) closer than
-  /// R_i + R_j + skin_ at the positions of `p`.
-  void build_list(const ParticleStore& p);
+  /// R_i + R_j + skin_ at the positions of `p`. Returns how many of its entries are closer
+  /// than R_i + R_j + short_skin (for the skin policy's probe).
+  std::size_t build_list(const ParticleStore& p, double short_skin = 0.0);
   void update_neighbour_list(const ParticleStore& p, double time, double dt);
   /// Minimum-image separation along axis a.
   double min_image(double d, int a) const {
@@ -150,6 +160,9 @@ private:
   HardSphereSpec opts_;
   BoxGeometry box_;
   double skin_ = 0.0;
+  hardsphere::SkinProbe probe_;   ///< the list sizes of the last build with the long skin
+  std::int64_t list_steps_ = 0;   ///< flow steps the current list has served
+  double fixed_skin_steps_ = 0.0; ///< set_skin_steps (0: the policy)
   // Cell grid of the last build and the full list (CSR: the partners of i are
   // full_partner_[full_offset_[i] .. full_offset_[i + 1])).
   CellGrid grid_;

@@ -200,6 +200,7 @@ public:
   const DistributedSoftSphere* distributed() const { return dist_; }
   /// The hard-sphere engine, or nullptr for the soft-sphere DEM.
   const HardSphereEngine* hard_sphere() const { return hard_ ? &hard_->engine() : nullptr; }
+  HardSphereEngine* hard_sphere() { return hard_ ? &hard_->engine() : nullptr; }
   double dissipated_energy() const { return stepper_->dissipated_energy(); }
   /// The gas phase and coupling, or nullptr for a granular run.
   const GasCoupling* gas() const { return gas_.get(); }

@@ -177,6 +177,14 @@ HardSphereEngine::State read_hard_sphere(const CheckpointReader& r, const std::s
   h.stats.dissipated = e[0];
   h.stats.tc_energy_kept = e[1];
   h.list = get_list(r, "hardsphere/list");
+  if (r.has("hardsphere/skin_probe")) { // (checkpoints before the skin policy: no probe yet)
+    const auto probe = r.doubles("hardsphere/skin_probe");
+    if (probe.size() != 5)
+      throw CheckpointError("checkpoint '" + checkpoint + "': bad hard-sphere skin probe");
+    h.skin_probe = {static_cast<std::int64_t>(probe[0]), probe[1], probe[2],
+                    static_cast<std::int64_t>(probe[3])};
+    h.list_steps = static_cast<std::int64_t>(probe[4]);
+  }
   return h;
 }
 
@@ -327,6 +335,10 @@ void Simulation::write_checkpoint(const std::string& path) {
     w.put("hardsphere/stats/energies",
           std::vector<double>{h.stats.dissipated, h.stats.tc_energy_kept});
     put_list(w, "hardsphere/list", h.list);
+    w.put("hardsphere/skin_probe",
+          std::vector<double>{static_cast<double>(h.skin_probe.build), h.skin_probe.long_entries,
+                              h.skin_probe.short_entries, static_cast<double>(h.skin_probe.life),
+                              static_cast<double>(h.list_steps)});
   }
   if (collisions_) { // the ongoing contacts and the accumulators of the statistics
     const CollisionStatistics::State c = collisions_->state();

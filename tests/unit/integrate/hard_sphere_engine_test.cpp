@@ -408,6 +408,101 @@ TEST(HardSphereEngine, Settled3DBedRunsWithABoundedCollisionRate) {
   EXPECT_LT(r.rate, kRateBound);
 }
 
+// ---- (f) the neighbour skin ------------------------------------------------------------------
+// hardsphere/skin_policy.hpp chooses, at each list build, a skin of 8 or 2 maximal one-step
+// displacements s = 1.5 (v_max + g DT) DT. A granular gas of 3000 spheres at 1 m/s with
+// DT = 1e-3 s: s is 1.5 mm, so the long list reaches 12 mm (3 diameters) past contact and the
+// short one 3 mm; the policy must take the short skin.
+// (a) The first build is a probe: its counts are checked against a brute-force count over all
+//     pairs (entries per particle = 2 x pairs / N) of the pairs closer than R_i + R_j + 8 s and
+//     + 2 s at the initial state.
+// (b) The particles are the same bit for bit with the policy, the long skin and the short skin
+//     (the list only has to hold every pair that can meet in its life), and the policy made
+//     more builds than the long skin (it took the short one) but fewer than the short skin
+//     (it probed with the long one).
+
+std::string gas_case() {
+  std::string text = header(3, -kG, {0.1, 0.1, 0.1}) + walls(0.9, 0.3) +
+                     species("s", kD, kRho, 0.9, 0.3) +
+                     "[[insert]]\nspecies = \"s\"\ncount = 3000\nplacement = \"random\"\n"
+                     "velocity_spread = 1.0\nseed = 11\n";
+  const std::string from = fmt::format("time_step = {:.17g}", kDT);
+  text.replace(text.find(from), from.size(), "time_step = 1e-3");
+  return text;
+}
+
+struct SkinRun {
+  std::vector<double> state;
+  long builds = 0;
+};
+
+SkinRun run_gas(double skin_steps, long steps) {
+  Simulation sim(read_case_string(gas_case(), "gas.toml"));
+  sim.hard_sphere()->set_skin_steps(skin_steps);
+  sim.advance(steps);
+  const auto& p = sim.particles();
+  SkinRun r;
+  for (const auto* a : {&p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.wx, &p.wy, &p.wz})
+    r.state.insert(r.state.end(), a->begin(), a->end());
+  r.builds = sim.hard_sphere()->list_builds();
+  return r;
+}
+
+TEST(HardSphereEngine, TheSkinProbeCountsThePairsWithinBothSkins) {
+  Simulation sim(read_case_string(gas_case(), "gas.toml"));
+  const auto& p = sim.particles();
+  const std::size_t n = p.size();
+  ASSERT_EQ(n, 3000u);
+  double vmax = 0.0, rmin = 1e300;
+  for (std::size_t i = 0; i < n; ++i) {
+    vmax = std::max(vmax, std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]));
+    rmin = std::min(rmin, p.radius[i]);
+  }
+  const double dt = 1e-3, s = 1.5 * (vmax + kG * dt) * dt;
+  const double long_skin = std::max(8.0 * s, 1e-3 * rmin),
+               short_skin = std::max(2.0 * s, 1e-3 * rmin);
+  long within_long = 0, within_short = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double d =
+          std::sqrt((p.x[i] - p.x[j]) * (p.x[i] - p.x[j]) + (p.y[i] - p.y[j]) * (p.y[i] - p.y[j]) +
+                    (p.z[i] - p.z[j]) * (p.z[i] - p.z[j])) -
+          p.radius[i] - p.radius[j];
+      within_long += d < long_skin;
+      within_short += d < short_skin;
+    }
+  sim.advance(1);
+  const auto& probe = sim.hard_sphere()->skin_probe();
+  std::cout << fmt::format("granular gas: s = {:.3g} mm; pairs within 8 s {}, within 2 s {}\n",
+                           1e3 * s, within_long, within_short);
+  ASSERT_GT(within_long, 3 * within_short) << "the case must make the long list larger";
+  EXPECT_EQ(probe.build, 0);
+  // (a pair at exactly the cut, counted by one side and not the other, would show as 1/N)
+  const auto count = static_cast<double>(n);
+  EXPECT_NEAR(probe.long_entries, 2.0 * static_cast<double>(within_long) / count, 0.5 / count);
+  EXPECT_NEAR(probe.short_entries, 2.0 * static_cast<double>(within_short) / count, 0.5 / count);
+}
+
+TEST(HardSphereEngine, TheSkinPolicyLeavesTheParticlesUnchanged) {
+  const long steps = 150; // probes at builds 0, 64 and 128
+  const SkinRun policy = run_gas(0.0, steps), longer = run_gas(8.0, steps),
+                shorter = run_gas(2.0, steps);
+  std::cout << fmt::format("{} steps: {} list builds with the policy, {} with the long skin, {} "
+                           "with the short one\n",
+                           steps, policy.builds, longer.builds, shorter.builds);
+  EXPECT_GT(policy.builds, longer.builds) << "the short skin was never taken";
+  EXPECT_LT(policy.builds, shorter.builds) << "the long skin never probed";
+  ASSERT_EQ(policy.state.size(), longer.state.size());
+  ASSERT_EQ(policy.state.size(), shorter.state.size());
+  std::size_t differ_long = 0, differ_short = 0;
+  for (std::size_t k = 0; k < policy.state.size(); ++k) {
+    differ_long += std::memcmp(&policy.state[k], &longer.state[k], sizeof(double)) != 0;
+    differ_short += std::memcmp(&policy.state[k], &shorter.state[k], sizeof(double)) != 0;
+  }
+  EXPECT_EQ(differ_long, 0u);
+  EXPECT_EQ(differ_short, 0u);
+}
+
 // ---- (e) thread count ------------------------------------------------------------------------
 
 struct ThreadRun {
