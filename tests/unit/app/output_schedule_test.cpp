@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "../../common/bouncing_spheres.hpp"
 #include "../../common/cli_runner.hpp"
 
 namespace {
@@ -23,38 +24,8 @@ using fluidem::test::series_times;
 using fluidem::test::TempDir;
 
 // Ten soft spheres bouncing in a closed box, a fixed time step.
-const std::string kCase = R"([simulation]
-dimension = 3
-end_time = 0.2
-engine = "soft_sphere"
-time_step = 1e-5
-
-[output]
-frame_interval = 0.1
-series_interval = 4e-5
-
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [0.04, 0.004, 0.04]
-
-[[species]]
-name = "glass"
-diameter = 0.004
-density = 2700.0
-
-[[insert]]
-species = "glass"
-count = 10
-placement = "lattice"
-velocity_spread = 0.5
-
-[contact]
-normal = "linear"
-stiffness = 800.0
-
-[walls]
-restitution = 1.0
-)";
+const std::string kCase = fluidem::test::bouncing_spheres_case(
+    {.dimension = 3, .end_time = 0.2, .time_step = 1e-5, .series_interval = 4e-5});
 
 TEST(OutputSchedule, EveryRowOfALongRunFallsOnItsMark) {
   TempDir dir("fluidem_schedule");

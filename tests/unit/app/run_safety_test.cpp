@@ -25,6 +25,7 @@
 #include <thread>
 #include <vector>
 
+#include "../../common/bouncing_spheres.hpp"
 #include "../../common/cli_runner.hpp"
 
 namespace {
@@ -50,38 +51,13 @@ Result fluidem(const std::vector<std::string>& args, const fs::path& cwd) {
 }
 
 // Ten discs bouncing in a 2-D box for a long time (so that a signal finds the run going).
-const std::string kLong = R"([simulation]
-dimension = 2
-end_time = 1000.0
-time_step = 2e-5
-
-[output]
-frame_interval = 10.0
-series_interval = 0.01
-checkpoint_interval = 100.0
-
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [0.04, 0.004, 0.04]
-
-[[species]]
-name = "glass"
-diameter = 0.004
-density = 2700.0
-
-[[insert]]
-species = "glass"
-count = 10
-placement = "lattice"
-velocity_spread = 0.5
-
-[contact]
-normal = "linear"
-stiffness = 800.0
-
-[walls]
-restitution = 1.0
-)";
+const std::string kLong = fluidem::test::bouncing_spheres_case({.dimension = 2,
+                                                                .end_time = 1000.0,
+                                                                .time_step = 2e-5,
+                                                                .frame_interval = 10.0,
+                                                                .series_interval = 0.01,
+                                                                .checkpoint_interval = 100.0,
+                                                                .engine_key = false});
 
 // A small coupled case: 30 soft spheres in a 40 x 4 x 100 mm column, gas from below.
 const std::string kGas = R"([simulation]

@@ -1,0 +1,70 @@
+// The small case of the CLI tests: ten glass spheres (d = 4 mm) bouncing elastically in a
+// closed 40 x 4 x 40 mm box, linear contact, from a lattice with random velocities (0.5 m/s).
+// Each test sets what it is about: the dimension, the times, the output schedule.
+#pragma once
+#include <fmt/format.h>
+
+#include <string>
+
+namespace fluidem::test {
+
+struct BouncingSpheres {
+  int dimension = 3;
+  double end_time = 0.2;
+  double time_step = 1e-5;
+  double frame_interval = 0.1;
+  double series_interval = 0.01;
+  double checkpoint_interval = 0.0; ///< 0: not written into the case (the default applies)
+  bool engine_key = true;           ///< write engine = "soft_sphere"
+};
+
+/// A TOML float as a person writes it (1000.0, 0.01, 2e-5): the shortest text that reads back
+/// as x, with a decimal point or an exponent, the exponent without leading zeros (tests find
+/// and replace these lines in the text).
+inline std::string toml_float(double x) {
+  std::string t = fmt::format("{}", x);
+  const std::size_t e = t.find('e');
+  if (e == std::string::npos) return t.find('.') == std::string::npos ? t + ".0" : t;
+  std::size_t digits = e + 1 + (t[e + 1] == '-' || t[e + 1] == '+' ? 1 : 0);
+  if (t[e + 1] == '+') t.erase(e + 1, 1), --digits;
+  while (digits + 1 < t.size() && t[digits] == '0') t.erase(digits, 1);
+  return t;
+}
+
+/// The case file text.
+inline std::string bouncing_spheres_case(const BouncingSpheres& c) {
+  std::string text = fmt::format("[simulation]\ndimension = {}\nend_time = {}\n", c.dimension,
+                                 toml_float(c.end_time));
+  if (c.engine_key) text += "engine = \"soft_sphere\"\n";
+  text += fmt::format("time_step = {}\n\n[output]\nframe_interval = {}\nseries_interval = {}\n",
+                      toml_float(c.time_step), toml_float(c.frame_interval),
+                      toml_float(c.series_interval));
+  if (c.checkpoint_interval > 0.0)
+    text += fmt::format("checkpoint_interval = {}\n", toml_float(c.checkpoint_interval));
+  text += R"(
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [0.04, 0.004, 0.04]
+
+[[species]]
+name = "glass"
+diameter = 0.004
+density = 2700.0
+
+[[insert]]
+species = "glass"
+count = 10
+placement = "lattice"
+velocity_spread = 0.5
+
+[contact]
+normal = "linear"
+stiffness = 800.0
+
+[walls]
+restitution = 1.0
+)";
+  return text;
+}
+
+} // namespace fluidem::test
