@@ -410,9 +410,9 @@ TEST(HardSphereEngine, Settled3DBedRunsWithABoundedCollisionRate) {
 
 // ---- (f) the neighbour skin ------------------------------------------------------------------
 // hardsphere/skin_policy.hpp chooses, at each list build, a skin of 8 or 2 maximal one-step
-// displacements s = 1.5 (v_max + g DT) DT. A granular gas of 3000 spheres at 1 m/s with
-// DT = 1e-3 s: s is 1.5 mm, so the long list reaches 12 mm (3 diameters) past contact and the
-// short one 3 mm; the policy must take the short skin.
+// displacements s = 1.5 (v_max + g DT) DT. A granular gas of 1000 spheres (velocity spread
+// 1 m/s, v_max 1.6 m/s) with DT = 1e-3 s: s is 2.5 mm, so the long list reaches 20 mm (5
+// diameters) past contact and the short one 5 mm; the policy must take the short skin.
 // (a) The first build is a probe: its counts are checked against a brute-force count over all
 //     pairs (entries per particle = 2 x pairs / N) of the pairs closer than R_i + R_j + 8 s and
 //     + 2 s at the initial state.
@@ -424,7 +424,7 @@ TEST(HardSphereEngine, Settled3DBedRunsWithABoundedCollisionRate) {
 std::string gas_case() {
   std::string text = header(3, -kG, {0.1, 0.1, 0.1}) + walls(0.9, 0.3) +
                      species("s", kD, kRho, 0.9, 0.3) +
-                     "[[insert]]\nspecies = \"s\"\ncount = 3000\nplacement = \"random\"\n"
+                     "[[insert]]\nspecies = \"s\"\ncount = 1000\nplacement = \"random\"\n"
                      "velocity_spread = 1.0\nseed = 11\n";
   const std::string from = fmt::format("time_step = {:.17g}", kDT);
   text.replace(text.find(from), from.size(), "time_step = 1e-3");
@@ -452,7 +452,7 @@ TEST(HardSphereEngine, TheSkinProbeCountsThePairsWithinBothSkins) {
   Simulation sim(read_case_string(gas_case(), "gas.toml"));
   const auto& p = sim.particles();
   const std::size_t n = p.size();
-  ASSERT_EQ(n, 3000u);
+  ASSERT_EQ(n, 1000u);
   double vmax = 0.0, rmin = 1e300;
   for (std::size_t i = 0; i < n; ++i) {
     vmax = std::max(vmax, std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]));
