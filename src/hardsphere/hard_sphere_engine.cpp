@@ -155,8 +155,10 @@ std::size_t HardSphereEngine::build_list(const ParticleStore& p, double short_sk
         const double ddz = image(pz[j] - zi, 2);
         const double cut = ri + pr[j] + skin, cut_short = ri + pr[j] + short_skin;
         const double d2 = ddx * ddx + ddy * ddy + ddz * ddz;
-        if (d2 < cut * cut) rows.push_back(j);
-        within_short += d2 < cut_short * cut_short ? 1 : 0;
+        if (d2 < cut * cut) { // (short_skin <= skin_: the short list's pairs are among these)
+          rows.push_back(j);
+          within_short += d2 < cut_short * cut_short ? 1 : 0;
+        }
       });
       // Rows in ascending partner order: the partners above i (each pair once) form the tail.
       std::sort(rows.begin() + static_cast<std::ptrdiff_t>(before), rows.end());

@@ -104,7 +104,7 @@ private:
 
   /// The engine's own cell list: every pair (both directions, CSR by particle) closer than
   /// R_i + R_j + skin_ at the positions of `p`. Returns how many of its entries are closer
-  /// than R_i + R_j + short_skin (for the skin policy's probe).
+  /// than R_i + R_j + short_skin, short_skin <= skin_ (for the skin policy's probe).
   std::size_t build_list(const ParticleStore& p, double short_skin = 0.0);
   void update_neighbour_list(const ParticleStore& p, double time, double dt);
   /// Minimum-image separation along axis a.
