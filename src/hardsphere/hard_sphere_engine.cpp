@@ -671,11 +671,11 @@ void HardSphereEngine::update_neighbour_list(const ParticleStore& p, double time
   const double steps = fixed_skin_steps_ > 0.0
                            ? fixed_skin_steps_
                            : hardsphere::skin_steps(probe_, list_builds_, events);
-  const double floor = 1e-3 * rmin;
-  skin_ = std::max(steps * step, floor);
+  const double min_skin = 1e-3 * rmin;
+  skin_ = std::max(steps * step, min_skin);
   const bool probe = steps == hardsphere::kLongSkinSteps;
   const std::size_t within_short =
-      build_list(p, probe ? std::max(hardsphere::kShortSkinSteps * step, floor) : 0.0);
+      build_list(p, probe ? std::max(hardsphere::kShortSkinSteps * step, min_skin) : 0.0);
   if (probe && n > 0)
     probe_ = {list_builds_, static_cast<double>(full_partner_.size()) / static_cast<double>(n),
               static_cast<double>(within_short) / static_cast<double>(n), 0};
