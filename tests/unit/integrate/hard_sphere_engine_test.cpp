@@ -87,12 +87,12 @@ std::string one_particle(const std::string& species, double r, const std::array<
 }
 
 std::string header(int dimension, double gz, const std::array<double, 3>& hi,
-                   const std::string& periodic = "[false, false, false]") {
+                   const std::string& periodic = "[false, false, false]", double dt = kDT) {
   return fmt::format("[simulation]\nengine = \"hard_sphere\"\ndimension = {}\nend_time = 100.0\n"
                      "time_step = {:.17g}\ngravity = [0.0, 0.0, {:.17g}]\n\n"
                      "[domain]\nlo = [0.0, 0.0, 0.0]\nhi = [{:.17g}, {:.17g}, {:.17g}]\n"
                      "periodic = {}\n\n",
-                     dimension, kDT, gz, hi[0], hi[1], hi[2], periodic);
+                     dimension, dt, gz, hi[0], hi[1], hi[2], periodic);
 }
 
 std::string walls(double e, double mu) {
@@ -408,6 +408,67 @@ TEST(HardSphereEngine, Settled3DBedRunsWithABoundedCollisionRate) {
   EXPECT_LT(r.rate, kRateBound);
 }
 
+// ---- (e) thread count ------------------------------------------------------------------------
+
+/// x, y, z, v, w of every particle, in store order.
+std::vector<double> kinematic_state(const Simulation& sim) {
+  const auto& p = sim.particles();
+  std::vector<double> state;
+  for (const auto* a : {&p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.wx, &p.wy, &p.wz})
+    state.insert(state.end(), a->begin(), a->end());
+  return state;
+}
+
+/// How many values of two states of the same size differ in any bit.
+std::size_t bitwise_differences(const std::vector<double>& a, const std::vector<double>& b) {
+  std::size_t differ = 0;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    differ += std::memcmp(&a[k], &b[k], sizeof(double)) != 0;
+  return differ;
+}
+
+struct ThreadRun {
+  std::vector<double> state; // x, y, z, v, w of every particle
+  long collisions = 0, wall_collisions = 0, tc = 0, builds = 0;
+};
+
+ThreadRun run_on(int threads) {
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  const std::string text = header(3, -kG, {0.1, 0.1, 0.16}, "[true, false, false]") +
+                           walls(0.9, 0.3) + species("s", kD, kRho, 0.9, 0.3) +
+                           "[[insert]]\nspecies = \"s\"\ncount = 5000\nplacement = \"random\"\n"
+                           "velocity_spread = 0.5\nseed = 3\n";
+  Simulation sim(read_case_string(text, "threads.toml"));
+  sim.advance(200);
+  omp_set_num_threads(saved);
+  ThreadRun r;
+  r.state = kinematic_state(sim);
+  const auto& st = sim.hard_sphere()->stats();
+  r.collisions = st.collisions;
+  r.wall_collisions = st.wall_collisions;
+  r.tc = st.tc_elastic + st.slow_elastic;
+  r.builds = sim.hard_sphere()->list_builds();
+  return r;
+}
+
+TEST(HardSphereEngine, OneAndTwoThreadsGiveBitwiseIdenticalRuns) {
+  const ThreadRun one = run_on(1), two = run_on(2);
+  std::cout << fmt::format("5000 spheres, 200 steps: {} collisions ({} with walls, {} elastic "
+                           "by the TC rules), {} list builds\n",
+                           one.collisions, one.wall_collisions, one.tc, one.builds);
+  ASSERT_GT(one.collisions, 1000) << "the case must collide";
+  ASSERT_GT(one.wall_collisions, 0);
+  ASSERT_GT(one.builds, 1) << "the list must be rebuilt";
+  EXPECT_EQ(one.collisions, two.collisions);
+  EXPECT_EQ(one.wall_collisions, two.wall_collisions);
+  EXPECT_EQ(one.tc, two.tc);
+  EXPECT_EQ(one.builds, two.builds);
+  ASSERT_EQ(one.state.size(), two.state.size());
+  EXPECT_EQ(bitwise_differences(one.state, two.state), 0u)
+      << "values differing bitwise between 1 and 2 threads";
+}
+
 // ---- (f) the neighbour skin ------------------------------------------------------------------
 // hardsphere/skin_policy.hpp chooses, at each list build, a skin of 8 or 2 maximal one-step
 // displacements s = 1.5 (v_max + g DT) DT. A granular gas of 1000 spheres (velocity spread
@@ -422,13 +483,10 @@ TEST(HardSphereEngine, Settled3DBedRunsWithABoundedCollisionRate) {
 //     (it probed with the long one).
 
 std::string gas_case() {
-  std::string text = header(3, -kG, {0.1, 0.1, 0.1}) + walls(0.9, 0.3) +
-                     species("s", kD, kRho, 0.9, 0.3) +
-                     "[[insert]]\nspecies = \"s\"\ncount = 1000\nplacement = \"random\"\n"
-                     "velocity_spread = 1.0\nseed = 11\n";
-  const std::string from = fmt::format("time_step = {:.17g}", kDT);
-  text.replace(text.find(from), from.size(), "time_step = 1e-3");
-  return text;
+  return header(3, -kG, {0.1, 0.1, 0.1}, "[false, false, false]", 1e-3) + walls(0.9, 0.3) +
+         species("s", kD, kRho, 0.9, 0.3) +
+         "[[insert]]\nspecies = \"s\"\ncount = 1000\nplacement = \"random\"\n"
+         "velocity_spread = 1.0\nseed = 11\n";
 }
 
 struct SkinRun {
@@ -440,12 +498,7 @@ SkinRun run_gas(double skin_steps, long steps) {
   Simulation sim(read_case_string(gas_case(), "gas.toml"));
   sim.hard_sphere()->set_skin_steps(skin_steps);
   sim.advance(steps);
-  const auto& p = sim.particles();
-  SkinRun r;
-  for (const auto* a : {&p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.wx, &p.wy, &p.wz})
-    r.state.insert(r.state.end(), a->begin(), a->end());
-  r.builds = sim.hard_sphere()->list_builds();
-  return r;
+  return {kinematic_state(sim), sim.hard_sphere()->list_builds()};
 }
 
 TEST(HardSphereEngine, TheSkinProbeCountsThePairsWithinBothSkins) {
@@ -494,61 +547,8 @@ TEST(HardSphereEngine, TheSkinPolicyLeavesTheParticlesUnchanged) {
   EXPECT_LT(policy.builds, shorter.builds) << "the long skin never probed";
   ASSERT_EQ(policy.state.size(), longer.state.size());
   ASSERT_EQ(policy.state.size(), shorter.state.size());
-  std::size_t differ_long = 0, differ_short = 0;
-  for (std::size_t k = 0; k < policy.state.size(); ++k) {
-    differ_long += std::memcmp(&policy.state[k], &longer.state[k], sizeof(double)) != 0;
-    differ_short += std::memcmp(&policy.state[k], &shorter.state[k], sizeof(double)) != 0;
-  }
-  EXPECT_EQ(differ_long, 0u);
-  EXPECT_EQ(differ_short, 0u);
-}
-
-// ---- (e) thread count ------------------------------------------------------------------------
-
-struct ThreadRun {
-  std::vector<double> state; // x, y, z, v, w of every particle
-  long collisions = 0, wall_collisions = 0, tc = 0, builds = 0;
-};
-
-ThreadRun run_on(int threads) {
-  const int saved = omp_get_max_threads();
-  omp_set_num_threads(threads);
-  const std::string text = header(3, -kG, {0.1, 0.1, 0.16}, "[true, false, false]") +
-                           walls(0.9, 0.3) + species("s", kD, kRho, 0.9, 0.3) +
-                           "[[insert]]\nspecies = \"s\"\ncount = 5000\nplacement = \"random\"\n"
-                           "velocity_spread = 0.5\nseed = 3\n";
-  Simulation sim(read_case_string(text, "threads.toml"));
-  sim.advance(200);
-  omp_set_num_threads(saved);
-  const auto& p = sim.particles();
-  ThreadRun r;
-  for (const auto* a : {&p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.wx, &p.wy, &p.wz})
-    r.state.insert(r.state.end(), a->begin(), a->end());
-  const auto& st = sim.hard_sphere()->stats();
-  r.collisions = st.collisions;
-  r.wall_collisions = st.wall_collisions;
-  r.tc = st.tc_elastic + st.slow_elastic;
-  r.builds = sim.hard_sphere()->list_builds();
-  return r;
-}
-
-TEST(HardSphereEngine, OneAndTwoThreadsGiveBitwiseIdenticalRuns) {
-  const ThreadRun one = run_on(1), two = run_on(2);
-  std::cout << fmt::format("5000 spheres, 200 steps: {} collisions ({} with walls, {} elastic "
-                           "by the TC rules), {} list builds\n",
-                           one.collisions, one.wall_collisions, one.tc, one.builds);
-  ASSERT_GT(one.collisions, 1000) << "the case must collide";
-  ASSERT_GT(one.wall_collisions, 0);
-  ASSERT_GT(one.builds, 1) << "the list must be rebuilt";
-  EXPECT_EQ(one.collisions, two.collisions);
-  EXPECT_EQ(one.wall_collisions, two.wall_collisions);
-  EXPECT_EQ(one.tc, two.tc);
-  EXPECT_EQ(one.builds, two.builds);
-  ASSERT_EQ(one.state.size(), two.state.size());
-  std::size_t differ = 0;
-  for (std::size_t k = 0; k < one.state.size(); ++k)
-    differ += std::memcmp(&one.state[k], &two.state[k], sizeof(double)) != 0;
-  EXPECT_EQ(differ, 0u) << "values differing bitwise between 1 and 2 threads";
+  EXPECT_EQ(bitwise_differences(policy.state, longer.state), 0u);
+  EXPECT_EQ(bitwise_differences(policy.state, shorter.state), 0u);
 }
 
 } // namespace
