@@ -1,9 +1,11 @@
-// The small case of the CLI tests: ten glass spheres (d = 4 mm) bouncing elastically in a
-// closed 40 x 4 x 40 mm box, linear contact, from a lattice with random velocities (0.5 m/s).
-// Each test sets what it is about: the dimension, the times, the output schedule.
+// The small case of the CLI tests: ten glass spheres (d = 4 mm) in a closed 40 x 4 x 40 mm box,
+// linear contact, from a lattice: bouncing elastically with random velocities (0.5 m/s) by
+// default, or at rest with the default walls. Each test sets what it is about: the dimension,
+// the times, the output schedule; a key left unset is not written (the case's default applies).
 #pragma once
 #include <fmt/format.h>
 
+#include <optional>
 #include <string>
 
 namespace fluidem::test {
@@ -11,11 +13,12 @@ namespace fluidem::test {
 struct BouncingSpheres {
   int dimension = 3;
   double end_time = 0.2;
-  double time_step = 1e-5;
-  double frame_interval = 0.1;
-  double series_interval = 0.01;
-  double checkpoint_interval = 0.0; ///< 0: not written into the case (the default applies)
-  bool engine_key = true;           ///< write engine = "soft_sphere"
+  std::optional<double> time_step = 1e-5;
+  std::optional<double> frame_interval = 0.1;
+  std::optional<double> series_interval = 0.01;
+  std::optional<double> checkpoint_interval = std::nullopt;
+  bool engine_key = true; ///< write engine = "soft_sphere"
+  bool moving = true;     ///< velocity_spread = 0.5 and elastic walls (else at rest, no [walls])
 };
 
 /// A TOML float as a person writes it (1000.0, 0.01, 2e-5): the shortest text that reads back
@@ -36,11 +39,13 @@ inline std::string bouncing_spheres_case(const BouncingSpheres& c) {
   std::string text = fmt::format("[simulation]\ndimension = {}\nend_time = {}\n", c.dimension,
                                  toml_float(c.end_time));
   if (c.engine_key) text += "engine = \"soft_sphere\"\n";
-  text += fmt::format("time_step = {}\n\n[output]\nframe_interval = {}\nseries_interval = {}\n",
-                      toml_float(c.time_step), toml_float(c.frame_interval),
-                      toml_float(c.series_interval));
-  if (c.checkpoint_interval > 0.0)
-    text += fmt::format("checkpoint_interval = {}\n", toml_float(c.checkpoint_interval));
+  if (c.time_step) text += fmt::format("time_step = {}\n", toml_float(*c.time_step));
+  std::string output;
+  for (const auto& [key, value] : {std::pair{"frame_interval", c.frame_interval},
+                                   std::pair{"series_interval", c.series_interval},
+                                   std::pair{"checkpoint_interval", c.checkpoint_interval}})
+    if (value) output += fmt::format("{} = {}\n", key, toml_float(*value));
+  if (!output.empty()) text += "\n[output]\n" + output;
   text += R"(
 [domain]
 lo = [0.0, 0.0, 0.0]
@@ -55,15 +60,14 @@ density = 2700.0
 species = "glass"
 count = 10
 placement = "lattice"
-velocity_spread = 0.5
-
+)";
+  if (c.moving) text += "velocity_spread = 0.5\n";
+  text += R"(
 [contact]
 normal = "linear"
 stiffness = 800.0
-
-[walls]
-restitution = 1.0
 )";
+  if (c.moving) text += "\n[walls]\nrestitution = 1.0\n";
   return text;
 }
 

@@ -18,6 +18,7 @@
 
 #include <fmt/format.h>
 
+#include "../../common/bouncing_spheres.hpp"
 #include "../../common/cli_runner.hpp"
 #include "../../common/linear_impact.hpp"
 
@@ -44,28 +45,13 @@ long line_of(const std::string& text, const std::string& marker) {
 
 // A valid 2-D case: ten 4 mm glass discs on a lattice in a 40 x 40 mm box, linear k = 800 N/m
 // (Tsuji's value), e = 0.9 (the default).
-const std::string kValid = R"([simulation]
-dimension = 2
-end_time = 0.02
-
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [0.04, 0.004, 0.04]
-
-[[species]]
-name = "glass"
-diameter = 0.004
-density = 2700.0
-
-[[insert]]
-species = "glass"
-count = 10
-placement = "lattice"
-
-[contact]
-normal = "linear"
-stiffness = 800.0
-)";
+const std::string kValid = fluidem::test::bouncing_spheres_case({.dimension = 2,
+                                                                 .end_time = 0.02,
+                                                                 .time_step = std::nullopt,
+                                                                 .frame_interval = std::nullopt,
+                                                                 .series_interval = std::nullopt,
+                                                                 .engine_key = false,
+                                                                 .moving = false});
 
 // --- version and help -------------------------------------------------------------------------
 

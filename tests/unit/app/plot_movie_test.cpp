@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "../../common/bouncing_spheres.hpp"
 #include "../../common/cli_runner.hpp"
 
 namespace {
@@ -21,31 +22,13 @@ using fluidem::test::TempDir;
 namespace fs = std::filesystem;
 
 // Ten discs falling for 0.05 s, a frame every 0.01 s: frames at 0, 0.01, ..., 0.05 (six).
-const std::string kCase = R"([simulation]
-dimension = 2
-end_time = 0.05
-
-[output]
-frame_interval = 0.01
-
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [0.04, 0.004, 0.04]
-
-[[species]]
-name = "glass"
-diameter = 0.004
-density = 2700.0
-
-[[insert]]
-species = "glass"
-count = 10
-placement = "lattice"
-
-[contact]
-normal = "linear"
-stiffness = 800.0
-)";
+const std::string kCase = fluidem::test::bouncing_spheres_case({.dimension = 2,
+                                                                .end_time = 0.05,
+                                                                .time_step = std::nullopt,
+                                                                .frame_interval = 0.01,
+                                                                .series_interval = std::nullopt,
+                                                                .engine_key = false,
+                                                                .moving = false});
 
 TEST(PlotMovie, EveryNthFrameAndTheMovie) {
   if (run_command(std::string(FLUIDEM_PYTHON) + " -c 'import matplotlib, h5py, numpy'", ".").code !=

@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "../../common/bouncing_spheres.hpp"
 #include "core/error.hpp"
 #include "integrate/simulation.hpp"
 #include "io/case_reader.hpp"
@@ -19,34 +20,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kCase = R"([simulation]
-dimension = 2
-end_time = 0.02
-time_step = 1e-5
-
-[output]
-frame_interval = 0.01
-series_interval = 0.001
-checkpoint_interval = 0.01
-
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [0.04, 0.004, 0.04]
-
-[[species]]
-name = "glass"
-diameter = 0.004
-density = 2700.0
-
-[[insert]]
-species = "glass"
-count = 10
-placement = "lattice"
-
-[contact]
-normal = "linear"
-stiffness = 800.0
-)";
+const std::string kCase = fluidem::test::bouncing_spheres_case({.dimension = 2,
+                                                                .end_time = 0.02,
+                                                                .time_step = 1e-5,
+                                                                .frame_interval = 0.01,
+                                                                .series_interval = 0.001,
+                                                                .checkpoint_interval = 0.01,
+                                                                .engine_key = false,
+                                                                .moving = false});
 
 TEST(StabilityGuard, NonFiniteVelocityStopsTheRunBeforeItReachesTheOutputs) {
   const fs::path out = fs::temp_directory_path() / "fluidem_guard_nan";
