@@ -71,4 +71,16 @@ stiffness = 800.0
   return text;
 }
 
+/// The smallest valid case of the CLI tests: ten discs at rest on a lattice, 2-D, 0.02 s,
+/// every other key at its default.
+inline std::string resting_discs_case() {
+  return bouncing_spheres_case({.dimension = 2,
+                                .end_time = 0.02,
+                                .time_step = std::nullopt,
+                                .frame_interval = std::nullopt,
+                                .series_interval = std::nullopt,
+                                .engine_key = false,
+                                .moving = false});
+}
+
 } // namespace fluidem::test

@@ -51,13 +51,7 @@ void expect_refused(const Timed& t, const std::string& message, double seconds =
 }
 
 // A valid 2-D case: ten 4 mm glass discs on a lattice in a 40 x 40 mm box, linear k = 800 N/m.
-const std::string kValid = fluidem::test::bouncing_spheres_case({.dimension = 2,
-                                                                 .end_time = 0.02,
-                                                                 .time_step = std::nullopt,
-                                                                 .frame_interval = std::nullopt,
-                                                                 .series_interval = std::nullopt,
-                                                                 .engine_key = false,
-                                                                 .moving = false});
+const std::string kValid = fluidem::test::resting_discs_case();
 
 // --- item 9: memory, estimated before it is allocated ----------------------------------------
 

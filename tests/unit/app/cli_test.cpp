@@ -45,13 +45,7 @@ long line_of(const std::string& text, const std::string& marker) {
 
 // A valid 2-D case: ten 4 mm glass discs on a lattice in a 40 x 40 mm box, linear k = 800 N/m
 // (Tsuji's value), e = 0.9 (the default).
-const std::string kValid = fluidem::test::bouncing_spheres_case({.dimension = 2,
-                                                                 .end_time = 0.02,
-                                                                 .time_step = std::nullopt,
-                                                                 .frame_interval = std::nullopt,
-                                                                 .series_interval = std::nullopt,
-                                                                 .engine_key = false,
-                                                                 .moving = false});
+const std::string kValid = fluidem::test::resting_discs_case();
 
 // --- version and help -------------------------------------------------------------------------
 
