@@ -196,8 +196,8 @@ struct OutputSpec {
 struct NeighbourSpec {
   std::optional<double>
       skin; ///< m; empty = "auto": from the speeds at each build (NeighbourList::AutoSkin)
-  /// Soft-sphere engine: the particles are sorted in space (neighbour/spatial_order.hpp) at
-  /// every sort_interval-th rebuild of the neighbour list; 0 = never.
+  /// The particles are sorted in space (neighbour/spatial_order.hpp) at every
+  /// sort_interval-th rebuild of the neighbour list (of either engine); 0 = never.
   int sort_interval = 20;
 };
 

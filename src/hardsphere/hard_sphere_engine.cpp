@@ -117,7 +117,8 @@ std::size_t HardSphereEngine::build_list(const ParticleStore& p, double short_sk
 #pragma omp parallel for schedule(static) reduction(max : rmax) if (n >= kParallelMin)
   for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, p.radius[i]);
   // (The grid's work and memory are bounded by the particle count: CellGrid.)
-  grid_.bin(box_, 2.0 * rmax + skin_, p.x.data(), p.y.data(), p.z.data(), n, n >= kParallelMin);
+  cell_size_ = 2.0 * rmax + skin_;
+  grid_.bin(box_, cell_size_, p.x.data(), p.y.data(), p.z.data(), n, n >= kParallelMin);
 
   full_offset_.assign(n + 1, 0);
   std::size_t within_short = 0;
@@ -175,25 +176,11 @@ std::size_t HardSphereEngine::build_list(const ParticleStore& p, double short_sk
     std::copy(rows.begin(), rows.end(), full_partner_.begin() + full_offset_[i0]);
 #pragma omp barrier
     // split_[i]: the first entry of row i above i; mirror_[e] for an entry (i, j < i): the
-    // entry (j, i) in row j, which holds the pair's time in the sweep. One thread: in one pass
-    // over the rows in order, each row's entries below its split (ascending partners) are
-    // handed out by a cursor as the rows of those partners come by, instead of a binary search
-    // per entry (the list is symmetric: j is in row i exactly when i is in row j). Threads: each
-    // searches for its own rows' mirrors.
-    if (nt == 1) {
-      std::vector<std::uint32_t>& cursor = mirror_cursor_; // kept between builds
-      cursor.resize(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        const auto row0 = full_partner_.begin() + full_offset_[i];
-        const auto row1 = full_partner_.begin() + full_offset_[i + 1];
-        split_[i] = static_cast<std::uint32_t>(
-            std::upper_bound(row0, row1, static_cast<std::uint32_t>(i)) - full_partner_.begin());
-        cursor[i] = full_offset_[i];
-      }
-      for (std::size_t i = 0; i < n; ++i)
-        for (std::uint32_t e = split_[i]; e < full_offset_[i + 1]; ++e)
-          mirror_[cursor[full_partner_[e]]++] = e;
-    } else
+    // entry (j, i) in row j, which holds the pair's time in the sweep. One thread: link_rows.
+    // Threads: each searches for its own rows' mirrors.
+    if (nt == 1)
+      link_rows();
+    else
       for (std::size_t i = i0; i < i1; ++i) {
         const auto row0 = full_partner_.begin() + full_offset_[i];
         const auto row1 = full_partner_.begin() + full_offset_[i + 1];
@@ -210,6 +197,60 @@ std::size_t HardSphereEngine::build_list(const ParticleStore& p, double short_sk
       }
   }
   return within_short;
+}
+
+void HardSphereEngine::link_rows() {
+  // In one pass over the rows in order, each row's entries below its split (ascending
+  // partners) are handed out by a cursor as the rows of those partners come by, instead of a
+  // binary search per entry (the list is symmetric: j is in row i exactly when i is in row j).
+  const std::size_t n = full_offset_.size() - 1;
+  split_.resize(n);
+  mirror_.resize(full_partner_.size());
+  std::vector<std::uint32_t>& cursor = mirror_cursor_; // kept between builds
+  cursor.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto row0 = full_partner_.begin() + full_offset_[i];
+    const auto row1 = full_partner_.begin() + full_offset_[i + 1];
+    split_[i] = static_cast<std::uint32_t>(
+        std::upper_bound(row0, row1, static_cast<std::uint32_t>(i)) - full_partner_.begin());
+    cursor[i] = full_offset_[i];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t e = split_[i]; e < full_offset_[i + 1]; ++e)
+      mirror_[cursor[full_partner_[e]]++] = e;
+}
+
+void HardSphereEngine::permute(const std::vector<std::uint32_t>& new_to_old) {
+  // The per-particle state that lives between steps follows its particle; the list is
+  // renumbered, each row sorted again by partner: the list a build at the same positions in
+  // the new order makes, so it keeps its life (and the skin policy its counts).
+  const std::size_t n = new_to_old.size();
+  const auto follow = [&](auto& a) {
+    if (a.size() != n) return; // (none yet)
+    const auto old = a;
+    for (std::size_t k = 0; k < n; ++k) a[k] = old[new_to_old[k]];
+  };
+  follow(last_collision_);
+  follow(counter_);
+  follow(built_x_);
+  follow(built_y_);
+  follow(built_z_);
+  if (full_offset_.size() != n + 1) return;
+  std::vector<std::uint32_t> old_to_new(n);
+  for (std::size_t k = 0; k < n; ++k) old_to_new[new_to_old[k]] = static_cast<std::uint32_t>(k);
+  std::vector<std::uint32_t> offset(n + 1, 0), partner(full_partner_.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t o = new_to_old[k];
+    const std::uint32_t e0 = full_offset_[o], e1 = full_offset_[o + 1];
+    offset[k + 1] = offset[k] + (e1 - e0);
+    for (std::uint32_t e = e0; e < e1; ++e)
+      partner[offset[k] + (e - e0)] = old_to_new[full_partner_[e]];
+    std::sort(partner.begin() + offset[k], partner.begin() + offset[k + 1]);
+  }
+  // (copied into the list's own arrays, which keep their capacity for the next builds)
+  std::copy(offset.begin(), offset.end(), full_offset_.begin());
+  std::copy(partner.begin(), partner.end(), full_partner_.begin());
+  link_rows();
 }
 
 void HardSphereEngine::first_events(double now) {

@@ -78,6 +78,13 @@ public:
   /// Fix the skin at `steps` maximal one-step displacements for every following build (0: the
   /// policy chooses, the default). For tests and benchmarks: the particles do not depend on it.
   void set_skin_steps(double steps) { fixed_skin_steps_ = steps; }
+  /// The particles were reordered (ParticleStore::permute with the same new_to_old, between
+  /// flow steps): the engine's per-particle state and its neighbour list follow them.
+  void permute(const std::vector<std::uint32_t>& new_to_old);
+  /// Whether the last advance() built the neighbour list.
+  bool built_last_step() const { return list_steps_ == 1; }
+  /// The side of the cells of the last list build, m (2 R_max + skin).
+  double cell_size() const { return cell_size_; }
 
   /// What a checkpoint keeps between flow steps: the time of each particle's last collision
   /// (TC model), the collision counters, the neighbour list and its build positions, the
@@ -106,6 +113,8 @@ private:
   /// R_i + R_j + skin_ at the positions of `p`. Returns how many of its entries are closer
   /// than R_i + R_j + short_skin, short_skin <= skin_ (for the skin policy's probe).
   std::size_t build_list(const ParticleStore& p, double short_skin = 0.0);
+  /// split_ and mirror_ of the rows in full_offset_ / full_partner_, on one thread.
+  void link_rows();
   void update_neighbour_list(const ParticleStore& p, double time, double dt);
   /// Minimum-image separation along axis a.
   double min_image(double d, int a) const {
@@ -160,6 +169,7 @@ private:
   HardSphereSpec opts_;
   BoxGeometry box_;
   double skin_ = 0.0;
+  double cell_size_ = 0.0;        ///< of the last build
   hardsphere::SkinProbe probe_;   ///< the list sizes of the last build with the long skin
   std::int64_t list_steps_ = 0;   ///< flow steps the current list has served
   double fixed_skin_steps_ = 0.0; ///< set_skin_steps (0: the policy)

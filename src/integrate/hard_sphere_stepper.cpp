@@ -1,5 +1,6 @@
 #include "integrate/hard_sphere_stepper.hpp"
 #include "integrate/wall_clock.hpp"
+#include "neighbour/spatial_order.hpp"
 
 #include <stdexcept>
 
@@ -7,7 +8,8 @@ namespace fluidem {
 
 HardSphereStepper::HardSphereStepper(const CaseSpec& spec, const BoxGeometry& box, double dt,
                                      ParticleStore& p, ForceSources& forces, bool record_collisions)
-    : p_(p), forces_(forces), engine_(spec, box), dt_(dt) {
+    : p_(p), forces_(forces), engine_(spec, box), box_(box), dt_(dt),
+      sort_interval_(spec.neighbour.sort_interval) {
   engine_.set_record_collisions(record_collisions);
 }
 
@@ -20,7 +22,19 @@ void HardSphereStepper::step(double t, const StepNeeds&) {
   const auto t0 = WallClock::now();
   engine_.advance(p_, t, dt_, forces_.gravity());
   body_force_kick(0.5 * dt_);
+  // (after a build: the list builds, checkpointed, decide, so restarts sort at the same steps)
+  if (sort_interval_ > 0 && engine_.built_last_step() &&
+      engine_.list_builds() % sort_interval_ == 0)
+    sort();
   t_collisions_ += seconds_since(t0);
+}
+
+void HardSphereStepper::sort() {
+  const std::vector<std::uint32_t> order = spatial_order(p_, box_, engine_.cell_size());
+  p_.permute(order);
+  forces_.permute(order);
+  engine_.permute(order);
+  ++sorts_;
 }
 
 void HardSphereStepper::body_force_kick(double h) {

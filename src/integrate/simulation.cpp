@@ -443,6 +443,10 @@ void Simulation::advance(long n) {
   }
 }
 
+long Simulation::spatial_sorts() const {
+  return soft_ ? soft_->sorts() : hard_ ? hard_->sorts() : 0;
+}
+
 long Simulation::total_steps() const {
   return static_cast<long>(std::ceil(spec_.simulation.end_time / dt_ - 1e-9));
 }

@@ -60,7 +60,7 @@ struct RunSummary {
   double wall_seconds = 0.0;
   double particle_steps_per_second = 0.0;
   long neighbour_builds = 0;
-  long spatial_sorts = 0; ///< soft spheres: sorts of the store in space by this process
+  long spatial_sorts = 0; ///< sorts of the store in space by this process
   /// Soft spheres: steps whose integration ran inside the contact loop (their integration time
   /// is in seconds_contacts)
   long folded_steps = 0;
@@ -215,7 +215,7 @@ public:
   /// or nullptr when the case has none.
   const ContinuumAverager* continuum() const { return continuum_.get(); }
   /// Spatial sorts of the store done by this process (neighbour.sort_interval).
-  long spatial_sorts() const { return soft_ ? soft_->sorts() : 0; }
+  long spatial_sorts() const;
   /// Builds of the soft-sphere neighbour list so far (checkpointed; 0 for hard spheres).
   long neighbour_builds() const {
     return soft_ ? soft_->list().builds() : dist_ ? dist_->builds() : 0;
