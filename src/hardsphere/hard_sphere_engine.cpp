@@ -109,9 +109,10 @@ HardSphereEngine::HardSphereEngine(const CaseSpec& spec, const BoxGeometry& box)
 
 std::size_t HardSphereEngine::build_list(const ParticleStore& p, double short_skin) {
   // Cells at least 2 R_max + skin wide; each particle scans the (up to 27, deduplicated on
-  // periodic axes with fewer than 3 cells) cells around its own and keeps every partner closer
-  // than R_i + R_j + skin, in cell-scan order: the full list in one pass, each row computed
-  // from the positions alone, so the list does not depend on the number of threads.
+  // periodic axes with fewer than 3 cells) cells around its own for the partners above it
+  // closer than R_i + R_j + skin: each pair once, from the positions alone (the separation and
+  // the cut are the same bits from either side), so the list does not depend on the number of
+  // threads. The rows' parts below their particles are then the transpose of these.
   const std::size_t n = p.size();
   double rmax = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : rmax) if (n >= kParallelMin)
@@ -120,13 +121,15 @@ std::size_t HardSphereEngine::build_list(const ParticleStore& p, double short_sk
   cell_size_ = 2.0 * rmax + skin_;
   grid_.bin(box_, cell_size_, p.x.data(), p.y.data(), p.z.data(), n, n >= kParallelMin);
 
-  full_offset_.assign(n + 1, 0);
   std::size_t within_short = 0;
   const int nthreads = n >= kParallelMin ? omp_get_max_threads() : 1;
   if (static_cast<int>(thread_rows_.size()) < nthreads) thread_rows_.resize(nthreads);
+  split_.resize(n); // each row's part above its particle: its length, until the offsets
+  int used = 1;     // the threads the scan had
 #pragma omp parallel num_threads(nthreads) reduction(+ : within_short)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    if (t == 0) used = nt;
     const std::size_t i0 = n * t / nt, i1 = n * (t + 1) / nt;
     std::vector<std::uint32_t>& rows = thread_rows_[t];
     rows.clear();
@@ -149,8 +152,8 @@ std::size_t HardSphereEngine::build_list(const ParticleStore& p, double short_sk
       const double xi = px[i], yi = py[i], zi = pz[i], ri = pr[i];
       const bool fixed_i = p.fixed(i); // two fixed particles never meet: no pair of them
       const std::size_t before = rows.size();
-      grid_.for_each_near(i, box_.periodic, [&](std::uint32_t j) {
-        if (j == i || (fixed_i && p.fixed(j))) return;
+      grid_.for_each_near_above(i, box_.periodic, [&](std::uint32_t j) {
+        if (fixed_i && p.fixed(j)) return;
         const double ddx = image(px[j] - xi, 0);
         const double ddy = image(py[j] - yi, 1);
         const double ddz = image(pz[j] - zi, 2);
@@ -161,42 +164,40 @@ std::size_t HardSphereEngine::build_list(const ParticleStore& p, double short_sk
           within_short += d2 < cut_short * cut_short ? 1 : 0;
         }
       });
-      // Rows in ascending partner order: the partners above i (each pair once) form the tail.
       std::sort(rows.begin() + static_cast<std::ptrdiff_t>(before), rows.end());
-      full_offset_[i + 1] = static_cast<std::uint32_t>(rows.size() - before);
+      split_[i] = static_cast<std::uint32_t>(rows.size() - before);
     }
-#pragma omp barrier
-#pragma omp single
-    {
-      for (std::size_t i = 0; i < n; ++i) full_offset_[i + 1] += full_offset_[i];
-      full_partner_.resize(full_offset_[n]);
-      split_.resize(n);
-      mirror_.resize(full_offset_[n]);
-    }
-    std::copy(rows.begin(), rows.end(), full_partner_.begin() + full_offset_[i0]);
-#pragma omp barrier
-    // split_[i]: the first entry of row i above i; mirror_[e] for an entry (i, j < i): the
-    // entry (j, i) in row j, which holds the pair's time in the sweep. One thread: link_rows.
-    // Threads: each searches for its own rows' mirrors.
-    if (nt == 1)
-      link_rows();
-    else
-      for (std::size_t i = i0; i < i1; ++i) {
-        const auto row0 = full_partner_.begin() + full_offset_[i];
-        const auto row1 = full_partner_.begin() + full_offset_[i + 1];
-        const auto up = std::upper_bound(row0, row1, static_cast<std::uint32_t>(i));
-        split_[i] = static_cast<std::uint32_t>(up - full_partner_.begin());
-        for (auto e = row0; e != up; ++e) {
-          const std::uint32_t j = *e;
-          const auto it = std::lower_bound(full_partner_.begin() + full_offset_[j],
-                                           full_partner_.begin() + full_offset_[j + 1],
-                                           static_cast<std::uint32_t>(i));
-          mirror_[e - full_partner_.begin()] =
-              static_cast<std::uint32_t>(it - full_partner_.begin());
-        }
+  }
+  // The full rows in ascending partner order: row i's partners below i, then those above
+  // (split_[i], the first of these). The pairs (i, j > i) taken in ascending i hand each row j
+  // its part below j in ascending order, and each such entry its mirror_, the entry (i, j) of
+  // row i which holds the pair's time in the sweep, in the same pass.
+  std::vector<std::uint32_t>& lower = mirror_cursor_;
+  lower.assign(n, 0);
+  for (int t = 0; t < used; ++t)
+    for (const std::uint32_t j : thread_rows_[t]) ++lower[j];
+  full_offset_.resize(n + 1);
+  full_offset_[0] = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t above = split_[i];
+    split_[i] = full_offset_[i] + lower[i];
+    full_offset_[i + 1] = split_[i] + above;
+    lower[i] = full_offset_[i]; // from here: row i's next entry below i
+  }
+  full_partner_.resize(full_offset_[n]);
+  mirror_.resize(full_offset_[n]);
+  std::size_t i = 0;
+  for (int t = 0; t < used; ++t) {
+    const std::uint32_t* row = thread_rows_[t].data();
+    for (const std::size_t i1 = n * (t + 1) / used; i < i1; ++i)
+      for (std::uint32_t e = split_[i]; e < full_offset_[i + 1]; ++e) {
+        const std::uint32_t j = *row++;
+        full_partner_[e] = j;
+        full_partner_[lower[j]] = static_cast<std::uint32_t>(i);
+        mirror_[lower[j]++] = e;
       }
   }
-  return within_short;
+  return 2 * within_short; // (entries: each pair counts in both rows)
 }
 
 void HardSphereEngine::link_rows() {

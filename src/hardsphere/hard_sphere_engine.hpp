@@ -178,10 +178,11 @@ private:
   CellGrid grid_;
   std::vector<std::uint32_t> full_offset_, full_partner_;
   std::vector<std::uint32_t> split_, mirror_; ///< first entry above i; the entry (j, i) of (i, j)
-  std::vector<std::uint32_t> mirror_cursor_;  ///< build_list on one thread: per row, its next
-                                              ///< entry below the split to hand out
+  std::vector<std::uint32_t> mirror_cursor_;  ///< build_list, link_rows: per row, its next
+                                              ///< entry below the split to fill
   std::vector<double> pair_time_;             ///< per entry above the split: the pair's time
-  std::vector<std::vector<std::uint32_t>> thread_rows_; ///< per-thread rows during a build
+  std::vector<std::vector<std::uint32_t>> thread_rows_; ///< per thread during a build: the
+                                                        ///< rows' parts above their particles
   std::vector<Kin> kin_; ///< copied in at the start of a step, out at its end
   /// Per particle: fixed (ParticleStore::fix: never moves, infinite mass); whether any is, and
   /// how many are not (copied in with kin_).

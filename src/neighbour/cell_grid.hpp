@@ -68,6 +68,30 @@ public:
     }
   }
 
+  /// for_each_near without the particles of index i or below: each pair (i, j > i) once. A
+  /// cell's particles are in ascending index order, so its run at or below i is passed over
+  /// with integer comparisons only.
+  template <class Visit>
+  [[gnu::always_inline]] void
+  for_each_near_above(std::size_t i, const std::array<bool, 3>& periodic, Visit&& visit) const {
+    const std::uint32_t* const start = cell_start_.data();
+    const std::uint32_t* const members = cell_particles_.data();
+    const auto after = [&](std::uint32_t k0, std::uint32_t k1) {
+      std::uint32_t k = k0;
+      while (k < k1 && members[k] <= i) ++k;
+      for (; k < k1; ++k) visit(members[k]);
+    };
+    if (dense_) {
+      for_each_cell_around(static_cast<std::uint32_t>(cell_[i]), ncell_, periodic,
+                           [&](std::uint32_t cell) { after(start[cell], start[cell + 1]); });
+    } else {
+      for_each_cell_around(cell_[i], ncell_, periodic, [&](std::uint64_t cell) {
+        const std::uint32_t slot = find(cell);
+        if (slot != kNone) after(start[slot], start[slot + 1]);
+      });
+    }
+  }
+
   /// Frees the arrays (a binning allocates them again).
   void release();
   std::size_t bytes() const;
