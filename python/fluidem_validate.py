@@ -860,24 +860,104 @@ ARCHIVED = (".csv", ".toml")
 ARCHIVED_ANALYSIS = (".csv", ".png")
 
 
+def copy_small_outputs(out, dst):
+    """Copy a run's small outputs (ARCHIVED at the top, ARCHIVED_ANALYSIS of analysis/) from
+    `out` into the new folder `dst`."""
+    os.makedirs(os.path.join(dst, "analysis"))
+    for f in sorted(os.listdir(out)):
+        if f.endswith(ARCHIVED) and os.path.isfile(os.path.join(out, f)):
+            shutil.copyfile(os.path.join(out, f), os.path.join(dst, f))
+    adir = os.path.join(out, "analysis")
+    for f in sorted(os.listdir(adir)) if os.path.isdir(adir) else []:
+        if f.endswith(ARCHIVED_ANALYSIS):
+            shutil.copyfile(os.path.join(adir, f), os.path.join(dst, "analysis", f))
+
+
+def replace_folder(tmp, dst):
+    """Put the complete folder `tmp` in the place of `dst` (renames; no half folder is left)."""
+    old = dst + ".old"
+    if os.path.exists(old):
+        shutil.rmtree(old)
+    if os.path.exists(dst):
+        os.replace(dst, old)
+    os.replace(tmp, dst)
+    if os.path.exists(old):
+        shutil.rmtree(old)
+
+
+def time_rows(path):
+    """A CSV file as (header line, [(time, line), ...]) when its first column is `time`, else
+    None."""
+    with open(path) as f:
+        lines = f.read().splitlines()
+    if not lines or lines[0].split(",")[0] != "time":
+        return None
+    rows = []
+    for line in lines[1:]:
+        try:
+            rows.append((float(line.split(",")[0]), line))
+        except ValueError:
+            return None
+    return lines[0], rows
+
+
+def join_pieces(pieces, final):
+    """Prepend to every time-series CSV of the folder `final` (at its top and in analysis/)
+    the rows of the same file in each earlier piece's folder (in order), each piece's rows up
+    to the first time of the piece after it: one file over the whole run, as if it had run in
+    one piece. A file whose header differs from the final one's is left as the final piece
+    wrote it."""
+    for sub in ("", "analysis"):
+        folder = os.path.join(final, sub)
+        for f in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
+            path = os.path.join(folder, f)
+            if not f.endswith(".csv") or not os.path.isfile(path):
+                continue
+            last = time_rows(path)
+            if last is None:
+                continue
+            header, rows = last
+            parts = []
+            for p in pieces:
+                q = os.path.join(p, sub, f)
+                got = time_rows(q) if os.path.isfile(q) else None
+                if got is not None and got[0] == header:
+                    parts.append(got[1])
+            parts.append(rows)
+            joined = []
+            for k, part in enumerate(parts):
+                nxt = next((pp[0][0] for pp in parts[k + 1:] if pp), None)
+                joined += [line for t, line in part if nxt is None or t < nxt]
+            with open(path, "w") as fh:
+                fh.write("\n".join([header] + joined) + "\n")
+
+
+# A long run stopped part-way and kept in the archive (park_run), to be continued elsewhere.
+PARKED = ".parked"
+
+
+def parked_pieces(parked):
+    """The piece folders of a parked run, in order."""
+    root = os.path.join(parked, "pieces")
+    return [os.path.join(root, p) for p in sorted(os.listdir(root))] if os.path.isdir(root) else []
+
+
 def archive_run(out, done, archive, name, cases, work):
     """Copy a finished long run's small outputs and record to ARCHIVE/<name> and
     ARCHIVE/<name>.done (the command line written with cases/ and WORK/), replacing an earlier
     copy only once the new one is complete (a temporary folder, then renames). The snapshot
-    is drawn at the report's resolution (report_snapshot.png): particles.h5 stays behind."""
+    is drawn at the report's resolution (report_snapshot.png): particles.h5 stays behind.
+    A run made in pieces on several machines (ARCHIVE/<name>.parked, park_run) has its
+    pieces' time series joined in front of the last piece's (join_pieces); the parked copy
+    is removed once the archive is complete."""
     os.makedirs(archive, exist_ok=True)
     dst = os.path.join(archive, name)
     tmp = dst + ".tmp"
     if os.path.exists(tmp):
         shutil.rmtree(tmp)
-    os.makedirs(os.path.join(tmp, "analysis"))
-    for f in sorted(os.listdir(out)):
-        if f.endswith(ARCHIVED) and os.path.isfile(os.path.join(out, f)):
-            shutil.copyfile(os.path.join(out, f), os.path.join(tmp, f))
-    adir = os.path.join(out, "analysis")
-    for f in sorted(os.listdir(adir)) if os.path.isdir(adir) else []:
-        if f.endswith(ARCHIVED_ANALYSIS):
-            shutil.copyfile(os.path.join(adir, f), os.path.join(tmp, "analysis", f))
+    copy_small_outputs(out, tmp)
+    parked = os.path.join(archive, name + PARKED)
+    join_pieces(parked_pieces(parked), tmp)
     if os.path.exists(os.path.join(out, "particles.h5")):
         subprocess.run([sys.executable, os.path.join(HERE, "fluidem_plot.py"), out, "--out",
                         os.path.join(tmp, "report_snapshot.png"), "--dpi", "60"],
@@ -887,15 +967,39 @@ def archive_run(out, done, archive, name, cases, work):
     lines[0] = portable_command(lines[0].split(" "), cases, work)
     with open(os.path.join(tmp, "record.done"), "w") as f:
         f.write("\n".join(lines))
-    old = dst + ".old"
-    if os.path.exists(old):
-        shutil.rmtree(old)
-    if os.path.exists(dst):
-        os.replace(dst, old)
-    os.replace(tmp, dst)
+    replace_folder(tmp, dst)
     os.replace(os.path.join(dst, "record.done"), dst + ".done")
-    if os.path.exists(old):
-        shutil.rmtree(old)
+    if os.path.isdir(parked):
+        shutil.rmtree(parked)
+
+
+def park_run(out, started, archive, name, cases, work):
+    """Keep a stopped long run in ARCHIVE/<name>.parked so that a fresh checkout on another
+    machine continues it (`--resume`): its last checkpoint (checkpoint.h5), its record
+    (record.started: the command line written with cases/ and WORK/, the wall time and commits
+    of its pieces so far, threads, the piece's number) and the small outputs of each piece so
+    far (pieces/001, 002, ...: the work folder of one machine holds one piece; parking the same
+    piece again replaces its copy). Returns the simulated time reached, or raises OSError
+    when there is nothing to park."""
+    rec = read_started(started)
+    checkpoint = os.path.join(out, "checkpoint.h5")
+    if rec is None or not os.path.isfile(checkpoint):
+        raise OSError(f"no stopped run to park: {started} and {checkpoint} are needed")
+    dst = os.path.join(archive, name + PARKED)
+    tmp = dst + ".tmp"
+    if os.path.exists(tmp):
+        shutil.rmtree(tmp)
+    os.makedirs(os.path.join(tmp, "pieces"))
+    for p in parked_pieces(dst):
+        if os.path.basename(p) != f"{rec['piece']:03d}":
+            shutil.copytree(p, os.path.join(tmp, "pieces", os.path.basename(p)))
+    copy_small_outputs(out, os.path.join(tmp, "pieces", f"{rec['piece']:03d}"))
+    shutil.copyfile(checkpoint, os.path.join(tmp, "checkpoint.h5"))
+    write_started(os.path.join(tmp, "record.started"),
+                  portable_command(rec["cmd"].split(" "), cases, work), rec["wall"],
+                  rec["commits"], rec["threads"], rec["piece"])
+    os.makedirs(archive, exist_ok=True)
+    replace_folder(tmp, dst)
 
 
 def archived_run(archive, name, words, cases, work):
@@ -903,6 +1007,18 @@ def archived_run(archive, name, words, cases, work):
     done = os.path.join(archive, name + ".done")
     return (os.path.exists(done) and os.path.isdir(os.path.join(archive, name))
             and done_command(done) == portable_command(words, cases, work))
+
+
+def resumable_parked(archive, r, cmd, work):
+    """ARCHIVE/<run>.parked when it holds a parked piece of this run (the same command line,
+    as portable_command) and WORK has no checkpoint of it to continue, else None."""
+    if not (r.long and archive):
+        return None
+    parked = os.path.join(archive, r.name + PARKED)
+    rec = read_started(os.path.join(parked, "record.started"))
+    if rec is None or not os.path.isfile(os.path.join(parked, "checkpoint.h5")):
+        return None
+    return parked if rec["cmd"] == portable_command(cmd[1:], CASES, work) else None
 
 
 def run_pieces_cmd(cmd, log, record, every=60.0):
@@ -937,13 +1053,14 @@ def run_pieces_cmd(cmd, log, record, every=60.0):
         return code, seconds
 
 
-def write_started(path, cmd, wall, commits, threads):
+def write_started(path, cmd, wall, commits, threads, piece=1):
     """The record of a run that is not finished, WORK/<run>.started (written with a temporary
     file and a rename): its command line, the wall time of its pieces so far (s), the commits
-    its pieces ran from (comma-separated) and its threads."""
+    its pieces ran from (comma-separated), its threads and the number of the piece the work
+    folder holds (1, or the next after the parked pieces it continued: park_run)."""
     tmp = path + ".tmp"
     with open(tmp, "w") as f:
-        f.write(f"{cmd}\n{wall}\n{','.join(commits)}\n{threads}\n")
+        f.write(f"{cmd}\n{wall}\n{','.join(commits)}\n{threads}\n{piece}\n")
     os.replace(tmp, path)
 
 
@@ -953,7 +1070,8 @@ def read_started(path):
         with open(path) as f:
             lines = f.read().split("\n")
         return {"cmd": lines[0], "wall": float(lines[1]), "commits": lines[2].split(","),
-                "threads": lines[3]}
+                "threads": lines[3],
+                "piece": int(lines[4]) if len(lines) > 4 and lines[4] else 1}
     except (OSError, IndexError, ValueError):
         return None
 
@@ -981,6 +1099,32 @@ def cpu_model():
     except OSError:
         pass
     return platform.processor() or "unknown"
+
+
+def park_stopped(a, runs, work, archive):
+    """--park: each long run of `runs` stopped in WORK (its .started record and checkpoint)
+    analysed (`fluidem analyse`, so that the piece's per-frame tables are kept) and parked in
+    the archive (park_run). Exit status 0, or 1 when there was nothing to park."""
+    parked = 0
+    for r in runs:
+        out = os.path.join(work, r.name)
+        started = os.path.join(work, r.name + ".started")
+        if not (r.long and archive and os.path.isfile(started)):
+            continue
+        run_cmd([a.fluidem, "analyse", out] + list(r.analyse), os.path.join(work, r.name + ".log"))
+        try:
+            park_run(out, started, archive, r.name, CASES, work)
+        except OSError as e:
+            print(f"[{r.name}] not parked: {e}", file=sys.stderr, flush=True)
+            continue
+        rec = read_started(started)
+        print(f"[{r.name}] parked in {os.path.join(archive, r.name + PARKED)} (piece "
+              f"{rec['piece']}, {rec['wall']:.0f} s of wall time so far)", flush=True)
+        parked += 1
+    if parked == 0:
+        print("error: no stopped full-size run to park in " + work, file=sys.stderr)
+        return 1
+    return 0
 
 
 def main():
@@ -1017,6 +1161,11 @@ def main():
                     "--report-only, a long run not finished in WORK is taken from there, so "
                     "that the report can be made at a later commit, on another machine, from "
                     "runs of days")
+    ap.add_argument("--park", action="store_true",
+                    help="run nothing: keep each stopped full-size run of WORK (Ctrl-C, "
+                    "SIGTERM) in the archive, its checkpoint and its small outputs so far "
+                    "(ARCHIVE/<run>.parked), so that --resume continues it in a fresh checkout "
+                    "on another machine (the pieces' series are joined when it finishes)")
     a = ap.parse_args()
     a.reuse = a.reuse or a.resume
     global CASES
@@ -1059,6 +1208,8 @@ def main():
     os.makedirs(os.path.dirname(report), exist_ok=True)
     archive = None if a.quick else os.path.abspath(
         a.archive or os.path.join(SOURCE, "docs", "validation", "runs"))
+    if a.park:
+        return park_stopped(a, runs, work, archive)
     outputs = Outputs(work)
     failed = []
     skipped = []  # --report-only: runs not finished in WORK
@@ -1112,17 +1263,36 @@ def main():
                 now = git_commit()
                 if now not in commits:
                     commits.append(now)
+            elif a.resume and (parked := resumable_parked(archive, r, cmd, work)):
+                # A run parked by another machine (park_run): the next piece starts from its
+                # checkpoint in new output files here; the archive joins the pieces at the end.
+                for old in (done, started):
+                    if os.path.exists(old):
+                        os.remove(old)
+                piece = read_started(os.path.join(parked, "record.started"))
+                piece["piece"] += 1
+                print(f"[{r.name}] continuing {r.case} from the parked {parked} (piece "
+                      f"{piece['piece']}, {piece['wall']:.0f} s of wall time before) ...",
+                      flush=True)
+                run = [a.fluidem, "run", "--restart", os.path.join(parked, "checkpoint.h5"),
+                       "--out", out, "--force"]
+                if a.threads > 0:
+                    run += ["--threads", str(a.threads)]
+                commits = piece["commits"]
+                now = git_commit()
+                if now not in commits:
+                    commits.append(now)
             else:
                 for old in (done, log, started):
                     if os.path.exists(old):
                         os.remove(old)
                 print(f"[{r.name}] running {r.case} ...", flush=True)
-                run, piece, commits = cmd, {"wall": 0.0}, [git_commit()]
+                run, piece, commits = cmd, {"wall": 0.0, "piece": 1}, [git_commit()]
             threads = str(a.threads) if a.threads > 0 else "all"
 
             def record(seconds, started=started, piece=piece, commits=commits, threads=threads):
                 write_started(started, " ".join(cmd[1:]), piece["wall"] + seconds, commits,
-                              threads)
+                              threads, piece.get("piece", 1))
 
             code, seconds = run_pieces_cmd(run, log, record)
             wall[r.name] = piece["wall"] + seconds

@@ -11,6 +11,7 @@ int ValidateCommand::run(const char* argv0) const {
   if (list) args.emplace_back("--list");
   if (reuse) args.emplace_back("--reuse");
   if (resume) args.emplace_back("--resume");
+  if (park) args.emplace_back("--park");
   if (report_only) args.emplace_back("--report-only");
   if (long_cases) args.emplace_back("--long");
   if (!work.empty()) args.insert(args.end(), {"--work", work});
@@ -37,7 +38,12 @@ std::unique_ptr<ValidateCommand> add_validate_command(CLI::App& app) {
   c->command->add_flag("--resume", c->resume,
                        "Continue the runs of the work folder that were stopped (Ctrl-C, "
                        "SIGTERM, a lost machine) from their last checkpoint: long runs in "
-                       "pieces, their wall times added up (implies --reuse)");
+                       "pieces, their wall times added up (implies --reuse); also a long run "
+                       "parked in the archive by another machine (--park)");
+  c->command->add_flag("--park", c->park,
+                       "Run nothing: keep each stopped long run of the work folder in the "
+                       "archive (its checkpoint and small outputs, ARCHIVE/<run>.parked), so "
+                       "that --resume continues it in a fresh checkout on another machine");
   c->command->add_flag("--long", c->long_cases,
                        "Also the full-size cases (40,000-72,600 particles, the 17 s loop): "
                        "hours of wall time each");

@@ -15,6 +15,7 @@ struct ValidateCommand {
   bool list = false;
   bool reuse = false;
   bool resume = false;
+  bool park = false;
   bool report_only = false;
   bool long_cases = false;
   std::string work, report, cases, archive;

@@ -9,6 +9,11 @@ hours made on one machine at one commit is reported at a later commit on another
   and not a run with other overrides.
 - `--report-only` with an empty work folder takes the run from the archive: the report shows
   the archived value and the archived record's commit, thread count and wall time.
+- A long run carried across machines: `--park` keeps a stopped run's checkpoint, record and
+  small outputs in ARCHIVE/<run>.parked; `--resume` in a fresh work folder continues it from
+  that checkpoint into new output files (`fluidem run --restart`), and when it finishes the
+  archive holds its time series joined over the pieces (no row twice, none lost), the wall
+  times and commits of all pieces, and no parked copy.
 """
 import os
 import subprocess
@@ -113,6 +118,135 @@ class Archive(unittest.TestCase):
         self.assertIn("| abc1234 | 1 | 2545 s |", text)
         # The reduced case, neither in the work folder nor archived: not run.
         self.assertIn("not run for this report", text)
+
+
+# A stand-in for the fluidem binary: `run` writes the series of times START..END (step 0.25)
+# into OUT/series.csv and a checkpoint, where START is 0 or the time in the checkpoint file it
+# restarts from and END is the environment's FAKE_END (the run "stopped" there: exit 143 when
+# FAKE_END is below the case's 60 s); `analyse` writes OUT/analysis/segregation.csv (s = t/100
+# per frame); every call is logged to FAKE_LOG.
+FAKE = r"""#!/usr/bin/python3
+import os, sys
+args = sys.argv[1:]
+with open(os.environ["FAKE_LOG"], "a") as f:
+    f.write(" ".join(args) + "\n")
+out = args[args.index("--out") + 1] if "--out" in args else args[1]
+if args[0] == "run":
+    start = 0.0
+    if "--restart" in args:
+        with open(args[args.index("--restart") + 1]) as f:
+            start = float(f.read())
+    end = float(os.environ["FAKE_END"])
+    os.makedirs(out, exist_ok=True)
+    times = [start + 0.25 * k for k in range(int(round((end - start) / 0.25)) + 1)]
+    with open(os.path.join(out, "series.csv"), "w") as f:
+        f.write("time,pressure_drop\n" + "".join(f"{t},{t * 2}\n" for t in times))
+    with open(os.path.join(out, "checkpoint.h5"), "w") as f:
+        f.write(str(end))
+    sys.exit(0 if end >= 60.0 else 143)
+if args[0] == "analyse":
+    with open(os.path.join(out, "series.csv")) as f:
+        times = [float(line.split(",")[0]) for line in f.read().splitlines()[1:]]
+    os.makedirs(os.path.join(out, "analysis"), exist_ok=True)
+    with open(os.path.join(out, "analysis", "segregation.csv"), "w") as f:
+        f.write("time,s\n" + "".join(f"{t},{t / 100}\n" for t in times))
+"""
+
+
+class Parked(unittest.TestCase):
+    """A long run made in three pieces on three "machines" (fresh work folders)."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.root = self.tmp.name
+        self.archive = os.path.join(self.root, "archive")
+        self.fake = os.path.join(self.root, "fluidem")
+        with open(self.fake, "w") as f:
+            f.write(FAKE)
+        os.chmod(self.fake, 0o755)
+        self.log = os.path.join(self.root, "calls.log")
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def validate(self, work, *args, end=60.0):
+        env = dict(os.environ, FAKE_LOG=self.log, FAKE_END=str(end))
+        return subprocess.run([sys.executable, os.path.join(SOURCE, "python",
+                                                            "fluidem_validate.py"),
+                               "--fluidem", self.fake, "--long", "--only",
+                               "segregation_standard", "--work", work, "--archive",
+                               self.archive, "--report", os.path.join(work, "report.md"),
+                               "--threads", "1"] + list(args),
+                              capture_output=True, text=True, env=env)
+
+    def calls(self):
+        with open(self.log) as f:
+            return [line.split(" ") for line in f.read().splitlines()]
+
+    def test_three_pieces_make_one_run(self):
+        parked = os.path.join(self.archive, "segregation_standard.parked")
+        # Machine 1: stopped at 20 s, then parked.
+        w1 = os.path.join(self.root, "m1")
+        r = self.validate(w1, "--resume", end=20.0)
+        self.assertEqual(r.returncode, 143, r.stdout + r.stderr)
+        self.assertFalse(os.path.exists(parked))
+        r = self.validate(w1, "--park")
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertEqual(sorted(os.listdir(parked)), ["checkpoint.h5", "pieces",
+                                                      "record.started"])
+        with open(os.path.join(parked, "record.started")) as f:
+            rec = f.read().split("\n")
+        self.assertTrue(rec[0].startswith("run cases/deen07/segregation_standard.toml --out "
+                                          "WORK/segregation_standard --force"), rec[0])
+        self.assertEqual(rec[4], "1")
+        # Machine 2: continues from the parked checkpoint into new files, stopped at 45 s.
+        w2 = os.path.join(self.root, "m2")
+        r = self.validate(w2, "--resume", end=45.0)
+        self.assertEqual(r.returncode, 143, r.stdout + r.stderr)
+        run = self.calls()[-1]
+        self.assertEqual(run[:5], ["run", "--restart", os.path.join(parked, "checkpoint.h5"),
+                                   "--out", os.path.join(w2, "segregation_standard")])
+        self.assertIn("--force", run)
+        self.assertEqual(self.validate(w2, "--park").returncode, 0)
+        self.assertEqual(sorted(os.listdir(os.path.join(parked, "pieces"))), ["001", "002"])
+        # Machine 3: the last piece, to 60 s; then the archive holds one run.
+        w3 = os.path.join(self.root, "m3")
+        r = self.validate(w3, "--resume", end=60.0)
+        self.assertIn("archived", r.stdout, r.stdout + r.stderr)
+        self.assertFalse(os.path.exists(parked))
+        kept = os.path.join(self.archive, "segregation_standard")
+        for name, column in (("series.csv", 2.0), (os.path.join("analysis", "segregation.csv"),
+                                                   0.01)):
+            with open(os.path.join(kept, name)) as f:
+                lines = f.read().splitlines()
+            times = [float(line.split(",")[0]) for line in lines[1:]]
+            # Every time of 0-60 s once, in order: 241 rows, the pieces' seams (20 s, 45 s)
+            # not doubled.
+            self.assertEqual(times, [0.25 * k for k in range(241)], name)
+            self.assertAlmostEqual(float(lines[-1].split(",")[1]), 60.0 * column)
+        with open(os.path.join(self.archive, "segregation_standard.done")) as f:
+            done = f.read().split("\n")
+        self.assertEqual(done[0], rec[0])
+        self.assertEqual(done[3], "1")
+
+    def test_a_parked_run_of_another_case_setting_is_not_continued(self):
+        w1 = os.path.join(self.root, "m1")
+        self.validate(w1, "--resume", end=20.0)
+        self.assertEqual(self.validate(w1, "--park").returncode, 0)
+        rec = os.path.join(self.archive, "segregation_standard.parked", "record.started")
+        with open(rec) as f:
+            lines = f.read().split("\n")
+        lines[0] += " --set simulation.end_time=30"
+        with open(rec, "w") as f:
+            f.write("\n".join(lines))
+        w2 = os.path.join(self.root, "m2")
+        self.validate(w2, "--resume", end=20.0)
+        self.assertNotIn("--restart", self.calls()[-1])
+
+    def test_nothing_to_park(self):
+        r = self.validate(os.path.join(self.root, "empty"), "--park")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("no stopped full-size run to park", r.stderr)
 
 
 if __name__ == "__main__":
