@@ -1101,6 +1101,19 @@ def cpu_model():
     return platform.processor() or "unknown"
 
 
+def restart_cmd(a, checkpoint, out, piece, extra=()):
+    """The command of a run's next piece (from `checkpoint` into `out`) and the commits of its
+    pieces with the present one added."""
+    run = [a.fluidem, "run", "--restart", checkpoint, "--out", out] + list(extra)
+    if a.threads > 0:
+        run += ["--threads", str(a.threads)]
+    commits = piece["commits"]
+    now = git_commit()
+    if now not in commits:
+        commits.append(now)
+    return run, commits
+
+
 def park_stopped(a, runs, work, archive):
     """--park: each long run of `runs` stopped in WORK (its .started record and checkpoint)
     analysed (`fluidem analyse`, so that the piece's per-frame tables are kept) and parked in
@@ -1256,13 +1269,7 @@ def main():
                 # outputs (a restart is bitwise: the same result as one piece).
                 print(f"[{r.name}] continuing {r.case} from {checkpoint} ({piece['wall']:.0f} s "
                       "of wall time before) ...", flush=True)
-                run = [a.fluidem, "run", "--restart", checkpoint, "--out", out]
-                if a.threads > 0:
-                    run += ["--threads", str(a.threads)]
-                commits = piece["commits"]
-                now = git_commit()
-                if now not in commits:
-                    commits.append(now)
+                run, commits = restart_cmd(a, checkpoint, out, piece)
             elif a.resume and (parked := resumable_parked(archive, r, cmd, work)):
                 # A run parked by another machine (park_run): the next piece starts from its
                 # checkpoint in new output files here; the archive joins the pieces at the end.
@@ -1274,14 +1281,8 @@ def main():
                 print(f"[{r.name}] continuing {r.case} from the parked {parked} (piece "
                       f"{piece['piece']}, {piece['wall']:.0f} s of wall time before) ...",
                       flush=True)
-                run = [a.fluidem, "run", "--restart", os.path.join(parked, "checkpoint.h5"),
-                       "--out", out, "--force"]
-                if a.threads > 0:
-                    run += ["--threads", str(a.threads)]
-                commits = piece["commits"]
-                now = git_commit()
-                if now not in commits:
-                    commits.append(now)
+                run, commits = restart_cmd(a, os.path.join(parked, "checkpoint.h5"), out, piece,
+                                           ["--force"])
             else:
                 for old in (done, log, started):
                     if os.path.exists(old):
