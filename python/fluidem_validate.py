@@ -947,29 +947,39 @@ def archive_run(out, done, archive, name, cases, work):
     ARCHIVE/<name>.done (the command line written with cases/ and WORK/), replacing an earlier
     copy only once the new one is complete (a temporary folder, then renames). The snapshot
     is drawn at the report's resolution (report_snapshot.png): particles.h5 stays behind.
-    A run made in pieces on several machines (ARCHIVE/<name>.parked, park_run) has its
-    pieces' time series joined in front of the last piece's (join_pieces); the parked copy
-    is removed once the archive is complete."""
+    A run made in pieces on several machines (park_run) holds its last piece in `out` (the
+    piece's number is the record's fifth line): the time series of the pieces before it are
+    joined in front of its own (join_pieces), from ARCHIVE/<name>.parked, or when that is gone
+    (the run archived before, then re-analysed) from the earlier archived copy. A parked copy
+    of the same run is removed once the archive is complete."""
     os.makedirs(archive, exist_ok=True)
     dst = os.path.join(archive, name)
     tmp = dst + ".tmp"
     if os.path.exists(tmp):
         shutil.rmtree(tmp)
+    with open(done) as f:
+        lines = f.read().split("\n")
+    lines[0] = portable_command(lines[0].split(" "), cases, work)
+    piece = int(lines[4]) if len(lines) > 4 and lines[4].strip() else 1
     copy_small_outputs(out, tmp)
     parked = os.path.join(archive, name + PARKED)
-    join_pieces(parked_pieces(parked), tmp)
+    rec = read_started(os.path.join(parked, "record.started"))
+    same_run = rec is not None and rec["cmd"] == lines[0]
+    if piece > 1:
+        if same_run:
+            earlier = [p for p in parked_pieces(parked) if int(os.path.basename(p)) < piece]
+        else:
+            earlier = [dst] if os.path.isdir(dst) else []
+        join_pieces(earlier, tmp)
     if os.path.exists(os.path.join(out, "particles.h5")):
         subprocess.run([sys.executable, os.path.join(HERE, "fluidem_plot.py"), out, "--out",
                         os.path.join(tmp, "report_snapshot.png"), "--dpi", "60"],
                        capture_output=True)
-    with open(done) as f:
-        lines = f.read().split("\n")
-    lines[0] = portable_command(lines[0].split(" "), cases, work)
     with open(os.path.join(tmp, "record.done"), "w") as f:
         f.write("\n".join(lines))
     replace_folder(tmp, dst)
     os.replace(os.path.join(dst, "record.done"), dst + ".done")
-    if os.path.isdir(parked):
+    if same_run:
         shutil.rmtree(parked)
 
 
@@ -979,8 +989,7 @@ def park_run(out, started, archive, name, cases, work):
     (record.started: the command line written with cases/ and WORK/, the wall time and commits
     of its pieces so far, threads, the piece's number) and the small outputs of each piece so
     far (pieces/001, 002, ...: the work folder of one machine holds one piece; parking the same
-    piece again replaces its copy). Returns the simulated time reached, or raises OSError
-    when there is nothing to park."""
+    piece again replaces its copy). Raises OSError when there is nothing to park."""
     rec = read_started(started)
     checkpoint = os.path.join(out, "checkpoint.h5")
     if rec is None or not os.path.isfile(checkpoint):
@@ -1327,7 +1336,7 @@ def main():
         if not reused:
             with open(done, "w") as f:
                 f.write(" ".join(cmd[1:]) + "\n" + str(wall[r.name]) + "\n"
-                        + "\n".join(made[r.name]) + "\n")
+                        + "\n".join(made[r.name]) + f"\n{piece.get('piece', 1)}\n")
         if r.long and archive:
             archive_run(out, done, archive, r.name, CASES, work)
             # The report reads what was archived (its snapshot drawn once, there).
@@ -1374,7 +1383,8 @@ def main():
 
 def read_done(path):
     """A finished run's record WORK/<run>.done: its command line, wall time (s), the commit of
-    the source tree it ran from and its threads (those two missing in older records: "-")."""
+    the source tree it ran from and its threads (those two missing in older records: "-"),
+    and the number of the piece its work folder holds (park_run; 1 when missing)."""
     with open(path) as f:
         lines = f.read().split("\n")
     made = tuple(lines[2:4]) if len(lines) > 3 and lines[3] else ("-", "-")

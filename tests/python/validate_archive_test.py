@@ -215,6 +215,30 @@ class Parked(unittest.TestCase):
         self.assertIn("archived", r.stdout, r.stdout + r.stderr)
         self.assertFalse(os.path.exists(parked))
         kept = os.path.join(self.archive, "segregation_standard")
+        self.assert_whole_series(kept)
+        with open(os.path.join(self.archive, "segregation_standard.done")) as f:
+            done = f.read().split("\n")
+        self.assertEqual(done[0], rec[0])
+        self.assertEqual(done[3:5], ["1", "3"])  # threads, the last piece's number
+        # Reused and archived again (re-analysed at a later commit): the earlier pieces come
+        # from the archived copy, which still covers 0-60 s.
+        r = self.validate(w3, "--reuse")
+        self.assertIn("run reused", r.stdout, r.stdout + r.stderr)
+        self.assert_whole_series(kept)
+
+    def test_a_run_started_over_is_not_joined_to_parked_pieces(self):
+        # Parked at 20 s, then run again from the start in one piece (no --resume): the
+        # archive holds that run alone, and the stale parked copy of it is removed.
+        w1 = os.path.join(self.root, "m1")
+        self.validate(w1, "--resume", end=20.0)
+        self.assertEqual(self.validate(w1, "--park").returncode, 0)
+        r = self.validate(os.path.join(self.root, "m2"), end=60.0)
+        self.assertIn("archived", r.stdout, r.stdout + r.stderr)
+        self.assert_whole_series(os.path.join(self.archive, "segregation_standard"))
+        self.assertFalse(os.path.exists(os.path.join(self.archive,
+                                                     "segregation_standard.parked")))
+
+    def assert_whole_series(self, kept):
         for name, column in (("series.csv", 2.0), (os.path.join("analysis", "segregation.csv"),
                                                    0.01)):
             with open(os.path.join(kept, name)) as f:
@@ -224,10 +248,6 @@ class Parked(unittest.TestCase):
             # not doubled.
             self.assertEqual(times, [0.25 * k for k in range(241)], name)
             self.assertAlmostEqual(float(lines[-1].split(",")[1]), 60.0 * column)
-        with open(os.path.join(self.archive, "segregation_standard.done")) as f:
-            done = f.read().split("\n")
-        self.assertEqual(done[0], rec[0])
-        self.assertEqual(done[3], "1")
 
     def test_a_parked_run_of_another_case_setting_is_not_continued(self):
         w1 = os.path.join(self.root, "m1")
