@@ -1,7 +1,10 @@
 #include "integrate/gas_coupling.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -38,10 +41,15 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
   const coupling::drag::DragModel drag =
       coupling::drag::drag_model_of_case(settings_.drag, spec.where("coupling.drag"));
   settings_.drag = coupling::drag::to_string(drag); // (not given: the default closure's name)
-  // Polydisperse closures without a given mean diameter: the Sauter mean of the particles.
+  // Polydisperse closures without a given mean diameter: the Sauter mean of the particles,
+  // summed in id order, so that a restart from a store sorted in space gets the same bits.
   if (coupling::drag::needs_mean_diameter(drag) && settings_.d_mean == 0.0) {
+    std::vector<std::size_t> by_id(p.size());
+    std::iota(by_id.begin(), by_id.end(), std::size_t{0});
+    std::sort(by_id.begin(), by_id.end(),
+              [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
     double s3 = 0.0, s2 = 0.0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
+    for (const std::size_t i : by_id) {
       const double d = 2.0 * p.radius[i];
       s3 += d * d * d;
       s2 += d * d;
