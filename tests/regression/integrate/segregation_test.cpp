@@ -103,6 +103,22 @@ TEST(SegregationBed, TheFullCaseStartsMixedAndAtRest) {
   EXPECT_GT(sim.time(), 0.0);
 }
 
+// The seed's split read by number (segregation_beetstra_by_number.toml, a sensitivity case):
+// 11,250 small + 33,750 large, x_large = 33,750 x 2.5^3 / (33,750 x 2.5^3 + 11,250 x 1.5^3) =
+// 0.9328, s(0) within 0.02 of 0 (measured -0.011: the small beads sank while pouring), and the
+// event-driven engine takes its start.
+TEST(SegregationBed, TheByNumberCaseStartsMixedAndAtRest) {
+  Simulation sim(read_case_file(std::string(FLUIDEM_SOURCE_DIR) +
+                                "/cases/deen07/segregation_beetstra_by_number.toml"));
+  const Segregation s = segregation_of(sim);
+  EXPECT_EQ(s.n_small, 11250);
+  EXPECT_EQ(s.n_large, 33750);
+  EXPECT_NEAR(s.x_large, 33750.0 * 15.625 / (33750.0 * 15.625 + 11250.0 * 3.375), 1e-6);
+  EXPECT_LT(std::abs(s.s), 0.02);
+  EXPECT_NO_THROW(sim.advance(1));
+  EXPECT_GT(sim.time(), 0.0);
+}
+
 TEST(SegregationBed, OneAndTwoThreadsGiveBitwiseIdenticalParticlesAndS) {
   const State one = run_with_threads(1);
   const State two = run_with_threads(2);
