@@ -2,6 +2,7 @@
 #include "noncontact/liquid_bridges.hpp"
 #include "noncontact/ordered_noncontact.hpp"
 #include "noncontact/pair_forces.hpp"
+#include "particles/id_order.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -494,10 +495,7 @@ DistributedState DistributedSoftSphere::gather(bool with_history) const {
   all_kept.width = rows_->history_width();
   all_kept.offset.assign(1, 0);
   for (const auto& b : history_parts) unpack_history(b, all_kept);
-  std::vector<std::uint32_t> order(p.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return p.id[a] < p.id[b]; });
+  const std::vector<std::uint32_t> order = id_order(p);
   p.permute(order);
   const std::size_t n = order.size();
   unpack_fields(fields, all_extra, state_fields(g), n, order);
@@ -545,11 +543,7 @@ DistributedSoftSphere::gather_where(const std::function<bool(const Vec3&)>& keep
   ParticleStore all;
   std::vector<double> no_extra;
   for (const auto& b : parts) unpack_particles(b, all, no_extra, 0);
-  std::vector<std::uint32_t> order(all.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return all.id[a] < all.id[b]; });
-  all.permute(order);
+  all.permute(id_order(all));
   return all;
 }
 

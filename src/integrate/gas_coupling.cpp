@@ -1,15 +1,13 @@
 #include "integrate/gas_coupling.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numeric>
-#include <vector>
 
 #include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "coupling/drag/drag_model.hpp"
+#include "particles/id_order.hpp"
 
 namespace fluidem {
 
@@ -44,12 +42,8 @@ GasCoupling::GasCoupling(const CaseSpec& spec, const ParticleStore& p)
   // Polydisperse closures without a given mean diameter: the Sauter mean of the particles,
   // summed in id order, so that a restart from a store sorted in space gets the same bits.
   if (coupling::drag::needs_mean_diameter(drag) && settings_.d_mean == 0.0) {
-    std::vector<std::size_t> by_id(p.size());
-    std::iota(by_id.begin(), by_id.end(), std::size_t{0});
-    std::sort(by_id.begin(), by_id.end(),
-              [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
     double s3 = 0.0, s2 = 0.0;
-    for (const std::size_t i : by_id) {
+    for (const std::uint32_t i : id_order(p)) {
       const double d = 2.0 * p.radius[i];
       s3 += d * d * d;
       s2 += d * d;

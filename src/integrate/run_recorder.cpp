@@ -12,6 +12,7 @@
 #include "output/fields_writer.hpp"
 #include "output/h5md_writer.hpp"
 #include "output/series_writer.hpp"
+#include "particles/id_order.hpp"
 
 namespace fluidem {
 
@@ -181,12 +182,7 @@ const std::vector<std::uint32_t>* RunRecorder::output_order() {
   const long sorts = sim_.spatial_sorts();
   if (order_sorts_ != sorts) { // frames list the particles by id, whatever the store's order
     order_.clear();
-    if (!std::is_sorted(p.id.begin(), p.id.end())) {
-      order_.resize(p.size());
-      for (std::size_t i = 0; i < p.size(); ++i) order_[i] = static_cast<std::uint32_t>(i);
-      std::sort(order_.begin(), order_.end(),
-                [&](std::uint32_t a, std::uint32_t b) { return p.id[a] < p.id[b]; });
-    }
+    if (!std::is_sorted(p.id.begin(), p.id.end())) order_ = id_order(p);
     order_sorts_ = sorts;
   }
   return order_.empty() ? nullptr : &order_;
