@@ -1302,7 +1302,7 @@ def main():
 
             def record(seconds, started=started, piece=piece, commits=commits, threads=threads):
                 write_started(started, " ".join(cmd[1:]), piece["wall"] + seconds, commits,
-                              threads, piece.get("piece", 1))
+                              threads, piece["piece"])
 
             code, seconds = run_pieces_cmd(run, log, record)
             wall[r.name] = piece["wall"] + seconds
@@ -1336,7 +1336,7 @@ def main():
         if not reused:
             with open(done, "w") as f:
                 f.write(" ".join(cmd[1:]) + "\n" + str(wall[r.name]) + "\n"
-                        + "\n".join(made[r.name]) + f"\n{piece.get('piece', 1)}\n")
+                        + "\n".join(made[r.name]) + f"\n{piece['piece']}\n")
         if r.long and archive:
             archive_run(out, done, archive, r.name, CASES, work)
             # The report reads what was archived (its snapshot drawn once, there).
